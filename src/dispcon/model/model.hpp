@@ -1,0 +1,62 @@
+// A model: bodies and joints with typed ids. Body 0 is the fixed world.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "dispcon/model/body.hpp"
+#include "dispcon/model/ids.hpp"
+#include "dispcon/model/joint.hpp"
+
+namespace dispcon {
+
+class Model {
+ public:
+  static constexpr BodyId kWorld{0};
+
+  Model();
+
+  // Throws std::invalid_argument naming the problem (duplicate or reserved name, bad value).
+  BodyId add_body(Body body);
+  // Throws std::invalid_argument when the joint is malformed (unknown body, same body twice,
+  // no component, twist without angle, zero vector, min above max, move outside [0, 1]).
+  JointId add_joint(Joint joint);
+
+  std::optional<BodyId> find(std::string_view name) const;
+
+  const Body& body(BodyId id) const { return bodies_.at(static_cast<size_t>(id.value)); }
+  Body& body(BodyId id) { return bodies_.at(static_cast<size_t>(id.value)); }
+  const Joint& joint(JointId id) const { return joints_.at(static_cast<size_t>(id.value)); }
+  Joint& joint(JointId id) { return joints_.at(static_cast<size_t>(id.value)); }
+
+  const std::vector<Body>& bodies() const { return bodies_; }
+  const std::vector<Joint>& joints() const { return joints_; }
+  int body_count() const { return static_cast<int>(bodies_.size()); }
+  int joint_count() const { return static_cast<int>(joints_.size()); }
+
+  // Current poses of every body (index = BodyId::value), and setting them back.
+  std::vector<Pose> poses() const;
+  void set_poses(const std::vector<Pose>& poses);
+
+  // The no-physics "ability to rotate" used for a body: its `rotate` when given, else
+  // 1 / rho^2 with rho the RMS distance from its centre to its constrained points (1 without any).
+  double ability_to_rotate(BodyId id) const;
+
+  // mu12 used for a joint: its `move`, else m2/(m1+m2) when both have mass, else 0.5;
+  // 0 when body1 is fixed, 1 when body2 is fixed (whatever was asked).
+  double move_share(JointId id) const;
+
+  // Largest distance between any two points of interest (body origins, centres, hinge points):
+  // the length scale for relative thresholds. At least 1e-6.
+  double length_scale() const;
+
+ private:
+  std::vector<Body> bodies_;
+  std::vector<Joint> joints_;
+  std::unordered_map<std::string, int> by_name_;
+};
+
+}  // namespace dispcon

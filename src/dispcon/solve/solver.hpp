@@ -1,0 +1,100 @@
+// The constraint processing loop (seed 2.2 step 2, 3.2) and what a solve reports.
+//
+// One iteration: every active joint proposes small rotations of its two bodies (eq. 18 and the
+// angle and twist parts), the proposals are weighted by 1/max(n_i, n_j) and summed per body and
+// applied; then every joint proposes translations from the rotated positions (eq. 19), weighted
+// and summed likewise, and applied. Repeat until every joint holds within the tolerance.
+// Variants are options of that one loop: Jacobi (the seed) or Gauss-Seidel ordering, a relaxation
+// factor, and a final Newton polish whose steps are constraint impulses M^-1 J^T lambda, so they
+// keep the seed's momentum conservation, continuity and closed loops.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dispcon/model/model.hpp"
+
+namespace dispcon {
+
+enum class Scheme { Jacobi, GaussSeidel };
+
+struct SolveOptions {
+  double tolerance = 1e-9;     // largest violation accepted (length units and radians)
+  int max_iterations = 10000;  // seed iterations + polish iterations
+  double time = 0;             // joints with time t0 t1 are active only when t0 <= time <= t1
+
+  Scheme scheme = Scheme::Jacobi;
+  double relaxation = 1.0;         // multiplies the seed's 1/max(n_i, n_j) weights
+  double max_rotation_step = 0.2;  // radians a body may turn in one iteration (seed 2.3)
+  bool translate_after_rotate = true;  // eq. 19 (exact in one iteration) vs eq. 15
+  bool use_physics = true;  // bodies with mass and inertia use m J^-1 (eqs. 11-19); else k
+
+  bool newton_polish = true;  // finish with Newton steps once close
+  double polish_below = 1e-2; // switch to Newton when the largest violation is below this times
+                              // the model's length scale (radians: below this)
+};
+
+// One joint as the solve left it.
+struct ConstraintReport {
+  JointId joint;
+  int line = 0;
+  double residual = 0;     // largest violation of its parts (length units or radians)
+  bool satisfied = true;   // residual <= tolerance
+  bool active = true;      // inactive joints (time interval) are reported satisfied
+  bool at_limit = false;   // a bound (segment end, ring edge, angle or twist limit) is in contact
+};
+
+enum class SolveStatus {
+  Converged,       // every active joint within tolerance
+  IterationLimit,  // the cap was hit: over-constrained, unreachable, or too slow; see constraints
+  Diverged,        // a non-finite value appeared; the poses were not changed
+};
+
+const char* to_string(SolveStatus status);
+
+struct SolveResult {
+  SolveStatus status = SolveStatus::Converged;
+  bool converged = true;
+  int iterations = 0;         // total
+  int seed_iterations = 0;    // displacement-constraint iterations
+  int polish_iterations = 0;  // Newton iterations
+  double max_residual = 0;
+  std::vector<ConstraintReport> constraints;  // one per joint, in model order
+  std::vector<Pose> poses;                    // the poses reached (best effort when not converged)
+  std::string message;                        // one line for people: what happened and where
+
+  std::vector<JointId> violated() const;
+};
+
+// Solves from `poses` (one per body) in place; bodies with held[id] true do not move (as fixed).
+// Never touches the model. `held` may be empty.
+SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptions& options,
+                  const std::vector<bool>& held = {});
+
+// Residual of every joint at the given poses, without moving anything.
+std::vector<ConstraintReport> measure(const Model& model, const std::vector<Pose>& poses,
+                                      const SolveOptions& options);
+
+// Automatic assembly (seed 2.3): solves from the model's poses and stores the result in the
+// model when it converged. A failed solve leaves the model as it was; the result holds the poses
+// it reached.
+SolveResult assemble(Model& model, const SolveOptions& options = {});
+
+struct DragResult {
+  bool converged = true;
+  int iterations = 0;                // total over steps
+  double max_residual = 0;           // over steps
+  std::vector<SolveResult> steps;    // one per step done
+  int failed_step = -1;              // first step that did not converge, -1 when none
+  std::string message;
+};
+
+// Dragging: assembles if needed, then moves `body` in `steps` equal steps (position linearly,
+// rotation along the shortest arc) from its current pose to `target`, holding it at each step's
+// pose while the rest follows. Each step starts from the last (continuity: no jump to another
+// branch). Stops at the first step that fails and leaves the model at the last good step.
+// When `step_poses` is given it receives every step's poses.
+DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
+                const SolveOptions& options = {}, std::vector<std::vector<Pose>>* step_poses = nullptr);
+
+}  // namespace dispcon
