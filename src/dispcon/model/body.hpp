@@ -15,13 +15,13 @@ struct Body {
   std::string name;
   int line = 0;  // source line in a .dcl file, 0 when built in code
 
-  Pose pose;                  // local -> world
-  Vec3 center = Vec3::Zero(); // centre of mass / of rotation, local
+  Pose pose;                   // local -> world
+  Vec3 center = Vec3::Zero();  // centre of mass / of rotation, local
   bool fixed = false;
 
-  std::optional<double> rotate;   // "ability to rotate" k > 0; derived when absent
-  std::optional<double> mass;     // m > 0
-  std::optional<Mat3> inertia;    // about `center`, local axes, symmetric positive definite
+  std::optional<double> rotate;  // "ability to rotate" k > 0; derived when absent
+  std::optional<double> mass;    // m > 0
+  std::optional<Mat3> inertia;   // about `center`, local axes, symmetric positive definite
 
   // Physics variant only (seed 2.2): initial speeds and constant external actions, world frame.
   Vec3 velocity = Vec3::Zero();

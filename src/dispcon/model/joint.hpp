@@ -58,7 +58,7 @@ struct TwistSpec {
 };
 
 struct Joint {
-  BodyId body1;  // world by default
+  BodyId body1{0};  // the world (Model::kWorld) by default
   BodyId body2;
 
   bool has_hinge = false;

@@ -19,13 +19,13 @@ enum class PartKind { Translation, Angle, Twist };
 struct JacobianRow {
   JointId joint;
   PartKind part = PartKind::Translation;
-  bool limit = false;    // this row comes from a bound in contact or violated
-  double residual = 0;   // signed value of this row's constraint function
+  bool limit = false;   // this row comes from a bound in contact or violated
+  double residual = 0;  // signed value of this row's constraint function
 };
 
 struct ConstraintJacobian {
   Eigen::SparseMatrix<double, Eigen::RowMajor> J;  // rows x (6 * body_count)
-  Eigen::VectorXd residual;                         // one per row
+  Eigen::VectorXd residual;                        // one per row
   std::vector<JacobianRow> rows;
 };
 

@@ -24,24 +24,27 @@ struct SolveOptions {
   double time = 0;             // joints with time t0 t1 are active only when t0 <= time <= t1
 
   Scheme scheme = Scheme::Jacobi;
-  double relaxation = 1.0;         // multiplies the seed's 1/max(n_i, n_j) weights
-  double max_rotation_step = 0.2;  // radians a body may turn in one iteration (seed 2.3)
+  bool seed_weights = true;            // weight by 1/max(n_i, n_j) (seed 3.2); false: plain sum
+  double relaxation = 1.0;             // multiplies the weights
+  double max_rotation_step = 0.2;      // radians a body may turn in one iteration (seed 2.3)
   bool translate_after_rotate = true;  // eq. 19 (exact in one iteration) vs eq. 15
   bool use_physics = true;  // bodies with mass and inertia use m J^-1 (eqs. 11-19); else k
 
-  bool newton_polish = true;  // finish with Newton steps once close
-  double polish_below = 1e-2; // switch to Newton when the largest violation is below this times
-                              // the model's length scale (radians: below this)
+  bool record_history = false;  // keep the largest violation after every iteration
+
+  bool newton_polish = true;   // finish with Newton steps once close
+  double polish_below = 1e-2;  // switch to Newton when the largest violation is below this times
+                               // the model's length scale (radians: below this)
 };
 
 // One joint as the solve left it.
 struct ConstraintReport {
   JointId joint;
   int line = 0;
-  double residual = 0;     // largest violation of its parts (length units or radians)
-  bool satisfied = true;   // residual <= tolerance
-  bool active = true;      // inactive joints (time interval) are reported satisfied
-  bool at_limit = false;   // a bound (segment end, ring edge, angle or twist limit) is in contact
+  double residual = 0;    // largest violation of its parts (length units or radians)
+  bool satisfied = true;  // residual <= tolerance
+  bool active = true;     // inactive joints (time interval) are reported satisfied
+  bool at_limit = false;  // a bound (segment end, ring edge, angle or twist limit) is in contact
 };
 
 enum class SolveStatus {
@@ -62,6 +65,7 @@ struct SolveResult {
   std::vector<ConstraintReport> constraints;  // one per joint, in model order
   std::vector<Pose> poses;                    // the poses reached (best effort when not converged)
   std::string message;                        // one line for people: what happened and where
+  std::vector<double> history;  // largest violation after each iteration (record_history)
 
   std::vector<JointId> violated() const;
 };
@@ -82,10 +86,10 @@ SolveResult assemble(Model& model, const SolveOptions& options = {});
 
 struct DragResult {
   bool converged = true;
-  int iterations = 0;                // total over steps
-  double max_residual = 0;           // over steps
-  std::vector<SolveResult> steps;    // one per step done
-  int failed_step = -1;              // first step that did not converge, -1 when none
+  int iterations = 0;              // total over steps
+  double max_residual = 0;         // over steps
+  std::vector<SolveResult> steps;  // one per step done
+  int failed_step = -1;            // first step that did not converge, -1 when none
   std::string message;
 };
 
@@ -95,6 +99,7 @@ struct DragResult {
 // branch). Stops at the first step that fails and leaves the model at the last good step.
 // When `step_poses` is given it receives every step's poses.
 DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
-                const SolveOptions& options = {}, std::vector<std::vector<Pose>>* step_poses = nullptr);
+                const SolveOptions& options = {},
+                std::vector<std::vector<Pose>>* step_poses = nullptr);
 
 }  // namespace dispcon

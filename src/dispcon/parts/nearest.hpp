@@ -1,0 +1,37 @@
+// What every translation guide answers (seed 4.1: "P2 is replaced ... with the point P'2 of the
+// permissible set that is the closest"): the nearest permissible point and the directions in which
+// the set constrains a point there (its normal space), all in object1's local frame.
+#pragma once
+
+#include <array>
+
+#include "dispcon/math/rotation.hpp"
+
+namespace dispcon {
+
+struct Nearest {
+  Vec3 q = Vec3::Zero();          // nearest permissible point
+  int rows = 0;                   // how many constrained directions at q (0 to 3)
+  std::array<Vec3, 3> normals{};  // orthonormal, the first `rows` are used
+  bool at_limit = false;          // a bound (segment end, ring edge, ...) is in contact
+};
+
+// Fills n[0..2] with an orthonormal basis whose first vector is `first` (unit).
+void orthonormal_basis(const Vec3& first, Vec3& second, Vec3& third);
+
+// Any unit vector perpendicular to the unit vector u.
+Vec3 any_perpendicular(const Vec3& u);
+
+// Unit vector along v, or `fallback` when v is (nearly) zero.
+Vec3 unit_or(const Vec3& v, const Vec3& fallback);
+
+// `band` widens what counts as contact with a bound: 0 while solving (contact only when the point
+// is at or beyond the bound), the tolerance for diagnostics.
+struct BoundTest {
+  double band = 0;
+  bool above(double value, double max) const { return max < kHuge && value >= max - band; }
+  bool below(double value, double min) const { return min > -kHuge && value <= min + band; }
+  static constexpr double kHuge = 1e300;
+};
+
+}  // namespace dispcon

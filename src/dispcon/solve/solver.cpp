@@ -1,0 +1,378 @@
+#include "dispcon/solve/solver.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "dispcon/solve/state.hpp"
+
+namespace dispcon {
+
+namespace {
+
+Vec3 clamp_norm(const Vec3& v, double limit) {
+  const double n = v.norm();
+  return n > limit ? Vec3(v * (limit / n)) : v;
+}
+
+double max_residual(const SolverState& s) {
+  double r = 0;
+  for (const JointState& js : s.joints) r = std::max(r, s.residual(js));
+  return r;
+}
+
+// One iteration of seed 3.2: propose, weight by 1/max(n_i, n_j), combine rotations, apply;
+// then the same for translations (from the rotated positions, eq. 19, or from the same positions
+// as the rotations, eq. 15).
+void jacobi_iteration(SolverState& s, const SolveOptions& o) {
+  for (BodyState& b : s.bodies) b.dR.setZero(), b.dx.setZero();
+  Vec3 d1, d2;
+  for (const JointState& js : s.joints) {
+    if (!js.active || js.w == 0) continue;
+    s.propose_rotations(js, d1, d2);
+    s.bodies[static_cast<size_t>(js.b1)].dR += js.w * d1;
+    s.bodies[static_cast<size_t>(js.b2)].dR += js.w * d2;
+    if (!o.translate_after_rotate) {
+      s.propose_translations(js, d1, d2);
+      s.bodies[static_cast<size_t>(js.b1)].dx += js.w * d1;
+      s.bodies[static_cast<size_t>(js.b2)].dx += js.w * d2;
+    }
+  }
+  for (BodyState& b : s.bodies) {
+    if (b.movable) b.displace(clamp_norm(b.dR, o.max_rotation_step), Vec3::Zero());
+  }
+  if (o.translate_after_rotate) {
+    for (const JointState& js : s.joints) {
+      if (!js.active || js.w == 0) continue;
+      s.propose_translations(js, d1, d2);
+      s.bodies[static_cast<size_t>(js.b1)].dx += js.w * d1;
+      s.bodies[static_cast<size_t>(js.b2)].dx += js.w * d2;
+    }
+  }
+  for (BodyState& b : s.bodies) {
+    if (b.movable) b.displace(Vec3::Zero(), b.dx);
+  }
+}
+
+// Gauss-Seidel ordering: each joint's correction is applied at once, in model order.
+void gauss_seidel_iteration(SolverState& s, const SolveOptions& o) {
+  Vec3 d1, d2;
+  const double w = o.relaxation;
+  for (const JointState& js : s.joints) {
+    if (!js.active || (js.mu1 == 0 && js.mu2 == 0)) continue;
+    BodyState& b1 = s.bodies[static_cast<size_t>(js.b1)];
+    BodyState& b2 = s.bodies[static_cast<size_t>(js.b2)];
+    s.propose_rotations(js, d1, d2);
+    if (b1.movable) b1.displace(clamp_norm(w * d1, o.max_rotation_step), Vec3::Zero());
+    if (b2.movable) b2.displace(clamp_norm(w * d2, o.max_rotation_step), Vec3::Zero());
+    s.propose_translations(js, d1, d2);
+    if (b1.movable) b1.displace(Vec3::Zero(), w * d1);
+    if (b2.movable) b2.displace(Vec3::Zero(), w * d2);
+  }
+}
+
+// Newton polish. The step is dq = M^-1 J^T y with (J M^-1 J^T + lambda I) y = -r: the
+// displacement produced by constraint impulses J^T y, opposite on the two bodies of each joint,
+// so it conserves first-order momenta like the seed's corrections; lambda regularises redundant
+// rows (a planar linkage in 3D) and damps far from the solution (Levenberg-Marquardt).
+class Polisher {
+ public:
+  explicit Polisher(const SolverState& s) {
+    var_.assign(s.bodies.size(), -1);
+    int nv = 0;
+    for (size_t i = 0; i < s.bodies.size(); ++i) {
+      if (s.bodies[i].movable) var_[i] = nv++;
+    }
+    nv_ = nv;
+  }
+
+  // Returns false when no step could be computed.
+  bool step(SolverState& s, double lambda, double max_rotation, Eigen::VectorXd& dq) {
+    triplets_.clear();
+    residual_.clear();
+    int row = 0;
+    PartRows parts[3];
+    for (const JointState& js : s.joints) {
+      if (!js.active) continue;
+      s.rows(js, BoundTest{0}, parts);
+      for (const PartRows& p : parts) {
+        for (int k = 0; k < p.count; ++k) {
+          add_row(row, js.b1, 0, p.J[k]);
+          add_row(row, js.b2, 6, p.J[k]);
+          residual_.push_back(p.residual[k]);
+          ++row;
+        }
+      }
+    }
+    if (row == 0 || nv_ == 0) return false;
+    Eigen::SparseMatrix<double> J(row, 6 * nv_);
+    J.setFromTriplets(triplets_.begin(), triplets_.end());
+    // M^-1 as a block-diagonal sparse matrix.
+    std::vector<Eigen::Triplet<double>> mt;
+    mt.reserve(static_cast<size_t>(nv_) * 12);
+    for (size_t i = 0; i < s.bodies.size(); ++i) {
+      if (var_[i] < 0) continue;
+      const int c = 6 * var_[i];
+      const Mat3 Iinv = s.bodies[i].inverse_inertia();
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) mt.emplace_back(c + a, c + b, Iinv(a, b));
+        mt.emplace_back(c + 3 + a, c + 3 + a, 1.0 / s.bodies[i].m);
+      }
+    }
+    Eigen::SparseMatrix<double> Minv(6 * nv_, 6 * nv_);
+    Minv.setFromTriplets(mt.begin(), mt.end());
+    const Eigen::SparseMatrix<double> MJt = Minv * J.transpose();
+    Eigen::SparseMatrix<double> S = J * MJt;
+    double scale = 0;
+    for (int k = 0; k < S.rows(); ++k) scale = std::max(scale, S.coeff(k, k));
+    if (!(scale > 0)) return false;
+    for (int k = 0; k < S.rows(); ++k) S.coeffRef(k, k) += lambda * scale;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(S);
+    if (ldlt.info() != Eigen::Success) return false;
+    const Eigen::Map<const Eigen::VectorXd> r(residual_.data(), row);
+    const Eigen::VectorXd y = ldlt.solve(-r);
+    dq = MJt * y;
+    if (!dq.allFinite()) return false;
+    // Keep each body's turn small (seed 2.3): scale the whole step, never bend it.
+    double largest = 0;
+    for (int v = 0; v < nv_; ++v) largest = std::max(largest, dq.segment<3>(6 * v).norm());
+    if (largest > max_rotation) dq *= max_rotation / largest;
+    for (size_t i = 0; i < s.bodies.size(); ++i) {
+      if (var_[i] < 0) continue;
+      const int c = 6 * var_[i];
+      s.bodies[i].displace(dq.segment<3>(c), dq.segment<3>(c + 3));
+    }
+    return true;
+  }
+
+ private:
+  void add_row(int row, int body, int offset, const Row& J) {
+    const int v = var_[static_cast<size_t>(body)];
+    if (v < 0) return;
+    for (int k = 0; k < 6; ++k) {
+      const double value = J(offset + k);
+      if (value != 0) triplets_.emplace_back(row, 6 * v + k, value);
+    }
+  }
+
+  std::vector<int> var_;
+  int nv_ = 0;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  std::vector<double> residual_;
+};
+
+std::string describe(const Model& model, const ConstraintReport& c) {
+  const Joint& j = model.joint(c.joint);
+  std::ostringstream out;
+  out << "joint " << c.joint.value;
+  if (c.line) out << " (line " << c.line << ")";
+  out << " " << model.body(j.body1).name << " / " << model.body(j.body2).name << " residual "
+      << c.residual;
+  return out.str();
+}
+
+std::vector<ConstraintReport> report(const Model& model, const SolverState& s, double tolerance) {
+  std::vector<ConstraintReport> out;
+  out.reserve(s.joints.size());
+  for (size_t c = 0; c < s.joints.size(); ++c) {
+    const JointState& js = s.joints[c];
+    ConstraintReport r;
+    r.joint = JointId{static_cast<int>(c)};
+    r.line = js.joint->line;
+    r.active = js.active;
+    r.residual = s.residual(js);
+    r.satisfied = r.residual <= tolerance;
+    r.at_limit = js.active && s.at_limit(js, tolerance);
+    out.push_back(r);
+  }
+  (void)model;
+  return out;
+}
+
+}  // namespace
+
+const char* to_string(SolveStatus status) {
+  switch (status) {
+    case SolveStatus::Converged:
+      return "converged";
+    case SolveStatus::IterationLimit:
+      return "iteration-limit";
+    case SolveStatus::Diverged:
+      return "diverged";
+  }
+  return "?";
+}
+
+std::vector<JointId> SolveResult::violated() const {
+  std::vector<JointId> out;
+  for (const ConstraintReport& c : constraints) {
+    if (!c.satisfied) out.push_back(c.joint);
+  }
+  return out;
+}
+
+std::vector<ConstraintReport> measure(const Model& model, const std::vector<Pose>& poses,
+                                      const SolveOptions& options) {
+  const SolverState s(model, poses, options, {});
+  return report(model, s, options.tolerance);
+}
+
+SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptions& o,
+                  const std::vector<bool>& held) {
+  if (static_cast<int>(poses.size()) != model.body_count()) {
+    throw std::invalid_argument("solve: one pose per body expected");
+  }
+  SolverState s(model, poses, o, held);
+  SolveResult result;
+  const double polish_threshold = o.polish_below * model.length_scale();
+  double r = max_residual(s);
+  std::vector<Pose> best = poses;
+  double best_r = r;
+  Polisher polisher(s);
+  Eigen::VectorXd dq;
+  std::vector<Pose> before;
+  double lambda = 1e-12;
+  int seed_only_until = 0;  // after a failed polish, let the seed iterations work a while
+  while (r > o.tolerance && result.iterations < o.max_iterations) {
+    const bool polish =
+        o.newton_polish && r < polish_threshold && result.iterations >= seed_only_until;
+    if (polish) {
+      s.write_poses(before);
+      const bool stepped = polisher.step(s, lambda, o.max_rotation_step, dq);
+      const double next = stepped ? max_residual(s) : r;
+      ++result.iterations;
+      ++result.polish_iterations;
+      if (stepped && next < r) {
+        r = next;
+        lambda = std::max(1e-12, lambda * 0.1);
+      } else {
+        s.read_poses(before);
+        lambda *= 100;
+        if (!stepped || lambda > 1e-2) {
+          lambda = 1e-12;
+          seed_only_until = result.iterations + 10;
+        }
+      }
+    } else {
+      if (o.scheme == Scheme::Jacobi) {
+        jacobi_iteration(s, o);
+      } else {
+        gauss_seidel_iteration(s, o);
+      }
+      ++result.iterations;
+      ++result.seed_iterations;
+      r = max_residual(s);
+    }
+    if (o.record_history) result.history.push_back(r);
+    if (!std::isfinite(r)) break;
+    if (r < best_r) {
+      best_r = r;
+      s.write_poses(best);
+    }
+  }
+  if (!std::isfinite(r)) {
+    s.read_poses(poses);
+    result.status = SolveStatus::Diverged;
+    result.converged = false;
+  } else if (r > o.tolerance) {
+    s.read_poses(best);
+    r = best_r;
+    result.status = SolveStatus::IterationLimit;
+    result.converged = false;
+  }
+  result.max_residual = result.status == SolveStatus::Diverged ? max_residual(s) : r;
+  result.constraints = report(model, s, o.tolerance);
+  s.write_poses(result.poses);
+  if (result.converged) poses = result.poses;
+
+  std::ostringstream msg;
+  if (result.converged) {
+    msg << "converged in " << result.iterations << " iterations (max residual "
+        << result.max_residual << ")";
+  } else {
+    msg << (result.status == SolveStatus::Diverged ? "diverged" : "did not converge") << " after "
+        << result.iterations << " iterations; still violated: ";
+    std::vector<ConstraintReport> bad;
+    for (const ConstraintReport& c : result.constraints) {
+      if (!c.satisfied) bad.push_back(c);
+    }
+    std::sort(bad.begin(), bad.end(), [](const ConstraintReport& a, const ConstraintReport& b) {
+      return a.residual > b.residual;
+    });
+    for (size_t k = 0; k < bad.size() && k < 5; ++k) {
+      msg << (k ? "; " : "") << describe(model, bad[k]);
+    }
+    if (bad.size() > 5) msg << "; and " << bad.size() - 5 << " more";
+  }
+  result.message = msg.str();
+  return result;
+}
+
+SolveResult assemble(Model& model, const SolveOptions& options) {
+  std::vector<Pose> poses = model.poses();
+  SolveResult r = solve(model, poses, options);
+  if (r.converged) model.set_poses(poses);
+  return r;
+}
+
+DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
+                const SolveOptions& options, std::vector<std::vector<Pose>>* step_poses) {
+  if (body.value <= 0 || body.value >= model.body_count()) {
+    throw std::invalid_argument("drag: unknown body");
+  }
+  if (model.body(body).fixed) {
+    throw std::invalid_argument("drag: object '" + model.body(body).name + "' is fixed");
+  }
+  if (steps < 1) throw std::invalid_argument("drag: steps must be at least 1");
+  DragResult out;
+  std::vector<Pose> poses = model.poses();
+  const SolveResult first = solve(model, poses, options);
+  if (!first.converged) {
+    out.converged = false;
+    out.iterations = first.iterations;
+    out.max_residual = first.max_residual;
+    out.failed_step = 0;
+    out.message = "the model does not assemble: " + first.message;
+    return out;
+  }
+  out.iterations = first.iterations;
+  std::vector<bool> held(static_cast<size_t>(model.body_count()), false);
+  held[static_cast<size_t>(body.value)] = true;
+  const Pose start = poses[static_cast<size_t>(body.value)];
+  std::vector<Pose> last_good = poses;
+  for (int k = 1; k <= steps; ++k) {
+    const double t = static_cast<double>(k) / steps;
+    Pose p;
+    p.x = (1 - t) * start.x + t * target.x;
+    p.q = start.q.slerp(t, target.q).normalized();
+    poses[static_cast<size_t>(body.value)] = p;
+    SolveResult r = solve(model, poses, options, held);
+    out.iterations += r.iterations;
+    out.max_residual = std::max(out.max_residual, r.max_residual);
+    const bool ok = r.converged;
+    out.steps.push_back(std::move(r));
+    if (!ok) {
+      out.converged = false;
+      out.failed_step = k - 1;
+      break;
+    }
+    last_good = poses;
+    if (step_poses) step_poses->push_back(poses);
+  }
+  model.set_poses(last_good);
+  std::ostringstream msg;
+  if (out.converged) {
+    msg << "dragged '" << model.body(body).name << "' in " << steps << " steps, " << out.iterations
+        << " iterations";
+  } else {
+    msg << "step " << out.failed_step + 1 << " of " << steps << " failed, '"
+        << model.body(body).name << "' left at step " << out.failed_step << ": "
+        << out.steps.back().message;
+  }
+  out.message = msg.str();
+  return out;
+}
+
+}  // namespace dispcon

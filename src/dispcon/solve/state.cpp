@@ -1,0 +1,221 @@
+#include "dispcon/solve/state.hpp"
+
+#include <algorithm>
+
+#include "dispcon/parts/angle.hpp"
+#include "dispcon/parts/circle.hpp"
+#include "dispcon/parts/cylinder.hpp"
+#include "dispcon/parts/point.hpp"
+#include "dispcon/parts/point_to_point.hpp"
+#include "dispcon/parts/polyline.hpp"
+#include "dispcon/parts/ring.hpp"
+#include "dispcon/parts/segment.hpp"
+#include "dispcon/parts/sphere.hpp"
+#include "dispcon/parts/twist.hpp"
+
+namespace dispcon {
+
+namespace {
+
+Nearest nearest_on_guide(const Joint& j, const Vec3& p, BoundTest bound) {
+  if (!j.guide) return nearest_on_point(j.p1, p);
+  const Guide& g = *j.guide;
+  switch (g.kind) {
+    case GuideKind::Point:
+      return nearest_on_point(j.p1, p);
+    case GuideKind::Axial:
+      return nearest_on_segment(j.p1, g.dir, g.min, g.max, p, bound);
+    case GuideKind::Planar:
+      return nearest_on_ring(j.p1, g.dir, g.min, g.max, p, bound);
+    case GuideKind::Sphere:
+      return nearest_in_sphere(j.p1, g.min, g.max, p, bound);
+    case GuideKind::Circle:
+      return nearest_on_circle(j.p1, g.dir, g.radius, p);
+    case GuideKind::Cylinder:
+      return nearest_on_cylinder(j.p1, g.dir, g.radius, g.min, g.max, p, bound);
+    case GuideKind::Polyline:
+      return nearest_on_polyline(g.points, p, bound);
+  }
+  return nearest_on_point(j.p1, p);
+}
+
+Vec3 rotated(const Vec3& dR, const Vec3& v) {
+  return quat_from_rotation_vector(dR) * v;
+}
+
+}  // namespace
+
+void BodyState::set_pose(const Pose& pose) {
+  q = pose.q.normalized();
+  x = pose.x;
+  R = q.toRotationMatrix();
+  G = R * c + x;
+  K = physics ? Mat3(m * R * inertia_inv_local * R.transpose()) : Mat3(k * Mat3::Identity());
+}
+
+void BodyState::displace(const Vec3& dRot, const Vec3& dTrans) {
+  q = (quat_from_rotation_vector(dRot) * q).normalized();
+  R = q.toRotationMatrix();
+  G += dTrans;
+  x = G - R * c;
+  if (physics) K = m * R * inertia_inv_local * R.transpose();
+}
+
+SolverState::SolverState(const Model& model, const std::vector<Pose>& poses,
+                         const SolveOptions& options, const std::vector<bool>& held) {
+  const int nb = model.body_count();
+  bodies.resize(static_cast<size_t>(nb));
+  for (int i = 0; i < nb; ++i) {
+    const Body& b = model.body(BodyId{i});
+    BodyState& s = bodies[static_cast<size_t>(i)];
+    s.c = b.center;
+    s.movable = !b.fixed && !(i < static_cast<int>(held.size()) && held[static_cast<size_t>(i)]);
+    s.physics = options.use_physics && b.has_physics();
+    s.k = model.ability_to_rotate(BodyId{i});
+    if (s.physics) {
+      s.m = *b.mass;
+      s.inertia_inv_local = b.inertia->inverse();
+    }
+    s.set_pose(poses.at(static_cast<size_t>(i)));
+  }
+  joints.resize(static_cast<size_t>(model.joint_count()));
+  for (int c = 0; c < model.joint_count(); ++c) {
+    const Joint& j = model.joint(JointId{c});
+    JointState& js = joints[static_cast<size_t>(c)];
+    js.joint = &j;
+    js.b1 = j.body1.value;
+    js.b2 = j.body2.value;
+    js.active = j.active_at(options.time);
+    const BodyState& s1 = bodies[static_cast<size_t>(js.b1)];
+    const BodyState& s2 = bodies[static_cast<size_t>(js.b2)];
+    if (!s1.movable && !s2.movable) {
+      js.mu1 = js.mu2 = 0;
+    } else if (!s1.movable) {
+      js.mu1 = 0, js.mu2 = 1;
+    } else if (!s2.movable) {
+      js.mu1 = 1, js.mu2 = 0;
+    } else {
+      js.mu1 = model.move_share(JointId{c});
+      js.mu2 = 1 - js.mu1;
+    }
+    if (js.active) {
+      if (s1.movable) ++bodies[static_cast<size_t>(js.b1)].n;
+      if (s2.movable) ++bodies[static_cast<size_t>(js.b2)].n;
+    }
+  }
+  // Seed 3.2: weight 1/max(n_i, n_j); a body that cannot move does not count (its n is moot).
+  for (JointState& js : joints) {
+    const BodyState& s1 = bodies[static_cast<size_t>(js.b1)];
+    const BodyState& s2 = bodies[static_cast<size_t>(js.b2)];
+    const int n = std::max(s1.movable ? s1.n : 0, s2.movable ? s2.n : 0);
+    js.w = n == 0 ? 0 : options.seed_weights ? options.relaxation / n : options.relaxation;
+  }
+}
+
+void SolverState::write_poses(std::vector<Pose>& poses) const {
+  poses.resize(bodies.size());
+  for (size_t i = 0; i < bodies.size(); ++i) poses[i] = bodies[i].pose();
+}
+
+void SolverState::read_poses(const std::vector<Pose>& poses) {
+  for (size_t i = 0; i < bodies.size(); ++i) bodies[i].set_pose(poses[i]);
+}
+
+Mobility SolverState::mobility(const JointState& js, int side) const {
+  const BodyState& b = bodies[static_cast<size_t>(side == 1 ? js.b1 : js.b2)];
+  Mobility m;
+  m.G = b.G;
+  m.mu = side == 1 ? js.mu1 : js.mu2;
+  m.A = b.movable ? Mat3(m.mu * b.K) : Mat3::Zero();
+  return m;
+}
+
+JointGeometry SolverState::geometry(const JointState& js, BoundTest bound) const {
+  const Joint& j = *js.joint;
+  const BodyState& s1 = bodies[static_cast<size_t>(js.b1)];
+  const BodyState& s2 = bodies[static_cast<size_t>(js.b2)];
+  JointGeometry g;
+  if (j.has_translation()) {
+    g.translation = true;
+    g.P2 = s2.R * j.p2 + s2.x;
+    const Vec3 local = s1.R.transpose() * (g.P2 - s1.x);
+    g.nearest = nearest_on_guide(j, local, bound);
+    g.Q = s1.R * g.nearest.q + s1.x;
+    for (int k = 0; k < g.nearest.rows; ++k) {
+      Vec3& n = g.nearest.normals[static_cast<size_t>(k)];
+      n = s1.R * n;
+    }
+  }
+  if (j.angle) {
+    g.a1 = s1.R * j.angle->a1;
+    g.a2 = s2.R * j.angle->a2;
+  }
+  if (j.twist) {
+    g.b1 = s1.R * j.twist->b1;
+    g.b2 = s2.R * j.twist->b2;
+  }
+  return g;
+}
+
+double SolverState::residual(const JointState& js) const {
+  if (!js.active) return 0;
+  const Joint& j = *js.joint;
+  const JointGeometry g = geometry(js);
+  double r = g.translation ? (g.P2 - g.Q).norm() : 0.0;
+  if (j.angle) r = std::max(r, angle_violation(g.a1, g.a2, j.angle->min, j.angle->max));
+  if (j.twist) {
+    const double t = twist_angle(g.a1, g.a2, g.b1, g.b2);
+    r = std::max(r, std::abs(twist_violation(t, j.twist->min, j.twist->max)));
+  }
+  return r;
+}
+
+bool SolverState::at_limit(const JointState& js, double band) const {
+  PartRows parts[3];
+  rows(js, BoundTest{band}, parts);
+  return parts[0].at_limit || parts[1].at_limit || parts[2].at_limit;
+}
+
+void SolverState::rows(const JointState& js, BoundTest bound, PartRows out[3]) const {
+  const Joint& j = *js.joint;
+  const JointGeometry g = geometry(js, bound);
+  out[0] = out[1] = out[2] = PartRows{};
+  if (g.translation) {
+    out[0] = point_rows(g.Q, g.P2, bodies[static_cast<size_t>(js.b1)].G,
+                        bodies[static_cast<size_t>(js.b2)].G, g.nearest);
+  }
+  if (j.angle) out[1] = angle_rows(g.a1, g.a2, j.angle->min, j.angle->max, bound);
+  if (j.twist) {
+    out[2] = twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max, bound);
+  }
+}
+
+// The rotations one joint proposes (seed 4.2.3 order): the translation part's eq. 18 first,
+// then the angle part on the axes as they would be after those, then the twist part after both.
+void SolverState::propose_rotations(const JointState& js, Vec3& dR1, Vec3& dR2) const {
+  const Joint& j = *js.joint;
+  const JointGeometry g = geometry(js);
+  const Mobility m1 = mobility(js, 1);
+  const Mobility m2 = mobility(js, 2);
+  dR1.setZero();
+  dR2.setZero();
+  if (g.translation) point_rotations(g.Q, g.P2, m1, m2, dR1, dR2);
+  if (j.angle) {
+    angle_rotations(rotated(dR1, g.a1), rotated(dR2, g.a2), j.angle->min, j.angle->max, m1, m2, dR1,
+                    dR2);
+  }
+  if (j.twist) {
+    twist_rotations(rotated(dR1, g.a1), rotated(dR2, g.a2), rotated(dR1, g.b1), rotated(dR2, g.b2),
+                    j.twist->min, j.twist->max, m1, m2, dR1, dR2);
+  }
+}
+
+void SolverState::propose_translations(const JointState& js, Vec3& dx1, Vec3& dx2) const {
+  dx1.setZero();
+  dx2.setZero();
+  if (!js.joint->has_translation()) return;
+  const JointGeometry g = geometry(js);
+  point_translations(g.Q, g.P2, mobility(js, 1), mobility(js, 2), dx1, dx2);
+}
+
+}  // namespace dispcon

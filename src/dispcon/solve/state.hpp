@@ -1,0 +1,82 @@
+// The solver's working copy of a model: world-frame body states and per-joint parameters, laid
+// out flat so the iteration allocates nothing. Internal to the engine (solver, Jacobian,
+// dynamics, diagnostics).
+#pragma once
+
+#include <vector>
+
+#include "dispcon/model/model.hpp"
+#include "dispcon/parts/nearest.hpp"
+#include "dispcon/parts/part.hpp"
+#include "dispcon/solve/solver.hpp"
+
+namespace dispcon {
+
+struct BodyState {
+  Quat q = Quat::Identity();
+  Mat3 R = Mat3::Identity();
+  Vec3 x = Vec3::Zero();
+  Vec3 c = Vec3::Zero();  // centre, local
+  Vec3 G = Vec3::Zero();  // centre, world
+  bool movable = false;
+  bool physics = false;  // K = m J^-1 (world) rather than k I
+  double k = 1;          // no-physics ability to rotate
+  double m = 1;          // mass (1 without physics)
+  Mat3 inertia_inv_local = Mat3::Identity();
+  Mat3 K = Mat3::Identity();  // m J^-1 or k I, world frame
+  Vec3 dR = Vec3::Zero();     // accumulated proposals of one iteration
+  Vec3 dx = Vec3::Zero();
+  int n = 0;  // active joints on this body (seed 3.2's n_i)
+
+  void set_pose(const Pose& pose);
+  Pose pose() const { return Pose{q, x}; }
+  // Turns the body by the rotation vector dR about its centre, then moves the centre by dx.
+  void displace(const Vec3& dR, const Vec3& dx);
+  // Rotation per unit moment for the Newton metric: J^-1 (physics) or k (no physics, m = 1).
+  Mat3 inverse_inertia() const { return K / m; }
+};
+
+struct JointState {
+  const Joint* joint = nullptr;
+  int b1 = 0, b2 = 0;  // body indices
+  double mu1 = 0.5;    // body 1's share of a translation
+  double mu2 = 0.5;
+  double w = 1;  // seed 3.2 weight 1/max(n_i, n_j) times the relaxation
+  bool active = true;
+};
+
+// A joint's geometry at the current poses, world frame.
+struct JointGeometry {
+  bool translation = false;
+  Vec3 Q = Vec3::Zero();   // nearest permissible point of object1's guide
+  Vec3 P2 = Vec3::Zero();  // object2's point
+  Nearest nearest;         // normals in world frame
+  Vec3 a1, a2, b1, b2;     // world axes of angle and twist parts (when present)
+};
+
+class SolverState {
+ public:
+  SolverState(const Model& model, const std::vector<Pose>& poses, const SolveOptions& options,
+              const std::vector<bool>& held);
+
+  std::vector<BodyState> bodies;
+  std::vector<JointState> joints;
+
+  void write_poses(std::vector<Pose>& poses) const;
+  void read_poses(const std::vector<Pose>& poses);
+
+  Mobility mobility(const JointState& js, int side) const;
+  JointGeometry geometry(const JointState& js, BoundTest bound = {}) const;
+  // Largest violation of a joint's parts (length units or radians); 0 when inactive.
+  double residual(const JointState& js) const;
+  bool at_limit(const JointState& js, double band) const;
+  // The rotations one joint proposes, unweighted (seed 4.2.3 order): the translation part's
+  // eq. 18, then the angle part on the axes as they would be after those, then the twist part.
+  void propose_rotations(const JointState& js, Vec3& dR1, Vec3& dR2) const;
+  // The translations one joint proposes from the current poses (eq. 19 after rotation).
+  void propose_translations(const JointState& js, Vec3& dx1, Vec3& dx2) const;
+  // Appends the rows of one joint (translation part, angle, twist) to `out`.
+  void rows(const JointState& js, BoundTest bound, PartRows out[3]) const;
+};
+
+}  // namespace dispcon
