@@ -12,8 +12,8 @@ namespace dispcon {
 
 struct Diagnostic {
   std::string file;
-  int line = 0;    // 1-based
-  int column = 0;  // 1-based
+  int line = 0;       // 1-based
+  int column = 0;     // 1-based
   bool error = true;  // false: warning
   std::string message;
 

@@ -11,13 +11,13 @@
 namespace dispcon {
 
 struct CheckResult {
-  SolveResult solve;                  // the assembly it checked (from the model's poses)
-  int dof = 0;                        // mechanism degrees of freedom at the assembled pose
-  std::vector<int> body_dof;          // per body (index BodyId::value); 0 for fixed bodies
-  std::vector<JointId> redundant;     // consistent but superfluous
-  std::vector<JointId> conflicting;   // cannot hold together with the rest
-  std::vector<JointId> limits_active; // a bound in contact
-  std::vector<std::string> advice;    // e.g. "removing joint 3 (line 12) makes the model consistent"
+  SolveResult solve;                   // the assembly it checked (from the model's poses)
+  int dof = 0;                         // mechanism degrees of freedom at the assembled pose
+  std::vector<int> body_dof;           // per body (index BodyId::value); 0 for fixed bodies
+  std::vector<JointId> redundant;      // consistent but superfluous
+  std::vector<JointId> conflicting;    // cannot hold together with the rest
+  std::vector<JointId> limits_active;  // a bound in contact
+  std::vector<std::string> advice;  // e.g. "removing joint 3 (line 12) makes the model consistent"
   std::string message;
 };
 
@@ -36,18 +36,19 @@ struct SweepOptions {
 };
 
 struct SweepSample {
-  double value = 0;                   // the driven angle
+  double value = 0;  // the driven angle
   bool converged = true;
   double max_residual = 0;
   std::vector<JointId> limits_active;
-  std::vector<double> joint_values;   // per joint: its angle (angle part) or travel (guide), NaN if none
+  std::vector<double>
+      joint_values;  // per joint: its angle (angle part) or travel (guide), NaN if none
   std::vector<Pose> poses;
 };
 
 struct SweepResult {
-  std::vector<SweepSample> samples;   // up to and including the first sample that locked
+  std::vector<SweepSample> samples;  // up to and including the first sample that locked
   bool locked = false;
-  double lock_value = 0;              // the last driven angle reached before the lock
+  double lock_value = 0;  // the last driven angle reached before the lock
   std::string message;
 };
 

@@ -13,11 +13,11 @@ namespace dispcon {
 
 struct AnimateOptions {
   double duration = 1.0;
-  double dt = 0.01;                 // frame step; sub-steps are taken when a rotation is too large
-  Vec3 gravity = Vec3::Zero();      // added to every body with mass
-  double max_step_rotation = 0.1;   // radians a body may turn in one integration step (seed 2.2)
-  bool stop_on_violation = false;   // the seed's choice when the iteration cap is hit in a frame
-  SolveOptions solve;               // step 2; its time is set to each frame's time
+  double dt = 0.01;                // frame step; sub-steps are taken when a rotation is too large
+  Vec3 gravity = Vec3::Zero();     // added to every body with mass
+  double max_step_rotation = 0.1;  // radians a body may turn in one integration step (seed 2.2)
+  bool stop_on_violation = false;  // the seed's choice when the iteration cap is hit in a frame
+  SolveOptions solve;              // step 2; its time is set to each frame's time
 };
 
 struct Frame {
@@ -25,16 +25,16 @@ struct Frame {
   int iterations = 0;
   double max_residual = 0;
   bool converged = true;
-  std::vector<JointId> violated;    // when not converged: the warning names these
-  std::vector<Pose> poses;          // one per body
+  std::vector<JointId> violated;  // when not converged: the warning names these
+  std::vector<Pose> poses;        // one per body
 };
 
 struct AnimateResult {
-  bool converged = true;            // every frame converged
-  bool stopped = false;             // stopped early (stop_on_violation)
-  int iterations = 0;               // total
+  bool converged = true;  // every frame converged
+  bool stopped = false;   // stopped early (stop_on_violation)
+  int iterations = 0;     // total
   double max_residual = 0;
-  std::vector<Frame> frames;        // frame 0 is the start (after assembly)
+  std::vector<Frame> frames;  // frame 0 is the start (after assembly)
   std::vector<std::string> warnings;
   std::string message;
 };
