@@ -89,14 +89,17 @@ class Polisher {
   }
 
   // Returns false when no step could be computed.
-  bool step(SolverState& s, double lambda, double max_rotation, Eigen::VectorXd& dq) {
+  // `band[c]` widens what counts as a bound in contact for joint c (see solve()).
+  bool step(SolverState& s, const std::vector<double>& band, double lambda, double max_rotation,
+            Eigen::VectorXd& dq) {
     triplets_.clear();
     residual_.clear();
     int row = 0;
     PartRows parts[3];
-    for (const JointState& js : s.joints) {
+    for (size_t c = 0; c < s.joints.size(); ++c) {
+      const JointState& js = s.joints[c];
       if (!js.active) continue;
-      s.rows(js, BoundTest{0}, parts);
+      s.rows(js, BoundTest{band[c]}, parts);
       for (const PartRows& p : parts) {
         for (int k = 0; k < p.count; ++k) {
           add_row(row, js.b1, 0, p.J[k]);
@@ -235,21 +238,44 @@ SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptio
   std::vector<Pose> before;
   double lambda = 1e-12;
   int seed_only_until = 0;  // after a failed polish, let the seed iterations work a while
+  // Limits enter the Newton step only when violated. A step that pushes a limit that was not in
+  // the step over its bound is redone with that limit held at its bound: its band (what counts as
+  // contact) is widened to cover the distance the step moved it, so the active set grows instead
+  // of the step being damped.
+  std::vector<double> band(s.joints.size(), 0.0);
+  std::vector<double> joint_r(s.joints.size(), 0.0);
+  auto residuals = [&](std::vector<double>& out) {
+    double worst = 0;
+    for (size_t c = 0; c < s.joints.size(); ++c) {
+      out[c] = s.residual(s.joints[c]);
+      worst = std::max(worst, out[c]);
+    }
+    return worst;
+  };
   while (r > o.tolerance && result.iterations < o.max_iterations) {
     const bool polish =
         o.newton_polish && r < polish_threshold && result.iterations >= seed_only_until;
     if (polish) {
       s.write_poses(before);
-      const bool stepped = polisher.step(s, lambda, o.max_rotation_step, dq);
-      const double next = stepped ? max_residual(s) : r;
+      const bool stepped = polisher.step(s, band, lambda, o.max_rotation_step, dq);
+      const double next = stepped ? residuals(joint_r) : r;
       ++result.iterations;
       ++result.polish_iterations;
       if (stepped && next < r) {
         r = next;
         lambda = std::max(1e-12, lambda * 0.1);
       } else {
+        bool widened = false;
+        if (stepped) {
+          for (size_t c = 0; c < s.joints.size(); ++c) {
+            if (joint_r[c] > r && s.at_limit(s.joints[c], 0) && band[c] < polish_threshold) {
+              band[c] = std::max(4 * band[c], 2 * joint_r[c] + o.tolerance);
+              widened = true;
+            }
+          }
+        }
         s.read_poses(before);
-        lambda *= 100;
+        if (!widened) lambda *= 100;
         if (!stepped || lambda > 1e-2) {
           lambda = 1e-12;
           seed_only_until = result.iterations + 10;
