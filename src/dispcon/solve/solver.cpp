@@ -1,5 +1,6 @@
 #include "dispcon/solve/solver.hpp"
 
+#include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
@@ -77,93 +78,165 @@ void gauss_seidel_iteration(SolverState& s, const SolveOptions& o) {
 // displacement produced by constraint impulses J^T y, opposite on the two bodies of each joint,
 // so it conserves first-order momenta like the seed's corrections; lambda regularises redundant
 // rows (a planar linkage in 3D) and damps far from the solution (Levenberg-Marquardt).
+// J M^-1 J^T is assembled body by body (rows sharing a body couple); small systems are factored
+// dense, large ones sparse, reusing the sparse symbolic analysis while the rows keep their pattern.
 class Polisher {
  public:
-  explicit Polisher(const SolverState& s) {
-    var_.assign(s.bodies.size(), -1);
-    int nv = 0;
+  explicit Polisher(const SolverState& s) : var_(s.bodies.size(), -1) {
     for (size_t i = 0; i < s.bodies.size(); ++i) {
-      if (s.bodies[i].movable) var_[i] = nv++;
+      if (s.bodies[i].movable) var_[i] = nv_++;
     }
-    nv_ = nv;
+    rows_of_var_.resize(static_cast<size_t>(nv_));
+    dq_.resize(static_cast<size_t>(nv_));
   }
 
-  // Returns false when no step could be computed.
   // `band[c]` widens what counts as a bound in contact for joint c (see solve()).
-  bool step(SolverState& s, const std::vector<double>& band, double lambda, double max_rotation,
-            Eigen::VectorXd& dq) {
-    triplets_.clear();
-    residual_.clear();
-    int row = 0;
-    PartRows parts[3];
-    for (size_t c = 0; c < s.joints.size(); ++c) {
-      const JointState& js = s.joints[c];
-      if (!js.active) continue;
-      s.rows(js, BoundTest{band[c]}, parts);
-      for (const PartRows& p : parts) {
-        for (int k = 0; k < p.count; ++k) {
-          add_row(row, js.b1, 0, p.J[k]);
-          add_row(row, js.b2, 6, p.J[k]);
-          residual_.push_back(p.residual[k]);
-          ++row;
-        }
-      }
+  // Returns false when no step could be computed.
+  bool step(SolverState& s, const std::vector<double>& band, double lambda, double max_rotation) {
+    gather(s, band);
+    const int m = static_cast<int>(rows_.size());
+    if (m == 0 || nv_ == 0) return false;
+    if (!factor(lambda)) return false;
+    // dq = M^-1 J^T y
+    for (Vec6& d : dq_) d.setZero();
+    for (int a = 0; a < m; ++a) {
+      const Entry& e = rows_[static_cast<size_t>(a)];
+      if (e.v1 >= 0) dq_[static_cast<size_t>(e.v1)] += y_(a) * e.u1;
+      if (e.v2 >= 0) dq_[static_cast<size_t>(e.v2)] += y_(a) * e.u2;
     }
-    if (row == 0 || nv_ == 0) return false;
-    Eigen::SparseMatrix<double> J(row, 6 * nv_);
-    J.setFromTriplets(triplets_.begin(), triplets_.end());
-    // M^-1 as a block-diagonal sparse matrix.
-    std::vector<Eigen::Triplet<double>> mt;
-    mt.reserve(static_cast<size_t>(nv_) * 12);
-    for (size_t i = 0; i < s.bodies.size(); ++i) {
-      if (var_[i] < 0) continue;
-      const int c = 6 * var_[i];
-      const Mat3 Iinv = s.bodies[i].inverse_inertia();
-      for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) mt.emplace_back(c + a, c + b, Iinv(a, b));
-        mt.emplace_back(c + 3 + a, c + 3 + a, 1.0 / s.bodies[i].m);
-      }
-    }
-    Eigen::SparseMatrix<double> Minv(6 * nv_, 6 * nv_);
-    Minv.setFromTriplets(mt.begin(), mt.end());
-    const Eigen::SparseMatrix<double> MJt = Minv * J.transpose();
-    Eigen::SparseMatrix<double> S = J * MJt;
-    double scale = 0;
-    for (int k = 0; k < S.rows(); ++k) scale = std::max(scale, S.coeff(k, k));
-    if (!(scale > 0)) return false;
-    for (int k = 0; k < S.rows(); ++k) S.coeffRef(k, k) += lambda * scale;
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(S);
-    if (ldlt.info() != Eigen::Success) return false;
-    const Eigen::Map<const Eigen::VectorXd> r(residual_.data(), row);
-    const Eigen::VectorXd y = ldlt.solve(-r);
-    dq = MJt * y;
-    if (!dq.allFinite()) return false;
     // Keep each body's turn small (seed 2.3): scale the whole step, never bend it.
     double largest = 0;
-    for (int v = 0; v < nv_; ++v) largest = std::max(largest, dq.segment<3>(6 * v).norm());
-    if (largest > max_rotation) dq *= max_rotation / largest;
+    for (const Vec6& d : dq_) {
+      if (!d.allFinite()) return false;
+      largest = std::max(largest, d.head<3>().norm());
+    }
+    const double scale = largest > max_rotation ? max_rotation / largest : 1.0;
     for (size_t i = 0; i < s.bodies.size(); ++i) {
       if (var_[i] < 0) continue;
-      const int c = 6 * var_[i];
-      s.bodies[i].displace(dq.segment<3>(c), dq.segment<3>(c + 3));
+      const Vec6& d = dq_[static_cast<size_t>(var_[i])];
+      s.bodies[i].displace(scale * d.head<3>(), scale * d.tail<3>());
     }
     return true;
   }
 
  private:
-  void add_row(int row, int body, int offset, const Row& J) {
-    const int v = var_[static_cast<size_t>(body)];
-    if (v < 0) return;
-    for (int k = 0; k < 6; ++k) {
-      const double value = J(offset + k);
-      if (value != 0) triplets_.emplace_back(row, 6 * v + k, value);
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  struct Entry {
+    int v1 = -1, v2 = -1;  // unknowns of the two bodies, -1 when the body does not move
+    Vec6 j1, j2;           // the row's two 6-blocks
+    Vec6 u1, u2;           // M^-1 times them
+  };
+
+  void gather(const SolverState& s, const std::vector<double>& band) {
+    rows_.clear();
+    residual_.clear();
+    PartRows parts[3];
+    for (size_t c = 0; c < s.joints.size(); ++c) {
+      const JointState& js = s.joints[c];
+      if (!js.active) continue;
+      const int v1 = var_[static_cast<size_t>(js.b1)];
+      const int v2 = var_[static_cast<size_t>(js.b2)];
+      if (v1 < 0 && v2 < 0) continue;
+      s.rows(js, BoundTest{band[c]}, parts);
+      for (const PartRows& p : parts) {
+        for (int k = 0; k < p.count; ++k) {
+          Entry e;
+          e.v1 = v1;
+          e.v2 = v2;
+          e.j1 = p.J[k].segment<6>(0).transpose();
+          e.j2 = p.J[k].segment<6>(6).transpose();
+          e.u1 = apply_inverse_mass(s.bodies[static_cast<size_t>(js.b1)], e.j1);
+          e.u2 = apply_inverse_mass(s.bodies[static_cast<size_t>(js.b2)], e.j2);
+          rows_.push_back(e);
+          residual_.push_back(p.residual[k]);
+        }
+      }
     }
   }
 
+  static Vec6 apply_inverse_mass(const BodyState& b, const Vec6& j) {
+    Vec6 u;
+    u.head<3>() = b.inverse_inertia() * j.head<3>();
+    u.tail<3>() = j.tail<3>() / b.m;
+    return u;
+  }
+
+  // Calls f(a, b, value) for every coupling a >= b of J M^-1 J^T, body by body.
+  template <typename F>
+  void couplings(F&& f) {
+    for (auto& list : rows_of_var_) list.clear();
+    for (int a = 0; a < static_cast<int>(rows_.size()); ++a) {
+      const Entry& e = rows_[static_cast<size_t>(a)];
+      if (e.v1 >= 0) rows_of_var_[static_cast<size_t>(e.v1)].push_back({a, 1});
+      if (e.v2 >= 0) rows_of_var_[static_cast<size_t>(e.v2)].push_back({a, 2});
+    }
+    for (const auto& list : rows_of_var_) {
+      for (size_t p = 0; p < list.size(); ++p) {
+        const Entry& ea = rows_[static_cast<size_t>(list[p].first)];
+        const Vec6& ja = list[p].second == 1 ? ea.j1 : ea.j2;
+        for (size_t q = 0; q <= p; ++q) {
+          const Entry& eb = rows_[static_cast<size_t>(list[q].first)];
+          const Vec6& ub = list[q].second == 1 ? eb.u1 : eb.u2;
+          f(list[p].first, list[q].first, ja.dot(ub));
+        }
+      }
+    }
+  }
+
+  bool factor(double lambda) {
+    const int m = static_cast<int>(rows_.size());
+    const Eigen::Map<const Eigen::VectorXd> r(residual_.data(), m);
+    if (m <= kDenseRows) {
+      dense_.setZero(m, m);
+      couplings([&](int a, int b, double v) {
+        dense_(a, b) += v;
+        if (a != b) dense_(b, a) += v;
+      });
+      const double scale = dense_.diagonal().maxCoeff();
+      if (!(scale > 0)) return false;
+      dense_.diagonal().array() += lambda * scale;
+      dense_ldlt_.compute(dense_);
+      if (dense_ldlt_.info() != Eigen::Success) return false;
+      y_ = dense_ldlt_.solve(-r);
+      return y_.allFinite();
+    }
+    triplets_.clear();
+    couplings([&](int a, int b, double v) { triplets_.emplace_back(a, b, v); });
+    sparse_.resize(m, m);
+    sparse_.setFromTriplets(triplets_.begin(), triplets_.end());
+    double scale = 0;
+    for (int k = 0; k < m; ++k) scale = std::max(scale, sparse_.coeff(k, k));
+    if (!(scale > 0)) return false;
+    for (int k = 0; k < m; ++k) sparse_.coeffRef(k, k) += lambda * scale;
+    // The symbolic analysis depends only on which rows couple: keep it while that holds.
+    pattern_.clear();
+    for (const Entry& e : rows_) pattern_.push_back(e.v1), pattern_.push_back(e.v2);
+    if (!analyzed_ || pattern_ != analyzed_pattern_) {
+      sparse_ldlt_.analyzePattern(sparse_);
+      analyzed_pattern_ = pattern_;
+      analyzed_ = true;
+    }
+    sparse_ldlt_.factorize(sparse_);
+    if (sparse_ldlt_.info() != Eigen::Success) return false;
+    y_ = sparse_ldlt_.solve(-r);
+    return y_.allFinite();
+  }
+
+  static constexpr int kDenseRows = 120;
   std::vector<int> var_;
   int nv_ = 0;
-  std::vector<Eigen::Triplet<double>> triplets_;
+  std::vector<Entry> rows_;
   std::vector<double> residual_;
+  std::vector<std::vector<std::pair<int, int>>> rows_of_var_;
+  std::vector<Vec6> dq_;
+  Eigen::VectorXd y_;
+  Eigen::MatrixXd dense_;
+  Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  Eigen::SparseMatrix<double> sparse_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> sparse_ldlt_;
+  std::vector<int> pattern_, analyzed_pattern_;
+  bool analyzed_ = false;
 };
 
 std::string describe(const Model& model, const ConstraintReport& c) {
@@ -234,7 +307,6 @@ SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptio
   std::vector<Pose> best = poses;
   double best_r = r;
   Polisher polisher(s);
-  Eigen::VectorXd dq;
   std::vector<Pose> before;
   double lambda = 1e-12;
   int seed_only_until = 0;  // after a failed polish, let the seed iterations work a while
@@ -257,7 +329,7 @@ SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptio
         o.newton_polish && r < polish_threshold && result.iterations >= seed_only_until;
     if (polish) {
       s.write_poses(before);
-      const bool stepped = polisher.step(s, band, lambda, o.max_rotation_step, dq);
+      const bool stepped = polisher.step(s, band, lambda, o.max_rotation_step);
       const double next = stepped ? residuals(joint_r) : r;
       ++result.iterations;
       ++result.polish_iterations;
