@@ -170,23 +170,35 @@ void Model::set_poses(const std::vector<Pose>& poses) {
 }
 
 double Model::ability_to_rotate(BodyId id) const {
-  const Body& b = body(id);
-  if (b.rotate) return *b.rotate;
-  double sum = 0;
-  int count = 0;
+  return abilities_to_rotate().at(static_cast<size_t>(id.value));
+}
+
+std::vector<double> Model::abilities_to_rotate() const {
+  std::vector<double> sum(bodies_.size(), 0.0);
+  std::vector<int> count(bodies_.size(), 0);
+  auto add = [&](BodyId id, const Vec3& p) {
+    const size_t i = static_cast<size_t>(id.value);
+    sum[i] += (p - bodies_[i].center).squaredNorm();
+    ++count[i];
+  };
   for (const Joint& j : joints_) {
     if (!j.has_translation()) continue;
-    if (j.body1 == id) {
-      if (j.guide && j.guide->kind == GuideKind::Polyline) {
-        for (const Vec3& p : j.guide->points) sum += (p - b.center).squaredNorm(), ++count;
-      } else {
-        sum += (j.p1 - b.center).squaredNorm(), ++count;
-      }
+    if (j.guide && j.guide->kind == GuideKind::Polyline) {
+      for (const Vec3& p : j.guide->points) add(j.body1, p);
+    } else {
+      add(j.body1, j.p1);
     }
-    if (j.body2 == id) sum += (j.p2 - b.center).squaredNorm(), ++count;
+    add(j.body2, j.p2);
   }
-  if (count == 0 || sum <= 0) return 1.0;
-  return count / sum;  // 1 / rho^2, rho the RMS distance
+  std::vector<double> k(bodies_.size(), 1.0);
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_[i].rotate) {
+      k[i] = *bodies_[i].rotate;
+    } else if (count[i] > 0 && sum[i] > 0) {
+      k[i] = count[i] / sum[i];  // 1 / rho^2, rho the RMS distance
+    }
+  }
+  return k;
 }
 
 double Model::move_share(JointId id) const {

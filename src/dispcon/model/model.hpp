@@ -44,6 +44,8 @@ class Model {
   // The no-physics "ability to rotate" used for a body: its `rotate` when given, else
   // 1 / rho^2 with rho the RMS distance from its centre to its constrained points (1 without any).
   double ability_to_rotate(BodyId id) const;
+  // The same for every body at once (index = BodyId::value), in one pass over the joints.
+  std::vector<double> abilities_to_rotate() const;
 
   // mu12 used for a joint: its `move`, else m2/(m1+m2) when both have mass, else 0.5;
   // 0 when body1 is fixed, 1 when body2 is fixed (whatever was asked).

@@ -4,6 +4,8 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -18,51 +20,96 @@ Vec3 clamp_norm(const Vec3& v, double limit) {
   return n > limit ? Vec3(v * (limit / n)) : v;
 }
 
-double max_residual(const SolverState& s) {
+// Bodies that move together: joined by active joints through movable bodies. Components are
+// independent problems; each iterates until it holds, so a converged part of a large assembly
+// costs nothing while the rest works.
+struct Component {
+  std::vector<int> bodies;  // movable bodies
+  std::vector<int> joints;  // active joints touching them
+};
+
+std::vector<Component> components(const SolverState& s) {
+  const int n = static_cast<int>(s.bodies.size());
+  std::vector<int> parent(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) parent[static_cast<size_t>(i)] = i;
+  auto find = [&](int i) {
+    while (parent[static_cast<size_t>(i)] != i) {
+      parent[static_cast<size_t>(i)] = parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
+      i = parent[static_cast<size_t>(i)];
+    }
+    return i;
+  };
+  for (const JointState& js : s.joints) {
+    if (js.active && s.bodies[static_cast<size_t>(js.b1)].movable &&
+        s.bodies[static_cast<size_t>(js.b2)].movable) {
+      parent[static_cast<size_t>(find(js.b1))] = find(js.b2);
+    }
+  }
+  std::vector<int> index(static_cast<size_t>(n), -1);
+  std::vector<Component> out;
+  for (int i = 0; i < n; ++i) {
+    if (!s.bodies[static_cast<size_t>(i)].movable) continue;
+    int& k = index[static_cast<size_t>(find(i))];
+    if (k < 0) k = static_cast<int>(out.size()), out.emplace_back();
+    out[static_cast<size_t>(k)].bodies.push_back(i);
+  }
+  for (size_t c = 0; c < s.joints.size(); ++c) {
+    const JointState& js = s.joints[c];
+    if (!js.active) continue;
+    const int b = s.bodies[static_cast<size_t>(js.b1)].movable ? js.b1 : js.b2;
+    if (!s.bodies[static_cast<size_t>(b)].movable) continue;
+    out[static_cast<size_t>(index[static_cast<size_t>(find(b))])].joints.push_back(
+        static_cast<int>(c));
+  }
+  return out;
+}
+
+double max_residual(const SolverState& s, const std::vector<int>& joints) {
   double r = 0;
-  for (const JointState& js : s.joints) r = std::max(r, s.residual(js));
+  for (int c : joints) r = std::max(r, s.residual(s.joints[static_cast<size_t>(c)]));
   return r;
 }
 
 // One iteration of seed 3.2: propose, weight by 1/max(n_i, n_j), combine rotations, apply;
 // then the same for translations (from the rotated positions, eq. 19, or from the same positions
 // as the rotations, eq. 15).
-void jacobi_iteration(SolverState& s, const SolveOptions& o) {
-  for (BodyState& b : s.bodies) b.dR.setZero(), b.dx.setZero();
+void jacobi_iteration(SolverState& s, const Component& comp, const SolveOptions& o) {
+  for (int b : comp.bodies) {
+    s.bodies[static_cast<size_t>(b)].dR.setZero();
+    s.bodies[static_cast<size_t>(b)].dx.setZero();
+  }
   Vec3 d1, d2;
-  for (const JointState& js : s.joints) {
-    if (!js.active || js.w == 0) continue;
+  auto add_translations = [&](const JointState& js) {
+    s.propose_translations(js, d1, d2);
+    s.bodies[static_cast<size_t>(js.b1)].dx += js.w * d1;
+    s.bodies[static_cast<size_t>(js.b2)].dx += js.w * d2;
+  };
+  for (int c : comp.joints) {
+    const JointState& js = s.joints[static_cast<size_t>(c)];
     s.propose_rotations(js, d1, d2);
     s.bodies[static_cast<size_t>(js.b1)].dR += js.w * d1;
     s.bodies[static_cast<size_t>(js.b2)].dR += js.w * d2;
-    if (!o.translate_after_rotate) {
-      s.propose_translations(js, d1, d2);
-      s.bodies[static_cast<size_t>(js.b1)].dx += js.w * d1;
-      s.bodies[static_cast<size_t>(js.b2)].dx += js.w * d2;
-    }
+    if (!o.translate_after_rotate) add_translations(js);
   }
-  for (BodyState& b : s.bodies) {
-    if (b.movable) b.displace(clamp_norm(b.dR, o.max_rotation_step), Vec3::Zero());
+  for (int b : comp.bodies) {
+    BodyState& body = s.bodies[static_cast<size_t>(b)];
+    body.displace(clamp_norm(body.dR, o.max_rotation_step), Vec3::Zero());
   }
   if (o.translate_after_rotate) {
-    for (const JointState& js : s.joints) {
-      if (!js.active || js.w == 0) continue;
-      s.propose_translations(js, d1, d2);
-      s.bodies[static_cast<size_t>(js.b1)].dx += js.w * d1;
-      s.bodies[static_cast<size_t>(js.b2)].dx += js.w * d2;
-    }
+    for (int c : comp.joints) add_translations(s.joints[static_cast<size_t>(c)]);
   }
-  for (BodyState& b : s.bodies) {
-    if (b.movable) b.displace(Vec3::Zero(), b.dx);
+  for (int b : comp.bodies) {
+    BodyState& body = s.bodies[static_cast<size_t>(b)];
+    body.displace(Vec3::Zero(), body.dx);
   }
 }
 
 // Gauss-Seidel ordering: each joint's correction is applied at once, in model order.
-void gauss_seidel_iteration(SolverState& s, const SolveOptions& o) {
+void gauss_seidel_iteration(SolverState& s, const Component& comp, const SolveOptions& o) {
   Vec3 d1, d2;
   const double w = o.relaxation;
-  for (const JointState& js : s.joints) {
-    if (!js.active || (js.mu1 == 0 && js.mu2 == 0)) continue;
+  for (int c : comp.joints) {
+    const JointState& js = s.joints[static_cast<size_t>(c)];
     BodyState& b1 = s.bodies[static_cast<size_t>(js.b1)];
     BodyState& b2 = s.bodies[static_cast<size_t>(js.b2)];
     s.propose_rotations(js, d1, d2);
@@ -82,10 +129,8 @@ void gauss_seidel_iteration(SolverState& s, const SolveOptions& o) {
 // dense, large ones sparse, reusing the sparse symbolic analysis while the rows keep their pattern.
 class Polisher {
  public:
-  explicit Polisher(const SolverState& s) : var_(s.bodies.size(), -1) {
-    for (size_t i = 0; i < s.bodies.size(); ++i) {
-      if (s.bodies[i].movable) var_[i] = nv_++;
-    }
+  explicit Polisher(const Component& comp) : comp_(&comp) {
+    nv_ = static_cast<int>(comp.bodies.size());
     rows_of_var_.resize(static_cast<size_t>(nv_));
     dq_.resize(static_cast<size_t>(nv_));
   }
@@ -93,6 +138,8 @@ class Polisher {
   // `band[c]` widens what counts as a bound in contact for joint c (see solve()).
   // Returns false when no step could be computed.
   bool step(SolverState& s, const std::vector<double>& band, double lambda, double max_rotation) {
+    for (int v = 0; v < nv_; ++v)
+      s.bodies[static_cast<size_t>(comp_->bodies[static_cast<size_t>(v)])].n_var = v;
     gather(s, band);
     const int m = static_cast<int>(rows_.size());
     if (m == 0 || nv_ == 0) return false;
@@ -111,10 +158,10 @@ class Polisher {
       largest = std::max(largest, d.head<3>().norm());
     }
     const double scale = largest > max_rotation ? max_rotation / largest : 1.0;
-    for (size_t i = 0; i < s.bodies.size(); ++i) {
-      if (var_[i] < 0) continue;
-      const Vec6& d = dq_[static_cast<size_t>(var_[i])];
-      s.bodies[i].displace(scale * d.head<3>(), scale * d.tail<3>());
+    for (int v = 0; v < nv_; ++v) {
+      const Vec6& d = dq_[static_cast<size_t>(v)];
+      s.bodies[static_cast<size_t>(comp_->bodies[static_cast<size_t>(v)])].displace(
+          scale * d.head<3>(), scale * d.tail<3>());
     }
     return true;
   }
@@ -131,13 +178,13 @@ class Polisher {
     rows_.clear();
     residual_.clear();
     PartRows parts[3];
-    for (size_t c = 0; c < s.joints.size(); ++c) {
-      const JointState& js = s.joints[c];
-      if (!js.active) continue;
-      const int v1 = var_[static_cast<size_t>(js.b1)];
-      const int v2 = var_[static_cast<size_t>(js.b2)];
-      if (v1 < 0 && v2 < 0) continue;
-      s.rows(js, BoundTest{band[c]}, parts);
+    for (int c : comp_->joints) {
+      const JointState& js = s.joints[static_cast<size_t>(c)];
+      const BodyState& s1 = s.bodies[static_cast<size_t>(js.b1)];
+      const BodyState& s2 = s.bodies[static_cast<size_t>(js.b2)];
+      const int v1 = s1.movable ? s1.n_var : -1;
+      const int v2 = s2.movable ? s2.n_var : -1;
+      s.rows(js, BoundTest{band[static_cast<size_t>(c)]}, parts);
       for (const PartRows& p : parts) {
         for (int k = 0; k < p.count; ++k) {
           Entry e;
@@ -223,7 +270,7 @@ class Polisher {
   }
 
   static constexpr int kDenseRows = 120;
-  std::vector<int> var_;
+  const Component* comp_;
   int nv_ = 0;
   std::vector<Entry> rows_;
   std::vector<double> residual_;
@@ -295,6 +342,80 @@ std::vector<ConstraintReport> measure(const Model& model, const std::vector<Pose
   return report(model, s, options.tolerance);
 }
 
+namespace {
+
+// One component's progress through the loop.
+struct Progress {
+  explicit Progress(const Component& c) : comp(&c), polisher(c) {}
+  const Component* comp;
+  Polisher polisher;
+  double r = 0;       // largest violation now
+  double best_r = 0;  // and the best seen, whose poses are kept
+  double lambda = 1e-12;
+  int iterations = 0, seed = 0, polish = 0;
+  int seed_only_until = 0;  // after a failed polish, let the seed iterations work a while
+  bool done = false;
+};
+
+void save_poses(const SolverState& s, const Component& comp, std::vector<Pose>& out) {
+  for (int b : comp.bodies) out[static_cast<size_t>(b)] = s.bodies[static_cast<size_t>(b)].pose();
+}
+
+void load_poses(SolverState& s, const Component& comp, const std::vector<Pose>& in) {
+  for (int b : comp.bodies) s.bodies[static_cast<size_t>(b)].set_pose(in[static_cast<size_t>(b)]);
+}
+
+// One iteration of one component: a Newton polish step once close, else a seed iteration.
+// Limits enter the Newton step only when violated. A step that pushes a limit that was not in
+// the step over its bound is redone with that limit held at its bound: its band (what counts as
+// contact) is widened to cover the distance the step moved it, so the active set grows instead
+// of the step being damped.
+void iterate(SolverState& s, Progress& p, const SolveOptions& o, double polish_threshold,
+             std::vector<double>& band, std::vector<Pose>& before) {
+  const Component& comp = *p.comp;
+  ++p.iterations;
+  const bool polish = o.newton_polish && p.r < polish_threshold && p.iterations > p.seed_only_until;
+  if (!polish) {
+    if (o.scheme == Scheme::Jacobi) {
+      jacobi_iteration(s, comp, o);
+    } else {
+      gauss_seidel_iteration(s, comp, o);
+    }
+    ++p.seed;
+    p.r = max_residual(s, comp.joints);
+    return;
+  }
+  ++p.polish;
+  save_poses(s, comp, before);
+  const bool stepped = p.polisher.step(s, band, p.lambda, o.max_rotation_step);
+  const double next = stepped ? max_residual(s, comp.joints) : p.r;
+  if (stepped && next < p.r) {
+    p.r = next;
+    p.lambda = std::max(1e-12, p.lambda * 0.1);
+    return;
+  }
+  bool widened = false;
+  if (stepped) {
+    for (int c : comp.joints) {
+      const JointState& js = s.joints[static_cast<size_t>(c)];
+      double& b = band[static_cast<size_t>(c)];
+      const double rc = s.residual(js);
+      if (rc > p.r && b < polish_threshold && s.at_limit(js, 0)) {
+        b = std::max(4 * b, 2 * rc + o.tolerance);
+        widened = true;
+      }
+    }
+  }
+  load_poses(s, comp, before);
+  if (!widened) p.lambda *= 100;
+  if (!stepped || p.lambda > 1e-2) {
+    p.lambda = 1e-12;
+    p.seed_only_until = p.iterations + 10;
+  }
+}
+
+}  // namespace
+
 SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptions& o,
                   const std::vector<bool>& held) {
   if (static_cast<int>(poses.size()) != model.body_count()) {
@@ -303,84 +424,64 @@ SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptio
   SolverState s(model, poses, o, held);
   SolveResult result;
   const double polish_threshold = o.polish_below * model.length_scale();
-  double r = max_residual(s);
+  const std::vector<Component> comps = components(s);
+  std::deque<Progress> progress;  // not moved once built: each holds its factorisation
+  for (const Component& c : comps) {
+    progress.emplace_back(c);
+    Progress& p = progress.back();
+    p.r = p.best_r = max_residual(s, c.joints);
+    p.done = p.r <= o.tolerance;
+  }
   std::vector<Pose> best = poses;
-  double best_r = r;
-  Polisher polisher(s);
-  std::vector<Pose> before;
-  double lambda = 1e-12;
-  int seed_only_until = 0;  // after a failed polish, let the seed iterations work a while
-  // Limits enter the Newton step only when violated. A step that pushes a limit that was not in
-  // the step over its bound is redone with that limit held at its bound: its band (what counts as
-  // contact) is widened to cover the distance the step moved it, so the active set grows instead
-  // of the step being damped.
+  std::vector<Pose> before = poses;
   std::vector<double> band(s.joints.size(), 0.0);
-  std::vector<double> joint_r(s.joints.size(), 0.0);
-  auto residuals = [&](std::vector<double>& out) {
-    double worst = 0;
-    for (size_t c = 0; c < s.joints.size(); ++c) {
-      out[c] = s.residual(s.joints[c]);
-      worst = std::max(worst, out[c]);
-    }
-    return worst;
-  };
-  while (r > o.tolerance && result.iterations < o.max_iterations) {
-    const bool polish =
-        o.newton_polish && r < polish_threshold && result.iterations >= seed_only_until;
-    if (polish) {
-      s.write_poses(before);
-      const bool stepped = polisher.step(s, band, lambda, o.max_rotation_step);
-      const double next = stepped ? residuals(joint_r) : r;
-      ++result.iterations;
-      ++result.polish_iterations;
-      if (stepped && next < r) {
-        r = next;
-        lambda = std::max(1e-12, lambda * 0.1);
-      } else {
-        bool widened = false;
-        if (stepped) {
-          for (size_t c = 0; c < s.joints.size(); ++c) {
-            if (joint_r[c] > r && s.at_limit(s.joints[c], 0) && band[c] < polish_threshold) {
-              band[c] = std::max(4 * band[c], 2 * joint_r[c] + o.tolerance);
-              widened = true;
-            }
-          }
+  // Components advance in lockstep: iteration k is every unfinished component's k-th iteration.
+  bool finite = true;
+  for (int k = 0; k < o.max_iterations; ++k) {
+    double r = 0;
+    bool any = false;
+    for (Progress& p : progress) {
+      if (!p.done) {
+        iterate(s, p, o, polish_threshold, band, before);
+        any = true;
+        if (!std::isfinite(p.r)) finite = false;
+        if (p.r < p.best_r) {
+          p.best_r = p.r;
+          save_poses(s, *p.comp, best);
         }
-        s.read_poses(before);
-        if (!widened) lambda *= 100;
-        if (!stepped || lambda > 1e-2) {
-          lambda = 1e-12;
-          seed_only_until = result.iterations + 10;
-        }
+        p.done = p.r <= o.tolerance;
       }
-    } else {
-      if (o.scheme == Scheme::Jacobi) {
-        jacobi_iteration(s, o);
-      } else {
-        gauss_seidel_iteration(s, o);
-      }
-      ++result.iterations;
-      ++result.seed_iterations;
-      r = max_residual(s);
+      r = std::max(r, p.r);
     }
+    if (!any) break;
+    ++result.iterations;
     if (o.record_history) result.history.push_back(r);
-    if (!std::isfinite(r)) break;
-    if (r < best_r) {
-      best_r = r;
-      s.write_poses(best);
+    if (!finite) break;
+  }
+  double r = 0;
+  for (Progress& p : progress) {
+    if (!p.done && finite) {
+      load_poses(s, *p.comp, best);  // not converged: keep the best poses seen
+      p.r = p.best_r;
+    }
+    r = std::max(r, p.r);
+    if (p.iterations == result.iterations) {
+      result.seed_iterations = std::max(result.seed_iterations, p.seed);
+      result.polish_iterations = std::max(result.polish_iterations, p.polish);
     }
   }
-  if (!std::isfinite(r)) {
-    s.read_poses(poses);
+  // Joints between bodies that cannot move are measured too: nothing can fix them.
+  for (const JointState& js : s.joints) r = std::max(r, s.residual(js));
+  if (!finite) r = std::numeric_limits<double>::infinity();
+  if (!finite) {
     result.status = SolveStatus::Diverged;
     result.converged = false;
   } else if (r > o.tolerance) {
-    s.read_poses(best);
-    r = best_r;
     result.status = SolveStatus::IterationLimit;
     result.converged = false;
   }
-  result.max_residual = result.status == SolveStatus::Diverged ? max_residual(s) : r;
+  if (!finite) s.read_poses(poses);
+  result.max_residual = r;
   result.constraints = report(model, s, o.tolerance);
   s.write_poses(result.poses);
   if (result.converged) poses = result.poses;

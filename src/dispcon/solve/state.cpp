@@ -65,13 +65,14 @@ SolverState::SolverState(const Model& model, const std::vector<Pose>& poses,
                          const SolveOptions& options, const std::vector<bool>& held) {
   const int nb = model.body_count();
   bodies.resize(static_cast<size_t>(nb));
+  const std::vector<double> k = model.abilities_to_rotate();
   for (int i = 0; i < nb; ++i) {
     const Body& b = model.body(BodyId{i});
     BodyState& s = bodies[static_cast<size_t>(i)];
     s.c = b.center;
     s.movable = !b.fixed && !(i < static_cast<int>(held.size()) && held[static_cast<size_t>(i)]);
     s.physics = options.use_physics && b.has_physics();
-    s.k = model.ability_to_rotate(BodyId{i});
+    s.k = k[static_cast<size_t>(i)];
     if (s.physics) {
       s.m = *b.mass;
       s.inertia_inv_local = b.inertia->inverse();

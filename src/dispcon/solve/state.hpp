@@ -26,7 +26,8 @@ struct BodyState {
   Mat3 K = Mat3::Identity();  // m J^-1 or k I, world frame
   Vec3 dR = Vec3::Zero();     // accumulated proposals of one iteration
   Vec3 dx = Vec3::Zero();
-  int n = 0;  // active joints on this body (seed 3.2's n_i)
+  int n = 0;       // active joints on this body (seed 3.2's n_i)
+  int n_var = -1;  // index among the unknowns of the Newton polish
 
   void set_pose(const Pose& pose);
   Pose pose() const { return Pose{q, x}; }
