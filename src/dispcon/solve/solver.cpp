@@ -6,6 +6,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -247,26 +248,44 @@ class Polisher {
       y_ = dense_ldlt_.solve(-r);
       return y_.allFinite();
     }
-    triplets_.clear();
-    couplings([&](int a, int b, double v) { triplets_.emplace_back(a, b, v); });
-    sparse_.resize(m, m);
-    sparse_.setFromTriplets(triplets_.begin(), triplets_.end());
-    double scale = 0;
-    for (int k = 0; k < m; ++k) scale = std::max(scale, sparse_.coeff(k, k));
-    if (!(scale > 0)) return false;
-    for (int k = 0; k < m; ++k) sparse_.coeffRef(k, k) += lambda * scale;
-    // The symbolic analysis depends only on which rows couple: keep it while that holds.
+    // The sparsity depends only on which rows couple. While that holds, the values are written
+    // in place (slots_ remembers where each coupling lands) and the symbolic analysis is kept.
     pattern_.clear();
     for (const Entry& e : rows_) pattern_.push_back(e.v1), pattern_.push_back(e.v2);
     if (!analyzed_ || pattern_ != analyzed_pattern_) {
+      triplets_.clear();
+      couplings([&](int a, int b, double v) { triplets_.emplace_back(a, b, v); });
+      sparse_.resize(m, m);
+      sparse_.setFromTriplets(triplets_.begin(), triplets_.end());
+      sparse_.makeCompressed();
+      slots_.clear();
+      couplings([&](int a, int b, double) { slots_.push_back(slot(a, b)); });
+      diagonal_.resize(static_cast<size_t>(m));
+      for (int k = 0; k < m; ++k) diagonal_[static_cast<size_t>(k)] = slot(k, k);
       sparse_ldlt_.analyzePattern(sparse_);
       analyzed_pattern_ = pattern_;
       analyzed_ = true;
     }
+    double* values = sparse_.valuePtr();
+    std::fill(values, values + sparse_.nonZeros(), 0.0);
+    size_t visit = 0;
+    couplings([&](int, int, double v) { values[slots_[visit++]] += v; });
+    double scale = 0;
+    for (int k : diagonal_) scale = std::max(scale, values[k]);
+    if (!(scale > 0)) return false;
+    for (int k : diagonal_) values[k] += lambda * scale;
     sparse_ldlt_.factorize(sparse_);
     if (sparse_ldlt_.info() != Eigen::Success) return false;
     y_ = sparse_ldlt_.solve(-r);
     return y_.allFinite();
+  }
+
+  // Index in sparse_'s values of entry (a, b), a >= b (column-major, lower triangle).
+  int slot(int a, int b) const {
+    const int* inner = sparse_.innerIndexPtr();
+    const int* begin = inner + sparse_.outerIndexPtr()[b];
+    const int* end = inner + sparse_.outerIndexPtr()[b + 1];
+    return static_cast<int>(std::lower_bound(begin, end, a) - inner);
   }
 
   static constexpr int kDenseRows = 120;
@@ -283,6 +302,7 @@ class Polisher {
   Eigen::SparseMatrix<double> sparse_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> sparse_ldlt_;
   std::vector<int> pattern_, analyzed_pattern_;
+  std::vector<int> slots_, diagonal_;
   bool analyzed_ = false;
 };
 
@@ -307,7 +327,7 @@ std::vector<ConstraintReport> report(const Model& model, const SolverState& s, d
     r.active = js.active;
     r.residual = s.residual(js);
     r.satisfied = r.residual <= tolerance;
-    r.at_limit = js.active && s.at_limit(js, tolerance);
+    r.at_limit = js.active && js.bounded && s.at_limit(js, tolerance);
     out.push_back(r);
   }
   (void)model;
@@ -355,6 +375,13 @@ struct Progress {
   int iterations = 0, seed = 0, polish = 0;
   int seed_only_until = 0;  // after a failed polish, let the seed iterations work a while
   bool done = false;
+
+  // Ready for another solve; the polisher keeps its symbolic analysis.
+  void reset() {
+    lambda = 1e-12;
+    iterations = seed = polish = seed_only_until = 0;
+    done = false;
+  }
 };
 
 void save_poses(const SolverState& s, const Component& comp, std::vector<Pose>& out) {
@@ -416,25 +443,62 @@ void iterate(SolverState& s, Progress& p, const SolveOptions& o, double polish_t
 
 }  // namespace
 
+struct Session::Impl {
+  Impl(const Model& m, const SolveOptions& opt, const std::vector<bool>& held)
+      : model(m), o(opt), s(m, m.poses(), opt, held), comps(components(s)) {
+    for (const Component& c : comps) progress.emplace_back(c);
+    band.assign(s.joints.size(), 0.0);
+    for (size_t c = 0; c < s.joints.size(); ++c) {
+      const JointState& js = s.joints[c];
+      if (js.active && !s.bodies[static_cast<size_t>(js.b1)].movable &&
+          !s.bodies[static_cast<size_t>(js.b2)].movable) {
+        immovable.push_back(static_cast<int>(c));
+      }
+    }
+  }
+  const Model& model;
+  SolveOptions o;
+  SolverState s;
+  std::vector<Component> comps;
+  std::deque<Progress> progress;  // not moved once built: each holds its factorisation
+  std::vector<double> band;
+  std::vector<Pose> best, before;
+  std::vector<int> immovable;  // active joints whose two bodies cannot move
+};
+
+Session::Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held)
+    : impl_(std::make_unique<Impl>(model, options, held)) {}
+Session::~Session() = default;
+Session::Session(Session&&) noexcept = default;
+Session& Session::operator=(Session&&) noexcept = default;
+
 SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptions& o,
                   const std::vector<bool>& held) {
+  return Session(model, o, held).solve(poses);
+}
+
+SolveResult Session::solve(std::vector<Pose>& poses) {
+  const Model& model = impl_->model;
+  const SolveOptions& o = impl_->o;
   if (static_cast<int>(poses.size()) != model.body_count()) {
     throw std::invalid_argument("solve: one pose per body expected");
   }
-  SolverState s(model, poses, o, held);
+  SolverState& s = impl_->s;
+  s.read_poses(poses);
   SolveResult result;
   const double polish_threshold = o.polish_below * model.length_scale();
-  const std::vector<Component> comps = components(s);
-  std::deque<Progress> progress;  // not moved once built: each holds its factorisation
-  for (const Component& c : comps) {
-    progress.emplace_back(c);
-    Progress& p = progress.back();
-    p.r = p.best_r = max_residual(s, c.joints);
+  std::deque<Progress>& progress = impl_->progress;
+  for (Progress& p : progress) {
+    p.reset();
+    p.r = p.best_r = max_residual(s, p.comp->joints);
     p.done = p.r <= o.tolerance;
   }
-  std::vector<Pose> best = poses;
-  std::vector<Pose> before = poses;
-  std::vector<double> band(s.joints.size(), 0.0);
+  std::vector<Pose>& best = impl_->best;
+  std::vector<Pose>& before = impl_->before;
+  best = poses;
+  before = poses;
+  std::vector<double>& band = impl_->band;
+  std::fill(band.begin(), band.end(), 0.0);
   // Components advance in lockstep: iteration k is every unfinished component's k-th iteration.
   bool finite = true;
   for (int k = 0; k < o.max_iterations; ++k) {
@@ -471,7 +535,7 @@ SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptio
     }
   }
   // Joints between bodies that cannot move are measured too: nothing can fix them.
-  for (const JointState& js : s.joints) r = std::max(r, s.residual(js));
+  for (int c : impl_->immovable) r = std::max(r, s.residual(s.joints[static_cast<size_t>(c)]));
   if (!finite) r = std::numeric_limits<double>::infinity();
   if (!finite) {
     result.status = SolveStatus::Diverged;
@@ -516,38 +580,54 @@ SolveResult assemble(Model& model, const SolveOptions& options) {
   return r;
 }
 
-DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
-                const SolveOptions& options, std::vector<std::vector<Pose>>* step_poses) {
+namespace {
+
+std::vector<bool> held_only(const Model& model, BodyId body) {
   if (body.value <= 0 || body.value >= model.body_count()) {
     throw std::invalid_argument("drag: unknown body");
   }
   if (model.body(body).fixed) {
     throw std::invalid_argument("drag: object '" + model.body(body).name + "' is fixed");
   }
+  std::vector<bool> held(static_cast<size_t>(model.body_count()), false);
+  held[static_cast<size_t>(body.value)] = true;
+  return held;
+}
+
+}  // namespace
+
+Dragger::Dragger(Model& model, BodyId body, const SolveOptions& options)
+    : model_(model), body_(body), session_(model, options, held_only(model, body)) {}
+
+SolveResult Dragger::move_to(const Pose& target) {
+  poses_ = model_.poses();
+  poses_[static_cast<size_t>(body_.value)] = target;
+  SolveResult r = session_.solve(poses_);
+  if (r.converged) model_.set_poses(poses_);
+  return r;
+}
+
+DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
+                const SolveOptions& options, std::vector<std::vector<Pose>>* step_poses) {
   if (steps < 1) throw std::invalid_argument("drag: steps must be at least 1");
+  Dragger dragger(model, body, options);
   DragResult out;
-  std::vector<Pose> poses = model.poses();
-  const SolveResult first = solve(model, poses, options);
+  const SolveResult first = assemble(model, options);
+  out.iterations = first.iterations;
+  out.max_residual = first.max_residual;
   if (!first.converged) {
     out.converged = false;
-    out.iterations = first.iterations;
-    out.max_residual = first.max_residual;
     out.failed_step = 0;
     out.message = "the model does not assemble: " + first.message;
     return out;
   }
-  out.iterations = first.iterations;
-  std::vector<bool> held(static_cast<size_t>(model.body_count()), false);
-  held[static_cast<size_t>(body.value)] = true;
-  const Pose start = poses[static_cast<size_t>(body.value)];
-  std::vector<Pose> last_good = poses;
+  const Pose start = model.body(body).pose;
   for (int k = 1; k <= steps; ++k) {
     const double t = static_cast<double>(k) / steps;
     Pose p;
     p.x = (1 - t) * start.x + t * target.x;
     p.q = start.q.slerp(t, target.q).normalized();
-    poses[static_cast<size_t>(body.value)] = p;
-    SolveResult r = solve(model, poses, options, held);
+    SolveResult r = dragger.move_to(p);
     out.iterations += r.iterations;
     out.max_residual = std::max(out.max_residual, r.max_residual);
     const bool ok = r.converged;
@@ -557,10 +637,8 @@ DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
       out.failed_step = k - 1;
       break;
     }
-    last_good = poses;
-    if (step_poses) step_poses->push_back(poses);
+    if (step_poses) step_poses->push_back(model.poses());
   }
-  model.set_poses(last_good);
   std::ostringstream msg;
   if (out.converged) {
     msg << "dragged '" << model.body(body).name << "' in " << steps << " steps, " << out.iterations

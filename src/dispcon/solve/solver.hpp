@@ -9,6 +9,7 @@
 // keep the seed's momentum conservation, continuity and closed loops.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,23 @@ struct SolveResult {
 SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptions& options,
                   const std::vector<bool>& held = {});
 
+// A model solved again and again with the same structure (dragging, animation, a workbench's
+// live drag): the working state, the groups of bodies and the Newton polish's symbolic
+// factorisation are built once. The model must outlive the session and keep its joints.
+class Session {
+ public:
+  Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held = {});
+  ~Session();
+  Session(Session&&) noexcept;
+  Session& operator=(Session&&) noexcept;
+  // Like solve(): from `poses`, updated in place when converged.
+  SolveResult solve(std::vector<Pose>& poses);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // Residual of every joint at the given poses, without moving anything.
 std::vector<ConstraintReport> measure(const Model& model, const std::vector<Pose>& poses,
                                       const SolveOptions& options);
@@ -83,6 +101,23 @@ std::vector<ConstraintReport> measure(const Model& model, const std::vector<Pose
 // model when it converged. A failed solve leaves the model as it was; the result holds the poses
 // it reached.
 SolveResult assemble(Model& model, const SolveOptions& options = {});
+
+// Interactive dragging (a mouse drag in the workbench): `body` is held at each target in turn
+// while the rest follows from the previous result; the session is built once.
+class Dragger {
+ public:
+  // Throws std::invalid_argument for the world, an unknown or a fixed body.
+  Dragger(Model& model, BodyId body, const SolveOptions& options = {});
+  // Holds the body at `target` and solves from the model's poses. On success the model takes the
+  // new poses; otherwise it is left as it was and the result names what is violated.
+  SolveResult move_to(const Pose& target);
+
+ private:
+  Model& model_;
+  BodyId body_;
+  Session session_;
+  std::vector<Pose> poses_;
+};
 
 struct DragResult {
   bool converged = true;

@@ -87,6 +87,10 @@ SolverState::SolverState(const Model& model, const std::vector<Pose>& poses,
     js.b1 = j.body1.value;
     js.b2 = j.body2.value;
     js.active = j.active_at(options.time);
+    js.bounded =
+        (j.guide && j.guide->kind != GuideKind::Point && j.guide->kind != GuideKind::Circle) ||
+        (j.angle && (j.angle->min > 0 || j.angle->max < kPi) && j.angle->min != j.angle->max) ||
+        (j.twist && j.twist->min != j.twist->max);
     const BodyState& s1 = bodies[static_cast<size_t>(js.b1)];
     const BodyState& s2 = bodies[static_cast<size_t>(js.b2)];
     if (!s1.movable && !s2.movable) {

@@ -44,6 +44,7 @@ struct JointState {
   double mu2 = 0.5;
   double w = 1;  // seed 3.2 weight 1/max(n_i, n_j) times the relaxation
   bool active = true;
+  bool bounded = false;  // has a bound that can be in contact (segment end, angle limit, ...)
 };
 
 // A joint's geometry at the current poses, world frame.
