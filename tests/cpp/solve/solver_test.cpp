@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace dispcon {
 namespace {
@@ -253,6 +254,46 @@ TEST(Schemes, GaussSeidelAndJacobiReachTheSameFourBar) {
     const SolveResult r = assemble(fb.m, o);
     ASSERT_TRUE(r.converged) << r.message;
     EXPECT_NEAR(fb.angle_of(fb.rocker), fb.rocker_angle(fb.angle_of(fb.crank)), 1e-9);
+  }
+}
+
+TEST(Drag, DraggerReusesItsSessionAndMatchesFreshSolves) {
+  FourBar live, fresh;
+  ASSERT_TRUE(assemble(live.m).converged);
+  ASSERT_TRUE(assemble(fresh.m).converged);
+  Dragger dragger(live.m, live.crank);
+  const double t0 = live.angle_of(live.crank);
+  for (int k = 1; k <= 20; ++k) {
+    const Pose target = Pose::from(Vec3::Zero(), Vec3(0, 0, t0 + 0.05 * k));
+    const SolveResult r = dragger.move_to(target);
+    ASSERT_TRUE(r.converged) << r.message;
+    EXPECT_LE(r.iterations, 4) << "step " << k;
+    ASSERT_TRUE(drag(fresh.m, fresh.crank, target, 1).converged);
+    EXPECT_NEAR(live.angle_of(live.rocker), fresh.angle_of(fresh.rocker), 1e-9);
+    EXPECT_NEAR(live.angle_of(live.rocker), live.rocker_angle(t0 + 0.05 * k), 1e-8);
+  }
+}
+
+TEST(Drag, DraggerRefusesFixedAndUnknownBodies) {
+  FourBar fb;
+  EXPECT_THROW(Dragger(fb.m, Model::kWorld), std::invalid_argument);
+  EXPECT_THROW(Dragger(fb.m, BodyId{42}), std::invalid_argument);
+  fb.m.body(fb.coupler).fixed = true;
+  EXPECT_THROW(Dragger(fb.m, fb.coupler), std::invalid_argument);
+}
+
+TEST(Drag, FailedMoveLeavesTheModelUnchanged) {
+  FourBar fb;
+  ASSERT_TRUE(assemble(fb.m).converged);
+  const std::vector<Pose> before = fb.m.poses();
+  SolveOptions o;
+  o.max_iterations = 100;
+  Dragger dragger(fb.m, fb.rocker, o);
+  // The rocker's pivot pulled 10 units away from the ground pivot: impossible.
+  const SolveResult r = dragger.move_to(Pose::from(Vec3(10, 0, 0), Vec3::Zero()));
+  EXPECT_FALSE(r.converged);
+  for (int i = 0; i < fb.m.body_count(); ++i) {
+    EXPECT_EQ(fb.m.body(BodyId{i}).pose.x, before[static_cast<size_t>(i)].x);
   }
 }
 
