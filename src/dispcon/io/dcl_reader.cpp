@@ -1,0 +1,576 @@
+// The description language reader (format.md). Two passes: the statements are parsed into
+// blocks with their places, then names are resolved and the model is built, so objects may be
+// declared after the constraints that name them. Every problem becomes a diagnostic naming its
+// place; parsing resumes at the next `;` or `end`.
+#include "dispcon/io/dcl_reader.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "dispcon/io/dcl_lexer.hpp"
+
+namespace dispcon {
+
+std::string Diagnostic::format() const {
+  std::ostringstream out;
+  out << file << ":" << line << ":" << column << ": " << (error ? "error" : "warning") << ": "
+      << message;
+  return out.str();
+}
+
+std::string ParseResult::messages() const {
+  std::string out;
+  for (const Diagnostic& d : diagnostics) out += d.format() + "\n";
+  return out;
+}
+
+namespace {
+
+struct Place {
+  int line = 0, column = 0;
+};
+
+struct ObjectBlock {
+  Place at;
+  Body body;
+};
+
+struct ConstraintBlock {
+  Place at;
+  std::string object1 = "world", object2;
+  Place object1_at, object2_at;
+  bool has_object2 = false;
+  Joint joint;
+  Place guide_at;
+};
+
+// Thrown inside the parser to abandon one statement; caught at statement level.
+struct StatementError {};
+
+class Parser {
+ public:
+  Parser(std::string_view text, const std::string& file) : file_(file) {
+    std::vector<LexError> lex_errors;
+    tokens_ = lex_dcl(text, lex_errors);
+    for (const LexError& e : lex_errors) error({e.line, e.column}, e.message);
+  }
+
+  ParseResult run() {
+    while (peek().kind != Token::End && !too_many()) {
+      const Token& t = peek();
+      if (t.kind == Token::Word && t.text == "object") {
+        object_block();
+      } else if (t.kind == Token::Word && t.text == "constraint") {
+        constraint_block();
+      } else {
+        error(at(t), "expected 'object' or 'constraint', found " + quote(t));
+        next();
+      }
+    }
+    return build();
+  }
+
+ private:
+  // Tokens.
+  const Token& peek() const { return tokens_[pos_]; }
+  const Token& next() {
+    const Token& t = tokens_[pos_];
+    if (pos_ + 1 < tokens_.size()) ++pos_;
+    return t;
+  }
+  static Place at(const Token& t) { return {t.line, t.column}; }
+  static std::string quote(const Token& t) {
+    switch (t.kind) {
+      case Token::End:
+        return "the end of the file";
+      case Token::Semicolon:
+        return "';'";
+      default:
+        return "'" + t.text + "'";
+    }
+  }
+  bool too_many() const { return errors_ >= 100; }
+
+  void error(Place p, const std::string& message) {
+    diagnostics_.push_back({file_, p.line, p.column, true, message});
+    ++errors_;
+  }
+  void warning(Place p, const std::string& message) {
+    diagnostics_.push_back({file_, p.line, p.column, false, message});
+  }
+
+  // Skips to just after the next ';', or to (not past) `end`, `object`, `constraint`.
+  void recover() {
+    while (peek().kind != Token::End) {
+      const Token& t = peek();
+      if (t.kind == Token::Semicolon) {
+        next();
+        return;
+      }
+      if (t.kind == Token::Word &&
+          (t.text == "end" || t.text == "object" || t.text == "constraint"))
+        return;
+      next();
+    }
+  }
+
+  double number(const std::string& what, bool allow_inf = false) {
+    const Token& t = peek();
+    if (t.kind == Token::Word && t.text == "inf") {
+      if (!allow_inf) {
+        error(at(t), what + " must be finite, found 'inf' (inf is allowed only as a bound)");
+        throw StatementError{};
+      }
+      next();
+      return kInf;
+    }
+    if (t.kind == Token::Number) {
+      if (std::isinf(t.value) && !allow_inf) {
+        error(at(t),
+              what + " must be finite, found '" + t.text + "' (inf is allowed only as a bound)");
+        throw StatementError{};
+      }
+      next();
+      return t.value;
+    }
+    if (t.kind == Token::Word && (t.text == "nan" || t.text == "NaN" || t.text == "NAN")) {
+      error(at(t), "expected a number for " + what + ", found 'nan' (not a number)");
+    } else if (t.kind != Token::Bad) {
+      error(at(t), "expected a number for " + what + ", found " + quote(t));
+    }
+    throw StatementError{};
+  }
+
+  Vec3 vec3(const std::string& what) {
+    Vec3 v;
+    for (int k = 0; k < 3; ++k) v[k] = number(what);
+    return v;
+  }
+
+  Vec3 direction(const std::string& what) {
+    const Token& first = peek();
+    const Vec3 v = vec3(what);
+    if (v.norm() == 0) {
+      error(at(first), what + " is a zero vector");
+      throw StatementError{};
+    }
+    return v.normalized();
+  }
+
+  std::string name(const std::string& what) {
+    const Token& t = peek();
+    if (t.kind != Token::Word) {
+      error(at(t), "expected " + what + ", found " + quote(t));
+      throw StatementError{};
+    }
+    next();
+    return t.text;
+  }
+
+  void semicolon(const std::string& after) {
+    const Token& t = peek();
+    if (t.kind != Token::Semicolon) {
+      error(at(t), "expected ';' after " + after + ", found " + quote(t));
+      throw StatementError{};
+    }
+    next();
+  }
+
+  // `{min a} {max b}` then `;`.
+  void bounds(const std::string& what, double& lo, double& hi) {
+    bool seen_min = false, seen_max = false;
+    while (peek().kind == Token::Word && (peek().text == "min" || peek().text == "max")) {
+      const Token& kw = next();
+      const bool is_min = kw.text == "min";
+      if ((is_min && seen_min) || (!is_min && seen_max)) {
+        error(at(kw), "'" + kw.text + "' given twice for " + what);
+        throw StatementError{};
+      }
+      (is_min ? seen_min : seen_max) = true;
+      (is_min ? lo : hi) = number(what + " " + kw.text, true);
+    }
+    if (peek().kind != Token::Semicolon) {
+      error(at(peek()), "expected 'min', 'max' or ';' in " + what + ", found " + quote(peek()));
+      throw StatementError{};
+    }
+    next();
+  }
+
+  // Clamps [lo, hi] into [natural_lo, natural_hi] with a warning; min above max is an error.
+  void check_range(Place p, const std::string& what, double& lo, double& hi, double natural_lo,
+                   double natural_hi) {
+    if (lo > hi) {
+      std::ostringstream m;
+      m << what << ": min " << lo << " is above max " << hi;
+      error(p, m.str());
+      throw StatementError{};
+    }
+    auto clamp = [&](double& v, const char* which) {
+      if (v < natural_lo || v > natural_hi) {
+        const double c = v < natural_lo ? natural_lo : natural_hi;
+        std::ostringstream m;
+        m << what << " " << which << " " << v << " is outside [" << natural_lo << ", " << natural_hi
+          << "]; clamped to " << c;
+        warning(p, m.str());
+        v = c;
+      }
+    };
+    clamp(lo, "min");
+    clamp(hi, "max");
+  }
+
+  // `end` (with an optional `;`) closing a block opened at `open`.
+  bool block_end(const std::string& block, Place open) {
+    const Token& t = peek();
+    if (t.kind == Token::Word && t.text == "end") {
+      next();
+      if (peek().kind == Token::Semicolon) next();
+      return true;
+    }
+    if (t.kind == Token::End ||
+        (t.kind == Token::Word && (t.text == "object" || t.text == "constraint"))) {
+      std::ostringstream m;
+      m << "missing 'end' for the " << block << " opened at line " << open.line << ", found "
+        << quote(t);
+      error(at(t), m.str());
+      return true;
+    }
+    return false;
+  }
+
+  void object_block() {
+    const Token& kw = next();
+    ObjectBlock ob;
+    ob.at = at(kw);
+    ob.body.line = kw.line;
+    try {
+      ob.body.name = name("an object name");
+      if (ob.body.name == "world") {
+        error(ob.at, "'world' is reserved for the fixed world frame");
+      }
+      semicolon("the object name");
+    } catch (const StatementError&) {
+      recover();
+    }
+    std::map<std::string, Place> seen;
+    Vec3 rotation = Vec3::Zero();
+    while (!block_end("object '" + ob.body.name + "'", ob.at) && !too_many()) {
+      const Token& t = next();
+      try {
+        if (t.kind != Token::Word) {
+          error(at(t), "expected an object statement or 'end', found " + quote(t));
+          throw StatementError{};
+        }
+        const std::string& k = t.text;
+        if (seen.count(k)) {
+          error(at(t), "'" + k + "' given twice in object '" + ob.body.name + "' (first at line " +
+                           std::to_string(seen[k].line) + ")");
+          throw StatementError{};
+        }
+        seen[k] = at(t);
+        Body& b = ob.body;
+        if (k == "position") {
+          b.pose.x = vec3("position");
+        } else if (k == "rotation") {
+          rotation = vec3("rotation");
+        } else if (k == "fixed") {
+          b.fixed = true;
+        } else if (k == "rotate") {
+          const double v = number("rotate");
+          if (!(v > 0)) error(at(t), "rotate must be positive, found " + std::to_string(v));
+          b.rotate = v;
+        } else if (k == "mass") {
+          const double v = number("mass");
+          if (!(v > 0)) error(at(t), "mass must be positive, found " + std::to_string(v));
+          b.mass = v;
+        } else if (k == "inertia") {
+          double v[6] = {0, 0, 0, 0, 0, 0};
+          for (int i = 0; i < 3; ++i) v[i] = number("inertia");
+          if (peek().kind == Token::Number) {
+            for (int i = 3; i < 6; ++i) v[i] = number("inertia (Ixy Ixz Iyz)");
+          }
+          Mat3 J;
+          J << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
+          Eigen::LLT<Mat3> llt(J);
+          if (llt.info() != Eigen::Success) {
+            error(at(t), "inertia is not positive definite");
+          }
+          b.inertia = J;
+        } else if (k == "center") {
+          b.center = vec3("center");
+        } else if (k == "velocity") {
+          b.velocity = vec3("velocity");
+        } else if (k == "spin") {
+          b.spin = vec3("spin");
+        } else if (k == "force") {
+          b.force = vec3("force");
+        } else if (k == "torque") {
+          b.torque = vec3("torque");
+        } else {
+          error(at(t), "unknown object statement '" + k +
+                           "' (expected position, rotation, fixed, rotate, mass, inertia, center, "
+                           "velocity, spin, force, torque or end)");
+          throw StatementError{};
+        }
+        semicolon("'" + k + "'");
+      } catch (const StatementError&) {
+        recover();
+      }
+    }
+    ob.body.pose.q = quat_from_rotation_vector(rotation);
+    objects_.push_back(ob);
+  }
+
+  void constraint_block() {
+    const Token& kw = next();
+    ConstraintBlock cb;
+    cb.at = at(kw);
+    cb.joint.line = kw.line;
+    std::map<std::string, Place> seen;
+    Joint& j = cb.joint;
+    while (!block_end("constraint", cb.at) && !too_many()) {
+      const Token& t = next();
+      try {
+        if (t.kind != Token::Word) {
+          error(at(t), "expected a constraint statement or 'end', found " + quote(t));
+          throw StatementError{};
+        }
+        const std::string& k = t.text;
+        if (seen.count(k)) {
+          error(at(t), "'" + k + "' given twice in this constraint (first at line " +
+                           std::to_string(seen[k].line) + ")");
+          throw StatementError{};
+        }
+        static const char* guides[] = {"axial",  "planar",   "sphere",
+                                       "circle", "cylinder", "polyline"};
+        bool is_guide = false;
+        for (const char* g : guides) is_guide |= k == g;
+        if (is_guide && j.guide) {
+          error(at(t), "a constraint has at most one translation guide: '" + k + "' after '" +
+                           to_string(j.guide->kind) + "' at line " +
+                           std::to_string(cb.guide_at.line));
+          throw StatementError{};
+        }
+        seen[k] = at(t);
+        if (k == "object1") {
+          cb.object1 = name("an object name");
+          cb.object1_at = at(t);
+          semicolon("object1");
+        } else if (k == "object2") {
+          cb.object2 = name("an object name");
+          cb.object2_at = at(t);
+          cb.has_object2 = true;
+          semicolon("object2");
+        } else if (k == "hinge") {
+          j.p1 = vec3("hinge P1");
+          j.p2 = vec3("hinge P2");
+          j.has_hinge = true;
+          semicolon("hinge");
+        } else if (k == "axial" || k == "cylinder") {
+          Guide g;
+          g.kind = k == "axial" ? GuideKind::Axial : GuideKind::Cylinder;
+          g.dir = direction(k + " direction");
+          if (k == "cylinder") {
+            g.radius = number("cylinder radius");
+            if (g.radius < 0) {
+              error(at(t), "cylinder radius must not be negative");
+              throw StatementError{};
+            }
+          }
+          bounds(k, g.min, g.max);
+          check_range(at(t), k, g.min, g.max, -kInf, kInf);
+          j.guide = g;
+          cb.guide_at = at(t);
+        } else if (k == "planar") {
+          Guide g;
+          g.kind = GuideKind::Planar;
+          g.dir = direction("planar normal");
+          g.min = 0;
+          bounds(k, g.min, g.max);
+          check_range(at(t), k, g.min, g.max, 0, kInf);
+          j.guide = g;
+          cb.guide_at = at(t);
+        } else if (k == "sphere") {
+          Guide g;
+          g.kind = GuideKind::Sphere;
+          g.min = 0;
+          bounds(k, g.min, g.max);
+          check_range(at(t), k, g.min, g.max, 0, kInf);
+          j.guide = g;
+          cb.guide_at = at(t);
+        } else if (k == "circle") {
+          Guide g;
+          g.kind = GuideKind::Circle;
+          g.dir = direction("circle normal");
+          g.radius = number("circle radius");
+          if (!(g.radius > 0)) {
+            error(at(t), "circle radius must be positive");
+            throw StatementError{};
+          }
+          semicolon("circle");
+          j.guide = g;
+          cb.guide_at = at(t);
+        } else if (k == "polyline") {
+          Guide g;
+          g.kind = GuideKind::Polyline;
+          std::vector<double> v;
+          while (peek().kind == Token::Number) v.push_back(number("polyline point"));
+          if (v.size() % 3 != 0 || v.size() < 6) {
+            error(at(t), "polyline needs at least two points of three coordinates each, found " +
+                             std::to_string(v.size()) + " numbers");
+            throw StatementError{};
+          }
+          for (size_t i = 0; i < v.size(); i += 3) g.points.emplace_back(v[i], v[i + 1], v[i + 2]);
+          semicolon("polyline");
+          j.guide = g;
+          cb.guide_at = at(t);
+        } else if (k == "angle") {
+          AngleSpec a;
+          a.a1 = direction("angle a1");
+          a.a2 = direction("angle a2");
+          bounds(k, a.min, a.max);
+          check_range(at(t), k, a.min, a.max, 0, kPi);
+          j.angle = a;
+        } else if (k == "twist") {
+          TwistSpec w;
+          w.b1 = direction("twist b1");
+          w.b2 = direction("twist b2");
+          bounds(k, w.min, w.max);
+          check_range(at(t), k, w.min, w.max, -kPi, kPi);
+          j.twist = w;
+        } else if (k == "move") {
+          const double mu = number("move");
+          if (mu < 0 || mu > 1) {
+            std::ostringstream m;
+            m << "move must be in [0, 1], found " << mu;
+            error(at(t), m.str());
+            throw StatementError{};
+          }
+          j.move = mu;
+          semicolon("move");
+        } else if (k == "time") {
+          j.t0 = number("time t0", true);
+          j.t1 = number("time t1", true);
+          if (j.t0 > j.t1) {
+            error(at(t), "time interval: t0 is after t1");
+            throw StatementError{};
+          }
+          semicolon("time");
+        } else {
+          error(at(t), "unknown constraint statement '" + k +
+                           "' (expected object1, object2, hinge, axial, planar, sphere, circle, "
+                           "cylinder, polyline, angle, twist, move, time or end)");
+          throw StatementError{};
+        }
+      } catch (const StatementError&) {
+        recover();
+      }
+    }
+    constraints_.push_back(cb);
+  }
+
+  ParseResult build() {
+    ParseResult result;
+    Model model;
+    std::map<std::string, Place> declared;
+    for (ObjectBlock& ob : objects_) {
+      if (ob.body.name.empty() || ob.body.name == "world") continue;
+      auto it = declared.find(ob.body.name);
+      if (it != declared.end()) {
+        error(ob.at, "duplicate object '" + ob.body.name + "' (first declared at line " +
+                         std::to_string(it->second.line) + ")");
+        continue;
+      }
+      declared[ob.body.name] = ob.at;
+      if (errors_ > 0) continue;
+      try {
+        model.add_body(ob.body);
+      } catch (const std::invalid_argument& e) {
+        error(ob.at, e.what());
+      }
+    }
+    for (ConstraintBlock& cb : constraints_) {
+      Joint& j = cb.joint;
+      bool ok = true;
+      auto resolve = [&](const std::string& name, Place p, BodyId& out) {
+        if (name == "world") {
+          out = Model::kWorld;
+          return;
+        }
+        if (!declared.count(name)) {
+          error(p.line ? p : cb.at,
+                "unknown object '" + name + "' (no 'object " + name + "' block declares it)");
+          ok = false;
+          return;
+        }
+        if (const auto id = model.find(name)) out = *id;
+      };
+      if (!cb.has_object2) {
+        error(cb.at, "constraint needs 'object2'");
+        ok = false;
+      } else {
+        resolve(cb.object1, cb.object1_at, j.body1);
+        resolve(cb.object2, cb.object2_at, j.body2);
+        if (ok && cb.object1 == cb.object2) {
+          error(cb.object2_at, "object1 and object2 are the same object '" + cb.object2 + "'");
+          ok = false;
+        }
+      }
+      if (!j.has_translation() && !j.angle) {
+        error(cb.at, "constraint has no component: give a hinge, a translation guide or an angle");
+        ok = false;
+      }
+      if (j.twist && !j.angle) {
+        error(cb.at, "twist needs an angle (it uses the angle's vectors a1 and a2)");
+        ok = false;
+      }
+      if (!ok || errors_ > 0) continue;
+      try {
+        model.add_joint(j);
+      } catch (const std::invalid_argument& e) {
+        error(cb.at, e.what());
+      }
+    }
+    result.diagnostics = diagnostics_;
+    if (errors_ == 0) result.model = std::move(model);
+    return result;
+  }
+
+  std::string file_;
+  std::vector<Token> tokens_;
+  size_t pos_ = 0;
+  std::vector<Diagnostic> diagnostics_;
+  int errors_ = 0;
+  std::vector<ObjectBlock> objects_;
+  std::vector<ConstraintBlock> constraints_;
+};
+
+}  // namespace
+
+ParseResult parse_dcl(std::string_view text, const std::string& filename) {
+  try {
+    return Parser(text, filename).run();
+  } catch (const std::exception& e) {
+    ParseResult r;
+    r.diagnostics.push_back({filename, 0, 0, true, std::string("internal error: ") + e.what()});
+    return r;
+  }
+}
+
+ParseResult load_dcl(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    ParseResult r;
+    r.diagnostics.push_back({path, 0, 0, true, "cannot open the file"});
+    return r;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_dcl(text.str(), path);
+}
+
+}  // namespace dispcon

@@ -1,0 +1,265 @@
+// The .dcl reader against format.md: Appendix A verbatim, every listed error with its place,
+// and the writer's round trip.
+#include "dispcon/io/dcl_reader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "dispcon/io/dcl_writer.hpp"
+#include "dispcon/solve/solver.hpp"
+
+namespace dispcon {
+namespace {
+
+// Appendix A of the paper, as printed (the last code block first).
+const char* kAppendixA = R"(/* Constraint between the wheel and the
+character's body */
+constraint object1 body; object2 wheel;
+hinge 0 -2.0 0 0 0 0;
+angle 1 0 0 1 0 0 max 0; end
+
+/* Angle constraint preventing the character
+from falling */
+constraint object2 body; /* default object1:
+world-fixed coordinate system */
+angle 0 1 0 0 1 0 max 0.066; end
+
+/* Constraints along the left leg */
+constraint object1 body; object2 left-thigh;
+hinge 0.4 -0.6 0 0 0 0;
+angle 1 0 0 1 0 0 max 0; end
+
+constraint object1 left-thigh;
+object2 left-leg; hinge 0 0 1 0 0 0;
+angle 1 0 0 1 0 0 max 0; end
+
+constraint object1 left-leg;
+object2 left-foot; hinge 0 0 1.4 0 0 -0.1;
+angle 1 0 0 1 0 0 max 0; end
+
+constraint object1 wheel; object2 left-foot;
+hinge 0.4 0 -0.5 0 0 0; end
+constraint object1 body; object2 left-foot;
+angle 0 0 1 0 0 1 max .1; end
+
+/* Constraints along the right leg */
+constraint object1 body;
+object2 right-thigh;
+hinge -.4 -0.6 0 0 0 0;
+angle 1 0 0 1 0 0 max 0.04; end
+
+constraint object1 right-thigh;
+object2 right-leg; hinge 0 0 1 0 0 0;
+angle 1 0 0 1 0 0 max 0; end
+
+constraint object1 right-leg;
+object2 right-foot; hinge 0 0 1.4 0 0 -0.1;
+angle 1 0 0 1 0 0 max 9; end
+
+constraint object1 wheel;
+object2 right-foot;
+hinge -0.4 0 0.5 0 0 0; end
+
+constraint object1 body; object2 right-foot;
+angle 0 0 1 0 0 1 max .1; end
+)";
+
+const char* kObjects = R"(
+object body; end
+object wheel; end
+object left-thigh; end
+object right-thigh; end
+object left-leg; end
+object right-leg; end
+object left-foot; end
+object right-foot; end
+)";
+
+TEST(DclReader, AppendixAParsesVerbatim) {
+  const ParseResult r = parse_dcl(std::string(kAppendixA) + kObjects, "mono.dcl");
+  ASSERT_TRUE(r.ok()) << r.messages();
+  const Model& m = *r.model;
+  EXPECT_EQ(m.body_count(), 9);
+  ASSERT_EQ(m.joint_count(), 12);
+  // The block holding the character upright: world -> body, angle only.
+  const Joint& upright = m.joint(JointId{1});
+  EXPECT_EQ(upright.body1, Model::kWorld);
+  EXPECT_EQ(m.body(upright.body2).name, "body");
+  EXPECT_FALSE(upright.has_translation());
+  ASSERT_TRUE(upright.angle);
+  EXPECT_DOUBLE_EQ(upright.angle->max, 0.066);
+  EXPECT_EQ(upright.line, 9);
+  // `hinge -.4 -0.6 0 0 0 0`
+  EXPECT_EQ(m.joint(JointId{7}).p1, Vec3(-0.4, -0.6, 0));
+  // `max 9` is clamped to pi, with a warning at its statement.
+  EXPECT_DOUBLE_EQ(m.joint(JointId{9}).angle->max, kPi);
+  ASSERT_EQ(r.diagnostics.size(), 1u);
+  EXPECT_FALSE(r.diagnostics[0].error);
+  EXPECT_EQ(r.diagnostics[0].line, 43);
+  EXPECT_EQ(r.diagnostics[0].format().rfind("mono.dcl:43:1: warning: angle max 9", 0), 0u)
+      << r.diagnostics[0].format();
+}
+
+TEST(DclReader, MonocycleSampleAssemblesFromRoughPositions) {
+  ParseResult r = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/monocycle.dcl");
+  ASSERT_TRUE(r.ok()) << r.messages();
+  Model& m = *r.model;
+  const double before = [&] {
+    double worst = 0;
+    for (const ConstraintReport& c : measure(m, m.poses(), SolveOptions{})) {
+      worst = std::max(worst, c.residual);
+    }
+    return worst;
+  }();
+  EXPECT_GT(before, 0.1);  // rough positions indeed
+  const SolveResult s = assemble(m);
+  EXPECT_TRUE(s.converged) << s.message;
+  EXPECT_LT(s.max_residual, 1e-9);
+}
+
+struct Bad {
+  const char* text;
+  int line, column;
+  const char* message;  // a part of the message
+};
+
+TEST(DclReader, EveryErrorNamesItsPlace) {
+  const Bad cases[] = {
+      {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0; bogus 1; end", 2, 42,
+       "unknown constraint statement 'bogus'"},
+      {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0 end", 2, 41,
+       "expected ';' after hinge"},
+      {"object a;\nconstraint object2 a; hinge 0 0 0 0 0 0; end", 2, 1, "missing 'end'"},
+      {"object a; end\nconstraint object2 b; hinge 0 0 0 0 0 0; end", 2, 12, "unknown object 'b'"},
+      {"object a; end\nobject a; end", 2, 1, "duplicate object 'a'"},
+      {"object a; end\nconstraint object1 a; object2 a; hinge 0 0 0 0 0 0; end", 2, 23,
+       "same object 'a'"},
+      {"object a; position nan 0 0; end", 1, 20, "'nan' (not a number)"},
+      {"object a; mass -2; end", 1, 11, "mass must be positive"},
+      {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0; move 1.5; end", 2, 42,
+       "move must be in [0, 1]"},
+      {"object a; inertia 1 1 -1; end", 1, 11, "inertia is not positive definite"},
+      {"object a; end\x01", 1, 14, "byte 0x01 is not text"},
+      {"object a; end\nconstraint object2 a; axial 0 0 0; end", 2, 29, "zero vector"},
+      {"object a; end\nconstraint object2 a; axial 1 0 0; planar 0 0 1; end", 2, 36,
+       "at most one translation guide"},
+      {"object a; end\nconstraint object2 a; end", 2, 1, "no component"},
+      {"object a; end\nconstraint object2 a; axial 1 0 0 min 2 max 1; end", 2, 23,
+       "min 2 is above max 1"},
+      {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0; twist 1 0 0 1 0 0; end", 2, 1,
+       "twist needs an angle"},
+      {"object a; end\nconstraint hinge 0 0 0 0 0 0; end", 2, 1, "needs 'object2'"},
+      {"object world; end", 1, 1, "reserved"},
+      {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0; end", 2, 38, "expected a number"},
+      {"/* never closed", 1, 1, "never closed"},
+      {"object a; position 1x 0 0; end", 1, 20, "malformed number '1x'"},
+      {"object a; position inf 0 0; end", 1, 20, "must be finite"},
+      {"stuff", 1, 1, "expected 'object' or 'constraint'"},
+  };
+  for (const Bad& c : cases) {
+    SCOPED_TRACE(c.text);
+    const ParseResult r = parse_dcl(c.text, "f.dcl");
+    EXPECT_FALSE(r.ok());
+    ASSERT_FALSE(r.diagnostics.empty());
+    const Diagnostic* found = nullptr;
+    for (const Diagnostic& d : r.diagnostics) {
+      if (d.error && d.message.find(c.message) != std::string::npos) found = &d;
+    }
+    ASSERT_NE(found, nullptr) << r.messages();
+    EXPECT_EQ(found->line, c.line) << found->format();
+    EXPECT_EQ(found->column, c.column) << found->format();
+    EXPECT_EQ(found->format().rfind("f.dcl:" + std::to_string(c.line) + ":", 0), 0u);
+  }
+}
+
+TEST(DclReader, LexicalForms) {
+  const ParseResult r = parse_dcl(R"(
+    // a line comment
+    object a; position .1 -2.0 1e-3; end;
+    constraint object2 a; axial 1 0 0 min -inf max 2.5e0; end;
+    constraint object2 a; sphere max inf; end
+  )");
+  ASSERT_TRUE(r.ok()) << r.messages();
+  EXPECT_EQ(r.model->body(BodyId{1}).pose.x, Vec3(0.1, -2.0, 1e-3));
+  EXPECT_EQ(r.model->joint(JointId{0}).guide->min, -kInf);
+  EXPECT_EQ(r.model->joint(JointId{0}).guide->max, 2.5);
+}
+
+TEST(DclWriter, RoundTripKeepsEveryField) {
+  const char* text = R"(
+object crank; position 0.1 0.2 0.3; rotation 0.3 -0.2 1.1; mass 2; inertia 1 2 3 0.1 0.2 0.3;
+  center 0.5 0 0; velocity 1 2 3; spin 0 0 1; force 0 -9.8 0; torque 1 0 0; end
+object slider; position 1 0 0; rotate 0.7; fixed; end
+object pin; position 0 1 0; end
+constraint object2 crank; hinge 0 0 0 0.1 0 0; axial 0 0 1 min -1 max 2; move 0.25; time 0.5 1.5; end
+constraint object1 crank; object2 pin; planar 0 1 0 min 0.5 max 2; angle 0 0 1 0 1 1 min 0.2 max 1; twist 1 0 0 1 0 0 min -0.5 max 0.5; end
+constraint object1 slider; object2 pin; sphere min 1 max 1; end
+constraint object1 slider; object2 crank; circle 0 0 1 0.75; end
+constraint object1 pin; object2 crank; cylinder 1 0 0 0.3 max 4; end
+constraint object1 pin; object2 slider; polyline 0 0 0 1 0 0 1 1 0; end
+)";
+  const ParseResult a = parse_dcl(text);
+  ASSERT_TRUE(a.ok()) << a.messages();
+  const std::string written = write_dcl(*a.model);
+  const ParseResult b = parse_dcl(written, "written.dcl");
+  ASSERT_TRUE(b.ok()) << b.messages() << written;
+  const Model& m1 = *a.model;
+  const Model& m2 = *b.model;
+  ASSERT_EQ(m1.body_count(), m2.body_count());
+  for (int i = 0; i < m1.body_count(); ++i) {
+    const Body& x = m1.body(BodyId{i});
+    const Body& y = m2.body(BodyId{i});
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_LT((x.pose.x - y.pose.x).norm(), 1e-15);
+    EXPECT_LT(x.pose.q.angularDistance(y.pose.q), 1e-15);
+    EXPECT_EQ(x.fixed, y.fixed);
+    EXPECT_EQ(x.rotate, y.rotate);
+    EXPECT_EQ(x.mass, y.mass);
+    EXPECT_EQ(x.inertia.has_value(), y.inertia.has_value());
+    if (x.inertia) EXPECT_EQ(*x.inertia, *y.inertia);
+    EXPECT_EQ(x.center, y.center);
+    EXPECT_EQ(x.velocity, y.velocity);
+    EXPECT_EQ(x.spin, y.spin);
+    EXPECT_EQ(x.force, y.force);
+    EXPECT_EQ(x.torque, y.torque);
+  }
+  ASSERT_EQ(m1.joint_count(), m2.joint_count());
+  for (int c = 0; c < m1.joint_count(); ++c) {
+    const Joint& x = m1.joint(JointId{c});
+    const Joint& y = m2.joint(JointId{c});
+    EXPECT_EQ(x.body1, y.body1);
+    EXPECT_EQ(x.body2, y.body2);
+    EXPECT_EQ(x.has_hinge, y.has_hinge);
+    EXPECT_EQ(x.p1, y.p1);
+    EXPECT_EQ(x.p2, y.p2);
+    ASSERT_EQ(x.guide.has_value(), y.guide.has_value());
+    if (x.guide) {
+      EXPECT_EQ(x.guide->kind, y.guide->kind);
+      EXPECT_EQ(x.guide->dir, y.guide->dir);
+      EXPECT_EQ(x.guide->min, y.guide->min);
+      EXPECT_EQ(x.guide->max, y.guide->max);
+      EXPECT_EQ(x.guide->radius, y.guide->radius);
+      EXPECT_EQ(x.guide->points, y.guide->points);
+    }
+    ASSERT_EQ(x.angle.has_value(), y.angle.has_value());
+    if (x.angle) {
+      EXPECT_EQ(x.angle->a1, y.angle->a1);
+      EXPECT_EQ(x.angle->a2, y.angle->a2);
+      EXPECT_EQ(x.angle->min, y.angle->min);
+      EXPECT_EQ(x.angle->max, y.angle->max);
+    }
+    ASSERT_EQ(x.twist.has_value(), y.twist.has_value());
+    if (x.twist) {
+      EXPECT_EQ(x.twist->b1, y.twist->b1);
+      EXPECT_EQ(x.twist->min, y.twist->min);
+      EXPECT_EQ(x.twist->max, y.twist->max);
+    }
+    EXPECT_EQ(x.move, y.move);
+    EXPECT_EQ(x.t0, y.t0);
+    EXPECT_EQ(x.t1, y.t1);
+  }
+}
+
+}  // namespace
+}  // namespace dispcon
