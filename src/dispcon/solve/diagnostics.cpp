@@ -1,0 +1,322 @@
+// Diagnostics at the assembled pose: degrees of freedom from the rank of the constraints'
+// Jacobian (SVD), redundant joints (equations that repeat others), conflicting joints (whose
+// removal lets the rest assemble), limits in contact, and range-of-motion sweeps.
+#include "dispcon/solve/diagnostics.hpp"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "dispcon/parts/angle.hpp"
+#include "dispcon/parts/nearest.hpp"
+#include "dispcon/parts/twist.hpp"
+#include "dispcon/solve/jacobian.hpp"
+
+namespace dispcon {
+
+namespace {
+
+constexpr double kRankTolerance = 1e-8;
+
+// Columns of the bodies that can move, each scaled to unit norm (rotation and translation columns
+// have different units; the rank should not depend on them).
+Eigen::MatrixXd movable_columns(const Model& model,
+                                const Eigen::SparseMatrix<double, Eigen::RowMajor>& J,
+                                std::vector<int>& body_of_column) {
+  std::vector<int> cols;
+  body_of_column.clear();
+  for (int i = 1; i < model.body_count(); ++i) {
+    if (model.body(BodyId{i}).fixed) continue;
+    for (int k = 0; k < 6; ++k) cols.push_back(6 * i + k), body_of_column.push_back(i);
+  }
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(J);
+  Eigen::MatrixXd out(dense.rows(), static_cast<Eigen::Index>(cols.size()));
+  for (size_t c = 0; c < cols.size(); ++c)
+    out.col(static_cast<Eigen::Index>(c)) = dense.col(cols[c]);
+  return out;
+}
+
+int rank_of(const Eigen::MatrixXd& A) {
+  if (A.rows() == 0 || A.cols() == 0) return 0;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A);
+  const auto& s = svd.singularValues();
+  if (s.size() == 0 || s(0) == 0) return 0;
+  int r = 0;
+  for (Eigen::Index k = 0; k < s.size(); ++k) r += s(k) > kRankTolerance * s(0);
+  return r;
+}
+
+// Row-equilibrated copy: every row scaled to unit norm (a row in radians and a row in lengths
+// weigh the same), then every column.
+Eigen::MatrixXd equilibrate(Eigen::MatrixXd A) {
+  for (Eigen::Index r = 0; r < A.rows(); ++r) {
+    const double n = A.row(r).norm();
+    if (n > 0) A.row(r) /= n;
+  }
+  return A;
+}
+
+Model without(const Model& model, JointId skip) {
+  Model m;
+  for (int i = 1; i < model.body_count(); ++i) m.add_body(model.body(BodyId{i}));
+  for (int c = 0; c < model.joint_count(); ++c) {
+    if (c != skip.value) m.add_joint(model.joint(JointId{c}));
+  }
+  return m;
+}
+
+std::string joint_name(const Model& model, JointId id) {
+  const Joint& j = model.joint(id);
+  std::ostringstream out;
+  out << "joint #" << id.value;
+  if (j.line) out << " (line " << j.line << ")";
+  out << " " << model.body(j.body1).name << " / " << model.body(j.body2).name;
+  return out.str();
+}
+
+}  // namespace
+
+CheckResult check(const Model& input, const SolveOptions& options) {
+  CheckResult out;
+  Model model = input;
+  out.solve = assemble(model, options);
+  out.body_dof.assign(static_cast<size_t>(model.body_count()), 0);
+  std::vector<Pose> poses = out.solve.poses.empty() ? model.poses() : out.solve.poses;
+
+  const ConstraintJacobian cj = constraint_jacobian(model, poses, options);
+  std::vector<int> body_of_column;
+  const Eigen::MatrixXd A = equilibrate(movable_columns(model, cj.J, body_of_column));
+  const int n = static_cast<int>(A.cols());
+  const int rank = rank_of(A);
+  out.dof = n - rank;
+
+  // Per body: how many independent motions it has in the mechanism's nullspace.
+  if (out.dof > 0 && A.rows() > 0) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+    const Eigen::MatrixXd N = svd.matrixV().rightCols(out.dof);
+    for (int i = 1; i < model.body_count(); ++i) {
+      std::vector<Eigen::Index> rows;
+      for (int c = 0; c < n; ++c) {
+        if (body_of_column[static_cast<size_t>(c)] == i) rows.push_back(c);
+      }
+      if (rows.empty()) continue;
+      Eigen::MatrixXd block(static_cast<Eigen::Index>(rows.size()), N.cols());
+      for (size_t r = 0; r < rows.size(); ++r)
+        block.row(static_cast<Eigen::Index>(r)) = N.row(rows[r]);
+      out.body_dof[static_cast<size_t>(i)] = rank_of(block);
+    }
+  } else if (A.rows() == 0) {
+    for (int i = 1; i < model.body_count(); ++i) {
+      out.body_dof[static_cast<size_t>(i)] = model.body(BodyId{i}).fixed ? 0 : 6;
+    }
+  }
+
+  // Redundant: going through the joints in order, a joint whose rows add less rank than they
+  // count repeats equations of the joints before it.
+  Eigen::MatrixXd acc(0, A.cols());
+  int acc_rank = 0;
+  for (int c = 0; c < model.joint_count(); ++c) {
+    std::vector<Eigen::Index> rows;
+    for (size_t r = 0; r < cj.rows.size(); ++r) {
+      if (cj.rows[r].joint.value == c) rows.push_back(static_cast<Eigen::Index>(r));
+    }
+    if (rows.empty()) continue;
+    Eigen::MatrixXd next(acc.rows() + static_cast<Eigen::Index>(rows.size()), A.cols());
+    next << acc, A(rows, Eigen::all);
+    const int next_rank = rank_of(next);
+    const int repeated = static_cast<int>(rows.size()) - (next_rank - acc_rank);
+    if (repeated > 0) {
+      out.redundant.push_back(JointId{c});
+      std::ostringstream a;
+      a << joint_name(model, JointId{c}) << ": " << repeated << " of its " << rows.size()
+        << " equations repeat those of the joints before it; the model stays consistent and "
+           "keeps its mobility without them (for a planar linkage modelled in 3D, make one of "
+           "its revolutes a point-to-point joint)";
+      out.advice.push_back(a.str());
+    }
+    acc = std::move(next);
+    acc_rank = next_rank;
+  }
+
+  for (const ConstraintReport& c : out.solve.constraints) {
+    if (c.at_limit) out.limits_active.push_back(c.joint);
+  }
+
+  // Conflicting: when the assembly fails, find the joint whose removal lets the rest assemble,
+  // trying the most violated first.
+  if (!out.solve.converged) {
+    std::vector<ConstraintReport> bad;
+    for (const ConstraintReport& c : out.solve.constraints) {
+      if (!c.satisfied) bad.push_back(c);
+    }
+    std::sort(bad.begin(), bad.end(), [](const ConstraintReport& a, const ConstraintReport& b) {
+      return a.residual > b.residual;
+    });
+    SolveOptions o = options;
+    o.max_iterations = std::min(options.max_iterations, 2000);
+    for (const ConstraintReport& c : bad) {
+      Model trial = without(input, c.joint);
+      if (assemble(trial, o).converged) {
+        out.conflicting.push_back(c.joint);
+        out.advice.push_back("removing " + joint_name(model, c.joint) +
+                             " makes the model consistent");
+        break;
+      }
+    }
+    if (out.conflicting.empty()) {
+      for (const ConstraintReport& c : bad) out.conflicting.push_back(c.joint);
+      out.advice.push_back(
+          "no single joint's removal makes the model consistent; the violated "
+          "joints are listed as conflicting");
+    }
+  }
+
+  std::ostringstream msg;
+  if (out.solve.converged) {
+    msg << "assembled; " << out.dof << " degree" << (out.dof == 1 ? "" : "s") << " of freedom";
+  } else {
+    msg << "does not assemble (" << out.solve.message << ")";
+  }
+  if (!out.redundant.empty()) msg << ", " << out.redundant.size() << " redundant joint(s)";
+  if (!out.conflicting.empty()) msg << ", " << out.conflicting.size() << " conflicting joint(s)";
+  if (!out.limits_active.empty()) msg << ", " << out.limits_active.size() << " limit(s) in contact";
+  out.message = msg.str();
+  return out;
+}
+
+namespace {
+
+// A joint's value: the relative turn about a revolute's axis since the start, the angle of an
+// angle part with a range, or the travel along a segment or cylinder; NaN otherwise.
+struct JointGauge {
+  enum Kind { None, Turn, Angle, Travel, Radius } kind = None;
+  Vec3 b1 = Vec3::Zero(), b2 = Vec3::Zero();  // Turn: references, local to each body
+  double offset = 0;
+
+  static JointGauge make(const Model& m, const Joint& j) {
+    JointGauge g;
+    if (j.angle && j.angle->max == 0) {
+      g.kind = Turn;
+      g.b1 = any_perpendicular(j.angle->a1);
+      const Mat3 R1 = m.body(j.body1).pose.rotation();
+      const Mat3 R2 = m.body(j.body2).pose.rotation();
+      g.b2 = R2.transpose() * R1 * g.b1;
+    } else if (j.angle) {
+      g.kind = Angle;
+    } else if (j.guide &&
+               (j.guide->kind == GuideKind::Axial || j.guide->kind == GuideKind::Cylinder)) {
+      g.kind = Travel;
+    } else if (j.guide &&
+               (j.guide->kind == GuideKind::Planar || j.guide->kind == GuideKind::Sphere)) {
+      g.kind = Radius;
+    }
+    return g;
+  }
+
+  double value(const std::vector<Pose>& poses, const Joint& j) const {
+    const Pose& p1 = poses[static_cast<size_t>(j.body1.value)];
+    const Pose& p2 = poses[static_cast<size_t>(j.body2.value)];
+    switch (kind) {
+      case Turn: {
+        const Vec3 a = p1.q * j.angle->a1;
+        return twist_angle(a, a, p1.q * b1, p2.q * b2);
+      }
+      case Angle:
+        return angle_between(p1.q * j.angle->a1, p2.q * j.angle->a2);
+      case Travel:
+        return (p1.q.conjugate() * (p2.apply(j.p2) - p1.x) - j.p1).dot(j.guide->dir);
+      case Radius: {
+        Vec3 d = p1.q.conjugate() * (p2.apply(j.p2) - p1.x) - j.p1;
+        if (j.guide->kind == GuideKind::Planar) d -= d.dot(j.guide->dir) * j.guide->dir;
+        return d.norm();
+      }
+      case None:
+        break;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
+Pose turned(const Pose& start, const Vec3& center_local, const Vec3& axis, double angle) {
+  const Vec3 G = start.apply(center_local);
+  Pose p;
+  p.q = (quat_from_rotation_vector(axis * angle) * start.q).normalized();
+  p.x = G - p.q * center_local;
+  return p;
+}
+
+}  // namespace
+
+SweepResult sweep(const Model& input, const SweepOptions& o) {
+  SweepResult out;
+  Model model = input;
+  if (o.body.value <= 0 || o.body.value >= model.body_count()) {
+    throw std::invalid_argument("sweep: unknown body");
+  }
+  if (o.axis.norm() == 0) throw std::invalid_argument("sweep: the axis is a zero vector");
+  if (o.steps < 1) throw std::invalid_argument("sweep: steps must be at least 1");
+  const SolveResult first = assemble(model, o.solve);
+  if (!first.converged) {
+    out.locked = true;
+    out.lock_value = o.from;
+    out.message = "the model does not assemble: " + first.message;
+    return out;
+  }
+  const Vec3 axis = o.axis.normalized();
+  const Vec3 c = model.body(o.body).center;
+  const Pose start = model.body(o.body).pose;
+  std::vector<JointGauge> gauges;
+  for (const Joint& j : model.joints()) gauges.push_back(JointGauge::make(model, j));
+  Dragger dragger(model, o.body, o.solve);
+  auto sample = [&](double value, const SolveResult& r) {
+    SweepSample s;
+    s.value = value;
+    s.converged = r.converged;
+    s.max_residual = r.max_residual;
+    s.poses = model.poses();
+    for (const ConstraintReport& c : r.constraints) {
+      if (c.at_limit) s.limits_active.push_back(c.joint);
+    }
+    for (size_t j = 0; j < gauges.size(); ++j) {
+      s.joint_values.push_back(gauges[j].value(s.poses, model.joint(JointId{static_cast<int>(j)})));
+    }
+    return s;
+  };
+  double last_good = o.from;
+  for (int k = 0; k <= o.steps; ++k) {
+    const double value = o.from + (o.to - o.from) * k / o.steps;
+    const SolveResult r = dragger.move_to(turned(start, c, axis, value));
+    if (!r.converged) {
+      // Bisect between the last value reached and this one: where exactly does it lock?
+      double lo = last_good, hi = value;
+      for (int b = 0; b < 30 && std::abs(hi - lo) > 1e-9; ++b) {
+        const double mid = 0.5 * (lo + hi);
+        const SolveResult m = dragger.move_to(turned(start, c, axis, mid));
+        if (m.converged) {
+          lo = mid;
+        } else {
+          hi = mid;
+        }
+      }
+      out.locked = true;
+      out.lock_value = lo;
+      out.samples.push_back(sample(value, r));
+      break;
+    }
+    last_good = value;
+    out.samples.push_back(sample(value, r));
+  }
+  std::ostringstream msg;
+  if (out.locked) {
+    msg << "locks at " << out.lock_value << " rad (" << out.lock_value * 180 / kPi
+        << " deg): no position reachable by continuity beyond it";
+  } else {
+    msg << "turns freely from " << o.from << " to " << o.to << " rad";
+  }
+  out.message = msg.str();
+  return out;
+}
+
+}  // namespace dispcon

@@ -1,0 +1,107 @@
+"""The dispcon command line against cli.md: exit codes, JSON, CSV, --write."""
+import csv
+import json
+import math
+import os
+import subprocess
+import tempfile
+import unittest
+
+BIN = os.environ.get("DISPCON_BIN", "dispcon")
+SRC = os.environ.get("DISPCON_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+
+
+def run(*args):
+    return subprocess.run([BIN, *args], capture_output=True, text=True, timeout=120)
+
+
+class Assemble(unittest.TestCase):
+    def test_json_has_the_documented_fields(self):
+        r = run("assemble", os.path.join(DATA, "pendulum.dcl"), "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        for key in ("converged", "iterations", "max_residual", "bodies", "constraints"):
+            self.assertIn(key, doc)
+        self.assertTrue(doc["converged"])
+        self.assertLessEqual(doc["max_residual"], 1e-9)
+        bar = doc["bodies"]["bar"]
+        self.assertEqual(len(bar["position"]), 3)
+        self.assertEqual(len(bar["rotation"]), 3)
+        self.assertEqual(len(bar["quaternion"]), 4)
+        # The hinge holds: the bar's origin is at the world's origin.
+        self.assertLess(math.dist(bar["position"], [0, 0, 0]), 1e-9)
+        c = doc["constraints"][0]
+        self.assertEqual((c["index"], c["line"], c["object1"], c["object2"]), (0, 3, "world", "bar"))
+        self.assertTrue(c["satisfied"])
+
+    def test_over_constrained_exits_3_and_names_the_constraints(self):
+        r = run("assemble", os.path.join(DATA, "overconstrained.dcl"), "--json", "--max-iterations", "300")
+        self.assertEqual(r.returncode, 3)
+        doc = json.loads(r.stdout)
+        self.assertFalse(doc["converged"])
+        violated = [c["line"] for c in doc["constraints"] if not c["satisfied"]]
+        self.assertEqual(violated, [3, 4])
+        text = run("assemble", os.path.join(DATA, "overconstrained.dcl"), "--max-iterations", "300")
+        self.assertIn("line 3", text.stdout)
+
+    def test_bad_file_exits_2_with_file_line_col(self):
+        r = run("assemble", os.path.join(DATA, "bad.dcl"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("bad.dcl:4:1: error: expected ';' after hinge", r.stderr)
+        self.assertEqual(r.stdout, "")
+
+    def test_bad_usage_exits_2(self):
+        self.assertEqual(run("assemble", os.path.join(DATA, "pendulum.dcl"), "--bogus").returncode, 2)
+        self.assertEqual(run("frobnicate").returncode, 2)
+        self.assertEqual(run().returncode, 2)
+        r = run("drag", os.path.join(DATA, "pendulum.dcl"), "--body", "nobody", "--to", "0", "0", "0")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("unknown body 'nobody'", r.stderr)
+
+    def test_write_round_trips(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "assembled.dcl")
+            r = run("assemble", os.path.join(SRC, "samples", "monocycle.dcl"), "--write", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            again = json.loads(run("assemble", out, "--json").stdout)
+            self.assertTrue(again["converged"])
+            self.assertEqual(again["iterations"], 0)
+
+
+class Drag(unittest.TestCase):
+    def test_csv_has_a_row_per_body_per_step_and_the_bar_turns(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "steps.csv")
+            r = run("drag", os.path.join(DATA, "pendulum.dcl"), "--body", "bar", "--to", "0", "0", "0",
+                    "--rotation", "0", "0", "1.2", "--steps", "12", "--csv", path, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            doc = json.loads(r.stdout)
+            self.assertEqual(len(doc["steps"]), 12)
+            with open(path) as f:
+                rows = list(csv.reader(f))
+            self.assertEqual(rows[0], ["step", "body", "px", "py", "pz", "qw", "qx", "qy", "qz"])
+            self.assertEqual(len(rows), 1 + 12)
+            qw, qz = float(rows[-1][5]), float(rows[-1][8])
+            self.assertAlmostEqual(2 * math.atan2(qz, qw), 1.2, places=9)
+
+    def test_unreachable_target_exits_3(self):
+        r = run("drag", os.path.join(DATA, "pendulum.dcl"), "--body", "bar", "--to", "5", "0", "0",
+                "--steps", "2", "--max-iterations", "200", "--json")
+        self.assertEqual(r.returncode, 3)
+        self.assertFalse(json.loads(r.stdout)["converged"])
+
+
+class Check(unittest.TestCase):
+    def test_pendulum_has_one_degree_of_freedom(self):
+        r = run("check", os.path.join(DATA, "pendulum.dcl"), "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertEqual(doc["dof"], 1)
+        self.assertEqual(doc["bodies"]["bar"]["dof"], 1)
+        self.assertEqual(doc["redundant"], [])
+        self.assertEqual(doc["conflicting"], [])
+
+
+if __name__ == "__main__":
+    unittest.main()
