@@ -1,0 +1,136 @@
+// Solving: assembly, a solve with held bodies, dragging (whole paths or live, step by step).
+#include "bindings.hpp"
+
+namespace dispcon::py {
+
+namespace {
+
+struct PyDragResult {
+  bool converged = true;
+  int iterations = 0, failed_step = -1;
+  double max_residual = 0;
+  std::string message;
+  std::vector<PySolveResult> steps;
+};
+
+// A live drag: the session is built once, each move_to is one frame.
+struct PyDragger {
+  Model* model;
+  Dragger dragger;
+  PySolveResult move_to(const Vec3& position, const std::optional<Vec3>& rotation,
+                        const std::optional<Mat3>& matrix, BodyId body) {
+    Pose target = model->body(body).pose;
+    target.x = position;
+    if (rotation) target.q = quat_from_rotation_vector(*rotation);
+    if (matrix) target.q = Quat(*matrix).normalized();
+    return convert(*model, dragger.move_to(target));
+  }
+  BodyId body;
+};
+
+Pose target_pose(const Model& model, BodyId body, const pyb::object& position,
+                 const pyb::object& rotation) {
+  Pose p = model.body(body).pose;
+  if (!position.is_none()) p.x = position.cast<Vec3>();
+  if (!rotation.is_none()) {
+    const pyb::array_t<double> a = pyb::array_t<double>::ensure(rotation);
+    if (a && a.ndim() == 2) {
+      p.q = Quat(rotation.cast<Mat3>()).normalized();
+    } else {
+      p.q = quat_from_rotation_vector(rotation.cast<Vec3>());
+    }
+  }
+  return p;
+}
+
+}  // namespace
+
+void bind_solve(pyb::module_& m, ModelClass& model) {
+  pyb::class_<PyDragResult>(m, "DragResult")
+      .def_readonly("converged", &PyDragResult::converged)
+      .def_readonly("iterations", &PyDragResult::iterations)
+      .def_readonly("max_residual", &PyDragResult::max_residual)
+      .def_readonly("failed_step", &PyDragResult::failed_step)
+      .def_readonly("message", &PyDragResult::message)
+      .def_readonly("steps", &PyDragResult::steps)
+      .def("__repr__", [](const PyDragResult& r) { return "<DragResult " + r.message + ">"; });
+
+  pyb::class_<PyDragger>(m, "Dragger", "A live drag of one body: call move_to once per frame.")
+      .def(
+          "move_to",
+          [](PyDragger& d, const pyb::object& position, const pyb::object& rotation) {
+            const Pose p = target_pose(*d.model, d.body, position, rotation);
+            return convert(*d.model, d.dragger.move_to(p));
+          },
+          pyb::arg("position") = pyb::none(), pyb::arg("rotation") = pyb::none(),
+          "Holds the body at this pose (rotation vector or 3x3 matrix) while the rest follows. "
+          "The model changes only when the solve converged.");
+
+  model
+      .def(
+          "assemble",
+          [](Model& self, const pyb::kwargs& kw) {
+            return convert(self, assemble(self, solve_options(kw)));
+          },
+          "Automatic assembly (seed 2.3) from the current poses. The model changes only when it "
+          "converged. Options: tolerance, max_iterations, scheme, relaxation, newton_polish, ...")
+      .def(
+          "solve",
+          [](Model& self, const std::vector<std::string>& held, const pyb::kwargs& kw) {
+            std::vector<bool> h(static_cast<size_t>(self.body_count()), false);
+            for (const std::string& name : held)
+              h[static_cast<size_t>(body_id(self, name).value)] = true;
+            std::vector<Pose> poses = self.poses();
+            const SolveResult r = solve(self, poses, solve_options(kw), h);
+            if (r.converged) self.set_poses(poses);
+            return convert(self, r);
+          },
+          pyb::arg("held") = std::vector<std::string>{},
+          "Like assemble, with the named bodies held where they are.")
+      .def(
+          "residuals",
+          [](const Model& self, const pyb::kwargs& kw) {
+            return convert(self, measure(self, self.poses(), solve_options(kw)));
+          },
+          "Every joint's violation at the current poses; nothing moves.")
+      .def(
+          "drag",
+          [](Model& self, const std::string& name, const pyb::object& position,
+             const pyb::object& rotation, int steps, const pyb::kwargs& kw) {
+            const BodyId body = body_id(self, name);
+            const SolveOptions o = solve_options(kw);
+            const SolveResult first = assemble(self, o);
+            PyDragResult out;
+            if (!first.converged) {
+              out.converged = false;
+              out.failed_step = 0;
+              out.iterations = first.iterations;
+              out.max_residual = first.max_residual;
+              out.message = "the model does not assemble: " + first.message;
+              return out;
+            }
+            const DragResult d =
+                drag(self, body, target_pose(self, body, position, rotation), steps, o);
+            out.converged = d.converged;
+            out.iterations = first.iterations + d.iterations;
+            out.max_residual = std::max(first.max_residual, d.max_residual);
+            out.failed_step = d.failed_step;
+            out.message = d.message;
+            for (const SolveResult& s : d.steps) out.steps.push_back(convert(self, s));
+            return out;
+          },
+          pyb::arg("name"), pyb::arg("position") = pyb::none(), pyb::arg("rotation") = pyb::none(),
+          pyb::arg("steps") = 50,
+          "Like `dispcon drag`: assembles, then moves the body in equal steps to the target "
+          "(rotation vector or 3x3 matrix) while the rest follows.")
+      .def(
+          "dragger",
+          [](Model& self, const std::string& name, const pyb::kwargs& kw) {
+            const BodyId body = body_id(self, name);
+            return new PyDragger{&self, Dragger(self, body, solve_options(kw)), body};
+          },
+          pyb::arg("name"), pyb::keep_alive<0, 1>(),
+          "A live drag of one body (for interactive use: the solver's state is built once).");
+}
+
+}  // namespace dispcon::py

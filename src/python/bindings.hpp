@@ -1,0 +1,54 @@
+// Shared pieces of the bindings: one bind_* function per area, the option parser and the
+// Python-side result types (plain structs with the names resolved).
+#pragma once
+
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <vector>
+
+#include "dispcon/model/model.hpp"
+#include "dispcon/solve/diagnostics.hpp"
+#include "dispcon/solve/dynamics.hpp"
+#include "dispcon/solve/solver.hpp"
+
+namespace dispcon::py {
+
+namespace pyb = pybind11;
+
+using ModelClass = pyb::class_<Model>;
+ModelClass bind_model(pyb::module_& m);
+void bind_solve(pyb::module_& m, ModelClass& model);
+void bind_diagnostics(pyb::module_& m, ModelClass& model);
+void bind_dynamics(pyb::module_& m, ModelClass& model);
+void bind_results(pyb::module_& m);
+
+// SolveOptions from keyword arguments; ValueError for an unknown name.
+SolveOptions solve_options(const pyb::kwargs& kw,
+                           const std::vector<std::string>& also_allowed = {});
+
+BodyId body_id(const Model& model, const std::string& name);
+
+struct Report {
+  int index = 0, line = 0;
+  std::string object1, object2;
+  double residual = 0;
+  bool satisfied = true, active = true, at_limit = false;
+};
+
+struct PySolveResult {
+  bool converged = true;
+  std::string status, message;
+  int iterations = 0, seed_iterations = 0, newton_iterations = 0;
+  double max_residual = 0;
+  std::vector<int> violated;
+  std::vector<Report> constraints;
+};
+
+PySolveResult convert(const Model& model, const SolveResult& r);
+std::vector<Report> convert(const Model& model, const std::vector<ConstraintReport>& reports);
+std::vector<int> indices(const std::vector<JointId>& ids);
+
+}  // namespace dispcon::py

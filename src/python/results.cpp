@@ -1,0 +1,115 @@
+// Result types and the option parser.
+#include <pybind11/pybind11.h>
+
+#include "bindings.hpp"
+
+namespace dispcon::py {
+
+std::vector<int> indices(const std::vector<JointId>& ids) {
+  std::vector<int> out;
+  for (JointId j : ids) out.push_back(j.value);
+  return out;
+}
+
+std::vector<Report> convert(const Model& model, const std::vector<ConstraintReport>& reports) {
+  std::vector<Report> out;
+  for (const ConstraintReport& c : reports) {
+    const Joint& j = model.joint(c.joint);
+    out.push_back({c.joint.value, c.line, model.body(j.body1).name, model.body(j.body2).name,
+                   c.residual, c.satisfied, c.active, c.at_limit});
+  }
+  return out;
+}
+
+PySolveResult convert(const Model& model, const SolveResult& r) {
+  PySolveResult out;
+  out.converged = r.converged;
+  out.status = to_string(r.status);
+  out.message = r.message;
+  out.iterations = r.iterations;
+  out.seed_iterations = r.seed_iterations;
+  out.newton_iterations = r.polish_iterations;
+  out.max_residual = r.max_residual;
+  out.violated = indices(r.violated());
+  out.constraints = convert(model, r.constraints);
+  return out;
+}
+
+BodyId body_id(const Model& model, const std::string& name) {
+  const auto id = model.find(name);
+  if (!id) throw std::invalid_argument("unknown body '" + name + "'");
+  return *id;
+}
+
+SolveOptions solve_options(const pyb::kwargs& kw, const std::vector<std::string>& also_allowed) {
+  SolveOptions o;
+  for (const auto& item : kw) {
+    const std::string key = pyb::str(item.first);
+    const pyb::handle v = item.second;
+    if (key == "tolerance") {
+      o.tolerance = v.cast<double>();
+    } else if (key == "max_iterations") {
+      o.max_iterations = v.cast<int>();
+    } else if (key == "time") {
+      o.time = v.cast<double>();
+    } else if (key == "scheme") {
+      const std::string s = v.cast<std::string>();
+      if (s == "jacobi") {
+        o.scheme = Scheme::Jacobi;
+      } else if (s == "gauss-seidel") {
+        o.scheme = Scheme::GaussSeidel;
+      } else {
+        throw std::invalid_argument("scheme must be 'jacobi' or 'gauss-seidel', not '" + s + "'");
+      }
+    } else if (key == "relaxation") {
+      o.relaxation = v.cast<double>();
+    } else if (key == "seed_weights") {
+      o.seed_weights = v.cast<bool>();
+    } else if (key == "max_rotation_step") {
+      o.max_rotation_step = v.cast<double>();
+    } else if (key == "translate_after_rotate") {
+      o.translate_after_rotate = v.cast<bool>();
+    } else if (key == "use_physics") {
+      o.use_physics = v.cast<bool>();
+    } else if (key == "newton_polish") {
+      o.newton_polish = v.cast<bool>();
+    } else if (key == "polish_below") {
+      o.polish_below = v.cast<double>();
+    } else if (std::find(also_allowed.begin(), also_allowed.end(), key) == also_allowed.end()) {
+      throw std::invalid_argument("unknown option '" + key + "'");
+    }
+  }
+  if (!(o.tolerance > 0)) throw std::invalid_argument("tolerance must be positive");
+  if (o.max_iterations < 1) throw std::invalid_argument("max_iterations must be at least 1");
+  return o;
+}
+
+void bind_results(pyb::module_& m) {
+  pyb::class_<Report>(m, "ConstraintReport", "One joint as a solve left it.")
+      .def_readonly("index", &Report::index)
+      .def_readonly("line", &Report::line)
+      .def_readonly("object1", &Report::object1)
+      .def_readonly("object2", &Report::object2)
+      .def_readonly("residual", &Report::residual)
+      .def_readonly("satisfied", &Report::satisfied)
+      .def_readonly("active", &Report::active)
+      .def_readonly("at_limit", &Report::at_limit)
+      .def("__repr__", [](const Report& r) {
+        return "<ConstraintReport #" + std::to_string(r.index) + " line " + std::to_string(r.line) +
+               " " + r.object1 + "/" + r.object2 + " residual " + std::to_string(r.residual) + ">";
+      });
+  pyb::class_<PySolveResult>(m, "SolveResult", "What a solve did and where it failed.")
+      .def_readonly("converged", &PySolveResult::converged)
+      .def_readonly("status", &PySolveResult::status)
+      .def_readonly("message", &PySolveResult::message)
+      .def_readonly("iterations", &PySolveResult::iterations)
+      .def_readonly("seed_iterations", &PySolveResult::seed_iterations)
+      .def_readonly("newton_iterations", &PySolveResult::newton_iterations)
+      .def_readonly("max_residual", &PySolveResult::max_residual)
+      .def_readonly("violated", &PySolveResult::violated)
+      .def_readonly("constraints", &PySolveResult::constraints)
+      .def("__bool__", [](const PySolveResult& r) { return r.converged; })
+      .def("__repr__", [](const PySolveResult& r) { return "<SolveResult " + r.message + ">"; });
+}
+
+}  // namespace dispcon::py

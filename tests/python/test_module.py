@@ -1,0 +1,154 @@
+"""The dispcon Python module against python.md, mirroring the C++ tests."""
+import math
+import os
+import tempfile
+import unittest
+
+import numpy as np
+
+import dispcon
+
+SRC = os.environ.get("DISPCON_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+Z = (0, 0, 1)
+
+
+def fourbar(a=1.0, b=3.0, c=2.5, d=3.0):
+    """A crank-rocker of revolute joints, built in code at rough positions."""
+    m = dispcon.Model()
+    m.add_body("crank", position=(0.1, -0.1, 0.05), rotation=(0, 0, 0.4))
+    m.add_body("coupler", position=(1.2, 0.6, -0.1), rotation=(0, 0, 0.2))
+    m.add_body("rocker", position=(2.9, 0.2, 0.1), rotation=(0, 0, 1.9))
+    revolute = dict(angle=(Z, Z, 0, 0))
+    m.add_joint("crank", hinge=((0, 0, 0), (0, 0, 0)), **revolute)
+    m.add_joint("coupler", object1="crank", hinge=((a, 0, 0), (0, 0, 0)), **revolute)
+    m.add_joint("rocker", object1="coupler", hinge=((b, 0, 0), (c, 0, 0)), **revolute)
+    m.add_joint("rocker", hinge=((d, 0, 0), (0, 0, 0)), **revolute)
+    return m
+
+
+def angle_of(m, name):
+    x = m.body(name).rotation[:, 0]
+    return math.atan2(x[1], x[0])
+
+
+def freudenstein(t, a=1.0, b=3.0, c=2.5, d=3.0):
+    """Rocker angle for crank angle t, the branch with the coupler-rocker pin above A-D."""
+    A = np.array([a * math.cos(t), a * math.sin(t)])
+    D = np.array([d, 0.0])
+    L = np.linalg.norm(D - A)
+    x = (b * b - c * c + L * L) / (2 * L)
+    h = math.sqrt(b * b - x * x)
+    u = (D - A) / L
+    B = A + x * u + h * np.array([-u[1], u[0]])
+    return math.atan2(B[1] - D[1], B[0] - D[0])
+
+
+class Load(unittest.TestCase):
+    def test_load_sample_and_assemble(self):
+        m = dispcon.load(os.path.join(SRC, "samples", "monocycle.dcl"))
+        r = m.assemble(tolerance=1e-9, max_iterations=10000)
+        self.assertTrue(r.converged, r.message)
+        self.assertLessEqual(r.max_residual, 1e-9)
+        self.assertEqual(r.violated, [])
+        self.assertEqual(m.body("wheel").position.shape, (3,))
+        R = m.body("wheel").rotation
+        self.assertEqual(R.shape, (3, 3))
+        np.testing.assert_allclose(R @ R.T, np.eye(3), atol=1e-12)
+
+    def test_bad_text_raises_value_error_with_the_place(self):
+        with self.assertRaises(ValueError) as e:
+            dispcon.loads("object a; end\nconstraint object2 a; hinge 0 0 0 0 0; end", "t.dcl")
+        self.assertIn("t.dcl:2:38: error: expected a number", str(e.exception))
+
+    def test_bad_joint_in_code_raises_value_error(self):
+        m = dispcon.Model()
+        m.add_body("a")
+        with self.assertRaises(ValueError):
+            m.add_joint("a", object1="a", hinge=((0, 0, 0), (0, 0, 0)))
+        with self.assertRaises(ValueError):
+            m.add_joint("nobody", hinge=((0, 0, 0), (0, 0, 0)))
+        with self.assertRaises(ValueError):
+            m.add_body("a")
+        with self.assertRaises(ValueError):
+            m.assemble(bogus=1)
+
+
+class Solve(unittest.TestCase):
+    def test_fourbar_in_code_matches_freudenstein(self):
+        m = fourbar()
+        r = m.assemble(tolerance=1e-10)
+        self.assertTrue(r.converged, r.message)
+        t = angle_of(m, "crank")
+        self.assertAlmostEqual(angle_of(m, "rocker"), freudenstein(t), delta=1e-9)
+
+    def test_drag_is_continuous_and_follows_freudenstein(self):
+        m = fourbar()
+        m.assemble()
+        t0 = angle_of(m, "crank")
+        d = m.drag("crank", position=(0, 0, 0), rotation=(0, 0, t0 + 1.0), steps=20, tolerance=1e-10)
+        self.assertTrue(d.converged, d.message)
+        self.assertEqual(len(d.steps), 20)
+        self.assertAlmostEqual(angle_of(m, "rocker"), freudenstein(t0 + 1.0), delta=1e-9)
+
+    def test_held_bodies_do_not_move(self):
+        m = fourbar()
+        m.assemble()
+        before = m.body("coupler").position.copy()
+        m.set_pose("rocker", position=m.body("rocker").position + 0.05)
+        m.set_pose("crank", rotation=(0, 0, angle_of(m, "crank") + 0.02))
+        r = m.solve(held=["coupler"])
+        self.assertTrue(r.converged, r.message)
+        np.testing.assert_array_equal(m.body("coupler").position, before)
+
+    def test_failed_solve_leaves_poses_unchanged(self):
+        m = dispcon.Model()
+        m.add_body("bar", position=(0.3, 0, 0))
+        m.add_joint("bar", hinge=((0, 0, 0), (0, 0, 0)))
+        m.add_joint("bar", hinge=((1, 0, 0), (0, 0, 0)))
+        r = m.assemble(max_iterations=200)
+        self.assertFalse(r.converged)
+        self.assertEqual(sorted(r.violated), [0, 1])
+        np.testing.assert_array_equal(m.body("bar").position, [0.3, 0, 0])
+
+    def test_live_dragger(self):
+        m = fourbar()
+        m.assemble()
+        t0 = angle_of(m, "crank")
+        drag = m.dragger("crank")
+        for k in range(1, 11):
+            r = drag.move_to(rotation=(0, 0, t0 + 0.05 * k))
+            self.assertTrue(r.converged, r.message)
+            self.assertAlmostEqual(angle_of(m, "rocker"), freudenstein(t0 + 0.05 * k), delta=1e-8)
+
+
+class Diagnostics(unittest.TestCase):
+    def test_pendulum_has_one_degree_of_freedom(self):
+        m = dispcon.Model()
+        m.add_body("bar", position=(0.2, 0, 0))
+        m.add_joint("bar", hinge=((0, 0, 0), (0, 0, 0)), angle=(Z, Z, 0, 0))
+        c = m.check()
+        self.assertEqual(c.dof, 1)
+        self.assertEqual(c.body_dof["bar"], 1)
+
+    def test_planar_fourbar_in_3d_has_one_dof_and_redundant_equations(self):
+        c = fourbar().check()
+        self.assertEqual(c.dof, 1)
+        self.assertEqual(c.redundant, [3])
+
+
+class Files(unittest.TestCase):
+    def test_to_dcl_round_trip(self):
+        m = fourbar()
+        m.assemble()
+        again = dispcon.loads(m.to_dcl())
+        self.assertEqual(again.body_names(), ["crank", "coupler", "rocker"])
+        self.assertEqual(again.assemble().iterations, 0)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "m.dcl")
+            m.save(path)
+            np.testing.assert_allclose(dispcon.load(path).body("rocker").position,
+                                       m.body("rocker").position, atol=1e-15)
+
+
+if __name__ == "__main__":
+    unittest.main()
