@@ -12,8 +12,8 @@ namespace {
 // The bound a violated (or touching) angle is held to; NaN when neither is in contact.
 double active_bound(double theta, double min, double max, BoundTest bound) {
   // 0 and pi are the natural ends of the range: only a real bound can be in contact.
-  if (max < kPi && theta >= max - bound.band) return max;
-  if (min > 0 && theta <= min + bound.band) return min;
+  if (max < kPi && (theta >= max - bound.band || max == 0 || min == max)) return max;
+  if (min > 0 && (theta <= min + bound.band || min == kPi)) return min;
   return std::nan("");
 }
 

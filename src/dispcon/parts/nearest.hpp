@@ -25,12 +25,18 @@ Vec3 any_perpendicular(const Vec3& u);
 // Unit vector along v, or `fallback` when v is (nearly) zero.
 Vec3 unit_or(const Vec3& v, const Vec3& fallback);
 
-// `band` widens what counts as contact with a bound: 0 while solving (contact only when the point
-// is at or beyond the bound), the tolerance for diagnostics.
+// When a bound counts as in contact: `band` widens contact to values within it of the bound
+// (diagnostics use the tolerance); a negative band counts only values beyond the bound by more
+// than -band (the Newton polish, so that a joint resting on its limit may leave it). A bound with
+// min = max is an equality and always in contact.
 struct BoundTest {
   double band = 0;
-  bool above(double value, double max) const { return max < kHuge && value >= max - band; }
-  bool below(double value, double min) const { return min > -kHuge && value <= min + band; }
+  bool above(double value, double min, double max) const {
+    return max < kHuge && (value >= max - band || min == max);
+  }
+  bool below(double value, double min, double max) const {
+    return min > -kHuge && (value <= min + band || min == max);
+  }
   static constexpr double kHuge = 1e300;
 };
 

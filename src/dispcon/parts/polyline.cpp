@@ -9,20 +9,21 @@ Nearest nearest_on_polyline(const std::vector<Vec3>& v, const Vec3& p, BoundTest
   Nearest out;
   double best = std::numeric_limits<double>::infinity();
   size_t best_k = 0;
-  double best_t = 0;
+  double best_t = 0, best_free = 0;  // clamped and unclamped parameter on the best segment
   for (size_t k = 0; k + 1 < v.size(); ++k) {
     const Vec3 s = v[k + 1] - v[k];
     const double len2 = s.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - v[k]).dot(s) / len2, 0.0, 1.0) : 0.0;
+    const double free = len2 > 0 ? (p - v[k]).dot(s) / len2 : 0.0;
+    const double t = std::clamp(free, 0.0, 1.0);
     const double dist2 = (v[k] + t * s - p).squaredNorm();
-    if (dist2 < best) best = dist2, best_k = k, best_t = t;
+    if (dist2 < best) best = dist2, best_k = k, best_t = t, best_free = free;
   }
   const Vec3 s = v[best_k + 1] - v[best_k];
   out.q = v[best_k] + best_t * s;
   const double len = s.norm();
-  // Contact with an end: the parameter along the first/last segment is at (or within `band` of)
-  // the end.
-  const double along = best_t * len;
+  // Contact with an end: the point's projection on the first or last segment is at, beyond, or
+  // within `band` of the end.
+  const double along = best_free * len;
   const bool first_end = best_k == 0 && along <= bound.band;
   const bool last_end = best_k + 2 == v.size() && len - along <= bound.band;
   if (first_end || last_end) {

@@ -8,8 +8,8 @@ Nearest nearest_on_ring(const Vec3& p1, const Vec3& n, double r1, double r2, con
   const Vec3 d = p - p1;
   const Vec3 in_plane = d - d.dot(n) * n;
   const double r = in_plane.norm();
-  const bool at_max = bound.above(r, r2);
-  const bool at_min = !at_max && r1 > 0 && bound.below(r, r1);
+  const bool at_max = bound.above(r, r1, r2);
+  const bool at_min = !at_max && r1 > 0 && bound.below(r, r1, r2);
   out.normals[0] = n;
   if (!at_max && !at_min) {
     out.q = p1 + in_plane;

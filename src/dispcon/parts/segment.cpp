@@ -8,8 +8,8 @@ Nearest nearest_on_segment(const Vec3& p1, const Vec3& u, double l1, double l2, 
                            BoundTest bound) {
   Nearest n;
   const double lambda = (p - p1).dot(u);
-  const bool at_max = bound.above(lambda, l2);
-  const bool at_min = !at_max && bound.below(lambda, l1);
+  const bool at_max = bound.above(lambda, l1, l2);
+  const bool at_min = !at_max && bound.below(lambda, l1, l2);
   n.at_limit = at_max || at_min;
   const double clamped = at_max ? l2 : at_min ? l1 : std::clamp(lambda, l1, l2);
   n.q = p1 + clamped * u;

@@ -6,8 +6,8 @@ Nearest nearest_in_sphere(const Vec3& p1, double r1, double r2, const Vec3& p, B
   Nearest out;
   const Vec3 d = p - p1;
   const double r = d.norm();
-  const bool at_max = bound.above(r, r2);
-  const bool at_min = !at_max && r1 > 0 && bound.below(r, r1);
+  const bool at_max = bound.above(r, r1, r2);
+  const bool at_min = !at_max && r1 > 0 && bound.below(r, r1, r2);
   if (!at_max && !at_min) {
     out.q = p;
     out.rows = 0;

@@ -63,7 +63,7 @@ PartRows twist_rows(const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& 
   if (min <= -kPi && max >= kPi) return out;
   const double twist = twist_angle(a1, a2, b1, b2);
   const double violation = twist_violation(twist, min, max);
-  const bool upper = max < kPi && twist >= max - bound.band;
+  const bool upper = max < kPi && (twist >= max - bound.band || min == max);
   const bool lower = !upper && min > -kPi && twist <= min + bound.band;
   if (violation == 0 && !upper && !lower) return out;
   const double residual = violation != 0 ? violation : upper ? twist - max : twist - min;

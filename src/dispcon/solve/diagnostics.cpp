@@ -239,14 +239,6 @@ struct JointGauge {
   }
 };
 
-Pose turned(const Pose& start, const Vec3& center_local, const Vec3& axis, double angle) {
-  const Vec3 G = start.apply(center_local);
-  Pose p;
-  p.q = (quat_from_rotation_vector(axis * angle) * start.q).normalized();
-  p.x = G - p.q * center_local;
-  return p;
-}
-
 }  // namespace
 
 SweepResult sweep(const Model& input, const SweepOptions& o) {
@@ -264,12 +256,31 @@ SweepResult sweep(const Model& input, const SweepOptions& o) {
     out.message = "the model does not assemble: " + first.message;
     return out;
   }
+  // The driver: a joint from the world to the body whose twist about the axis is set to each
+  // value in turn (its angle part is left free), so the body is driven about the axis while
+  // everything else about it stays free: an axis given to a few digits cannot over-constrain it.
   const Vec3 axis = o.axis.normalized();
-  const Vec3 c = model.body(o.body).center;
-  const Pose start = model.body(o.body).pose;
+  const Mat3 R0 = model.body(o.body).pose.rotation();
+  Joint driver;
+  driver.body1 = Model::kWorld;
+  driver.body2 = o.body;
+  driver.angle = AngleSpec{axis, R0.transpose() * axis, 0, kPi};
+  const Vec3 b = any_perpendicular(axis);
+  driver.twist = TwistSpec{b, R0.transpose() * b, 0, 0};
+  driver.label = "sweep driver";
   std::vector<JointGauge> gauges;
   for (const Joint& j : model.joints()) gauges.push_back(JointGauge::make(model, j));
-  Dragger dragger(model, o.body, o.solve);
+  const int n_joints = model.joint_count();
+  const JointId driver_id = model.add_joint(driver);
+  Session session(model, o.solve);
+  auto drive = [&](double value) {
+    TwistSpec& t = *model.joint(driver_id).twist;
+    t.min = t.max = std::remainder(value, 2 * kPi);
+    std::vector<Pose> poses = model.poses();
+    SolveResult r = session.solve(poses);
+    if (r.converged) model.set_poses(poses);
+    return r;
+  };
   auto sample = [&](double value, const SolveResult& r) {
     SweepSample s;
     s.value = value;
@@ -277,7 +288,7 @@ SweepResult sweep(const Model& input, const SweepOptions& o) {
     s.max_residual = r.max_residual;
     s.poses = model.poses();
     for (const ConstraintReport& c : r.constraints) {
-      if (c.at_limit) s.limits_active.push_back(c.joint);
+      if (c.at_limit && c.joint.value < n_joints) s.limits_active.push_back(c.joint);
     }
     for (size_t j = 0; j < gauges.size(); ++j) {
       s.joint_values.push_back(gauges[j].value(s.poses, model.joint(JointId{static_cast<int>(j)})));
@@ -287,14 +298,13 @@ SweepResult sweep(const Model& input, const SweepOptions& o) {
   double last_good = o.from;
   for (int k = 0; k <= o.steps; ++k) {
     const double value = o.from + (o.to - o.from) * k / o.steps;
-    const SolveResult r = dragger.move_to(turned(start, c, axis, value));
+    const SolveResult r = drive(value);
     if (!r.converged) {
       // Bisect between the last value reached and this one: where exactly does it lock?
       double lo = last_good, hi = value;
-      for (int b = 0; b < 30 && std::abs(hi - lo) > 1e-9; ++b) {
+      for (int i = 0; i < 30 && std::abs(hi - lo) > 1e-9; ++i) {
         const double mid = 0.5 * (lo + hi);
-        const SolveResult m = dragger.move_to(turned(start, c, axis, mid));
-        if (m.converged) {
+        if (drive(mid).converged) {
           lo = mid;
         } else {
           hi = mid;

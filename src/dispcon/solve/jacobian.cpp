@@ -16,7 +16,7 @@ ConstraintJacobian constraint_jacobian(const Model& model, const std::vector<Pos
   for (size_t c = 0; c < s.joints.size(); ++c) {
     const JointState& js = s.joints[c];
     if (!js.active) continue;
-    s.rows(js, BoundTest{options.tolerance}, parts);
+    s.rows(js, BoundTest{contact_band(options.tolerance)}, parts);
     for (int p = 0; p < 3; ++p) {
       for (int k = 0; k < parts[p].count; ++k) {
         for (int col = 0; col < 12; ++col) {

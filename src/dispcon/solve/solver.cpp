@@ -327,7 +327,7 @@ std::vector<ConstraintReport> report(const Model& model, const SolverState& s, d
     r.active = js.active;
     r.residual = s.residual(js);
     r.satisfied = r.residual <= tolerance;
-    r.at_limit = js.active && js.bounded && s.at_limit(js, tolerance);
+    r.at_limit = js.active && js.bounded && s.at_limit(js, contact_band(tolerance));
     out.push_back(r);
   }
   (void)model;
@@ -342,6 +342,8 @@ const char* to_string(SolveStatus status) {
       return "converged";
     case SolveStatus::IterationLimit:
       return "iteration-limit";
+    case SolveStatus::Stalled:
+      return "stalled";
     case SolveStatus::Diverged:
       return "diverged";
   }
@@ -364,6 +366,9 @@ std::vector<ConstraintReport> measure(const Model& model, const std::vector<Pose
 
 namespace {
 
+// Iterations without a 0.1 % gain in the best violation after which a group is given up.
+constexpr int kStallIterations = 400;
+
 // One component's progress through the loop.
 struct Progress {
   explicit Progress(const Component& c) : comp(&c), polisher(c) {}
@@ -373,13 +378,17 @@ struct Progress {
   double best_r = 0;  // and the best seen, whose poses are kept
   double lambda = 1e-12;
   int iterations = 0, seed = 0, polish = 0;
-  int seed_only_until = 0;  // after a failed polish, let the seed iterations work a while
+  int seed_only_until = 0;   // after a failed polish, let the seed iterations work a while
+  int last_progress = 0;     // the iteration at which the best violation last shrank by 0.1 %
+  double progress_mark = 0;  // the best violation then
+  bool stalled = false;
   bool done = false;
 
   // Ready for another solve; the polisher keeps its symbolic analysis.
   void reset() {
     lambda = 1e-12;
-    iterations = seed = polish = seed_only_until = 0;
+    iterations = seed = polish = seed_only_until = last_progress = 0;
+    stalled = false;
     done = false;
   }
 };
@@ -427,7 +436,7 @@ void iterate(SolverState& s, Progress& p, const SolveOptions& o, double polish_t
       const JointState& js = s.joints[static_cast<size_t>(c)];
       double& b = band[static_cast<size_t>(c)];
       const double rc = s.residual(js);
-      if (rc > p.r && b < polish_threshold && s.at_limit(js, 0)) {
+      if (rc > p.r && b < polish_threshold && s.at_limit(js, -0.5 * o.tolerance)) {
         b = std::max(4 * b, 2 * rc + o.tolerance);
         widened = true;
       }
@@ -447,7 +456,7 @@ struct Session::Impl {
   Impl(const Model& m, const SolveOptions& opt, const std::vector<bool>& held)
       : model(m), o(opt), s(m, m.poses(), opt, held), comps(components(s)) {
     for (const Component& c : comps) progress.emplace_back(c);
-    band.assign(s.joints.size(), 0.0);
+    band.assign(s.joints.size(), -0.5 * opt.tolerance);
     for (size_t c = 0; c < s.joints.size(); ++c) {
       const JointState& js = s.joints[c];
       if (js.active && !s.bodies[static_cast<size_t>(js.b1)].movable &&
@@ -490,7 +499,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   std::deque<Progress>& progress = impl_->progress;
   for (Progress& p : progress) {
     p.reset();
-    p.r = p.best_r = max_residual(s, p.comp->joints);
+    p.r = p.best_r = p.progress_mark = max_residual(s, p.comp->joints);
     p.done = p.r <= o.tolerance;
   }
   std::vector<Pose>& best = impl_->best;
@@ -498,7 +507,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   best = poses;
   before = poses;
   std::vector<double>& band = impl_->band;
-  std::fill(band.begin(), band.end(), 0.0);
+  std::fill(band.begin(), band.end(), -0.5 * o.tolerance);
   // Components advance in lockstep: iteration k is every unfinished component's k-th iteration.
   bool finite = true;
   for (int k = 0; k < o.max_iterations; ++k) {
@@ -513,7 +522,15 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
           p.best_r = p.r;
           save_poses(s, *p.comp, best);
         }
-        p.done = p.r <= o.tolerance;
+        // An over-constrained or unreachable problem stops improving: give up early rather
+        // than run to the cap (a drag step that cannot be made should fail fast).
+        if (p.best_r < (1 - 1e-3) * p.progress_mark) {
+          p.progress_mark = p.best_r;
+          p.last_progress = p.iterations;
+        } else if (p.iterations - p.last_progress > kStallIterations) {
+          p.stalled = true;
+        }
+        p.done = p.r <= o.tolerance || p.stalled;
       }
       r = std::max(r, p.r);
     }
@@ -523,11 +540,13 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
     if (!finite) break;
   }
   double r = 0;
+  bool any_stalled = false;
   for (Progress& p : progress) {
-    if (!p.done && finite) {
+    if ((!p.done || p.stalled) && finite) {
       load_poses(s, *p.comp, best);  // not converged: keep the best poses seen
       p.r = p.best_r;
     }
+    any_stalled = any_stalled || p.stalled;
     r = std::max(r, p.r);
     if (p.iterations == result.iterations) {
       result.seed_iterations = std::max(result.seed_iterations, p.seed);
@@ -541,7 +560,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
     result.status = SolveStatus::Diverged;
     result.converged = false;
   } else if (r > o.tolerance) {
-    result.status = SolveStatus::IterationLimit;
+    result.status = any_stalled ? SolveStatus::Stalled : SolveStatus::IterationLimit;
     result.converged = false;
   }
   if (!finite) s.read_poses(poses);
@@ -556,7 +575,11 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
         << result.max_residual << ")";
   } else {
     msg << (result.status == SolveStatus::Diverged ? "diverged" : "did not converge") << " after "
-        << result.iterations << " iterations; still violated: ";
+        << result.iterations << " iterations"
+        << (result.status == SolveStatus::Stalled
+                ? " (no progress: over-constrained or unreachable)"
+                : "")
+        << "; still violated: ";
     std::vector<ConstraintReport> bad;
     for (const ConstraintReport& c : result.constraints) {
       if (!c.satisfied) bad.push_back(c);

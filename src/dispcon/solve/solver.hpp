@@ -51,6 +51,7 @@ struct ConstraintReport {
 enum class SolveStatus {
   Converged,       // every active joint within tolerance
   IterationLimit,  // the cap was hit: over-constrained, unreachable, or too slow; see constraints
+  Stalled,         // no progress for many iterations: over-constrained or unreachable
   Diverged,        // a non-finite value appeared; the poses were not changed
 };
 

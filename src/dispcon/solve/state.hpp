@@ -56,6 +56,12 @@ struct JointGeometry {
   Vec3 a1, a2, b1, b2;     // world axes of angle and twist parts (when present)
 };
 
+// How close to a bound counts as "in contact" in reports and diagnostics: the tolerance, but not
+// below 1e-7, since a converged solve may leave a joint anywhere within the tolerance of its bound.
+inline double contact_band(double tolerance) {
+  return tolerance > 1e-7 ? tolerance : 1e-7;
+}
+
 class SolverState {
  public:
   SolverState(const Model& model, const std::vector<Pose>& poses, const SolveOptions& options,
