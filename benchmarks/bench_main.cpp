@@ -1,0 +1,194 @@
+// dispcon against SolveSpace's solver in the same run. scripts/bench runs this and prints the
+// ratios; each benchmark reports the iterations it took as a counter.
+#include <benchmark/benchmark.h>
+#include <slvs.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>  // slvs.h uses memset without including it
+#include <string>
+
+#include "dispcon/io/dcl_reader.hpp"
+#include "dispcon/solve/solver.hpp"
+#include "mechanisms.hpp"
+
+namespace {
+
+using namespace dispcon;
+
+// N independent four-bars, the crank fixed, coupler and rocker from a rough start.
+void BM_FourBars_dispcon(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Model start = bench::fourbars_dispcon(n);
+  SolveOptions o;
+  int iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Model m = start;
+    state.ResumeTiming();
+    const SolveResult r = assemble(m, o);
+    if (!r.converged) state.SkipWithError(r.message.c_str());
+    iterations = r.iterations;
+    benchmark::DoNotOptimize(m);
+  }
+  state.counters["iterations"] = iterations;
+}
+BENCHMARK(BM_FourBars_dispcon)
+    ->Arg(1)
+    ->Arg(10)
+    ->Arg(100)
+    ->Arg(400)
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond);
+
+void BM_FourBars_slvs(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    const bench::SlvsResult r = bench::fourbars_slvs(n);
+    if (r.result != SLVS_RESULT_OKAY) state.SkipWithError("SolveSpace did not solve");
+    benchmark::DoNotOptimize(r);
+  }
+}
+BENCHMARK(BM_FourBars_slvs)
+    ->Arg(1)
+    ->Arg(10)
+    ->Arg(100)
+    ->Arg(400)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+
+// A closed chain of n point-to-point links, one fixed, from a perturbed circle.
+void BM_ClosedChain(benchmark::State& state) {
+  const Model start = bench::closed_chain(static_cast<int>(state.range(0)));
+  int iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Model m = start;
+    state.ResumeTiming();
+    const SolveResult r = assemble(m);
+    if (!r.converged) state.SkipWithError(r.message.c_str());
+    iterations = r.iterations;
+  }
+  state.counters["iterations"] = iterations;
+}
+BENCHMARK(BM_ClosedChain)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+// One drag step of a link of a closed chain of n links (a live drag's frame).
+void BM_DragStep_ClosedChain(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Model m = bench::closed_chain(n);
+  assemble(m);
+  const BodyId b{n / 2};
+  const Pose p0 = m.body(b).pose;
+  Dragger drag(m, b);
+  int k = 0, iterations = 0;
+  for (auto _ : state) {
+    Pose t = p0;
+    t.x.z() += 0.002 * std::sin(0.01 * k++);  // up and down, small steps
+    const SolveResult r = drag.move_to(t);
+    if (!r.converged) state.SkipWithError(r.message.c_str());
+    iterations = r.iterations;
+  }
+  state.counters["iterations"] = iterations;
+}
+BENCHMARK(BM_DragStep_ClosedChain)->Arg(20)->Arg(100)->Arg(400)->Unit(benchmark::kMicrosecond);
+
+// A grid of coupled four-bars: rows x cols cells of pinned links (many closed loops).
+void BM_FourBarGrid(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Model start = bench::fourbar_grid(n, n);
+  int iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Model m = start;
+    state.ResumeTiming();
+    const SolveResult r = assemble(m);
+    if (!r.converged) state.SkipWithError(r.message.c_str());
+    iterations = r.iterations;
+  }
+  state.counters["iterations"] = iterations;
+  state.counters["bodies"] = start.body_count() - 1;
+}
+BENCHMARK(BM_FourBarGrid)->Arg(3)->Arg(10)->Arg(20)->Unit(benchmark::kMillisecond);
+
+Model sample(const char* name) {
+  ParseResult r = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/" + name);
+  if (!r.ok()) {
+    std::fprintf(stderr, "%s", r.messages().c_str());
+    std::abort();
+  }
+  return std::move(*r.model);
+}
+
+// The paper's monocycle: assembly from the sample's rough positions.
+void BM_Monocycle_Assemble(benchmark::State& state) {
+  const Model start = sample("monocycle.dcl");
+  int iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Model m = start;
+    state.ResumeTiming();
+    const SolveResult r = assemble(m);
+    if (!r.converged) state.SkipWithError(r.message.c_str());
+    iterations = r.iterations;
+  }
+  state.counters["iterations"] = iterations;
+}
+BENCHMARK(BM_Monocycle_Assemble)->Unit(benchmark::kMicrosecond);
+
+// The monocycle pedalled: one 0.01 rad turn of the wheel per step.
+void BM_Monocycle_DragStep(benchmark::State& state) {
+  Model m = sample("monocycle.dcl");
+  assemble(m);
+  const BodyId wheel = *m.find("wheel");
+  const Pose w = m.body(wheel).pose;
+  const Vec3 axle = w.q * Vec3::UnitX();
+  Dragger pedal(m, wheel);
+  int k = 0;
+  double iterations = 0, steps = 0;
+  for (auto _ : state) {
+    Pose p = w;
+    p.q = quat_from_rotation_vector(axle * (0.01 * ++k)) * w.q;
+    const SolveResult r = pedal.move_to(p);
+    if (!r.converged) state.SkipWithError(r.message.c_str());
+    iterations += r.iterations;
+    ++steps;
+  }
+  state.counters["iterations"] = iterations / std::max(1.0, steps);
+}
+BENCHMARK(BM_Monocycle_DragStep)->Unit(benchmark::kMicrosecond);
+
+// Both solvers must agree on the four-bars before their times are compared.
+bool same_answer() {
+  for (int n : {1, 10}) {
+    Model m = bench::fourbars_dispcon(n);
+    SolveOptions o;
+    o.tolerance = 1e-12;
+    if (!assemble(m, o).converged) return false;
+    const bench::SlvsResult s = bench::fourbars_slvs(n);
+    if (s.result != SLVS_RESULT_OKAY) return false;
+    for (int k = 0; k < n; ++k) {
+      const double diff = std::abs(std::remainder(
+          bench::rocker_angle_dispcon(m, k) - s.rocker[static_cast<size_t>(k)], 2 * M_PI));
+      if (diff > 1e-8) {
+        std::fprintf(stderr, "four-bar %d: dispcon and SolveSpace differ by %g rad\n", k, diff);
+        return false;
+      }
+    }
+  }
+  std::fprintf(stderr,
+               "check: dispcon and SolveSpace give the same rocker angles (within 1e-8 rad)\n");
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (!same_answer()) return 1;
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

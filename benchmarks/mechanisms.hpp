@@ -1,0 +1,35 @@
+// Mechanisms built in code for the benchmarks, the same problem for dispcon and SolveSpace.
+#pragma once
+
+#include <vector>
+
+#include "dispcon/model/model.hpp"
+
+namespace bench {
+
+// The planar crank-rocker of the samples: crank 1, coupler 3, rocker 2.5, ground 3. The crank is
+// fixed at angle t; the coupler and rocker start rough. N copies, stacked along z.
+struct FourBarProblem {
+  double t = 0.7;
+  double a = 1, b = 3, c = 2.5, d = 3;
+  // Rough start of the coupler-rocker pin B (the same for both solvers).
+  double bx = 2.2, by = 2.0;
+};
+
+dispcon::Model fourbars_dispcon(int n, const FourBarProblem& p = {});
+// The rocker's angle of copy k after a dispcon solve.
+double rocker_angle_dispcon(const dispcon::Model& m, int k);
+
+struct SlvsResult {
+  int result = -1;
+  std::vector<double> rocker;  // the rocker's angle of each copy
+};
+SlvsResult fourbars_slvs(int n, const FourBarProblem& p = {});
+
+// A closed chain of n links, one fixed, on a circle, perturbed by 0.01.
+dispcon::Model closed_chain(int n);
+
+// A grid of coupled four-bars: rows x cols cells; neighbours share links (many closed loops).
+dispcon::Model fourbar_grid(int rows, int cols);
+
+}  // namespace bench
