@@ -1,17 +1,16 @@
 // dispcon against SolveSpace's solver in the same run. scripts/bench runs this and prints the
 // ratios; each benchmark reports the iterations it took as a counter.
 #include <benchmark/benchmark.h>
-#include <slvs.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>  // slvs.h uses memset without including it
 #include <string>
 
 #include "dispcon/io/dcl_reader.hpp"
 #include "dispcon/solve/solver.hpp"
 #include "mechanisms.hpp"
+#include "slvs_include.hpp"
 
 namespace {
 

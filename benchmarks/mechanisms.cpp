@@ -1,10 +1,9 @@
 #include "mechanisms.hpp"
 
-#include <slvs.h>
-
 #include <cmath>
-#include <cstring>  // slvs.h uses memset without including it
 #include <string>
+
+#include "slvs_include.hpp"
 
 namespace bench {
 
