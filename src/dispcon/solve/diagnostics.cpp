@@ -83,8 +83,46 @@ CheckResult check(const Model& input, const SolveOptions& options) {
   Model model = input;
   out.solve = assemble(model, options);
   out.body_dof.assign(static_cast<size_t>(model.body_count()), 0);
-  std::vector<Pose> poses = out.solve.poses.empty() ? model.poses() : out.solve.poses;
+  for (const ConstraintReport& c : out.solve.constraints) {
+    if (c.at_limit) out.limits_active.push_back(c.joint);
+  }
 
+  // Conflicting: when the assembly fails, find the joint whose removal lets the rest assemble,
+  // trying the most violated first.
+  int removed = -1;
+  if (!out.solve.converged) {
+    std::vector<ConstraintReport> bad;
+    for (const ConstraintReport& c : out.solve.constraints) {
+      if (!c.satisfied) bad.push_back(c);
+    }
+    std::sort(bad.begin(), bad.end(), [](const ConstraintReport& a, const ConstraintReport& b) {
+      return a.residual > b.residual;
+    });
+    SolveOptions o = options;
+    o.max_iterations = std::min(options.max_iterations, 2000);
+    for (const ConstraintReport& c : bad) {
+      Model trial = without(input, c.joint);
+      if (assemble(trial, o).converged) {
+        removed = c.joint.value;
+        model = trial;
+        out.conflicting.push_back(c.joint);
+        out.advice.push_back("removing " + joint_name(input, c.joint) +
+                             " makes the model consistent");
+        break;
+      }
+    }
+    if (out.conflicting.empty()) {
+      for (const ConstraintReport& c : bad) out.conflicting.push_back(c.joint);
+      out.advice.push_back(
+          "no single joint's removal makes the model consistent; the violated "
+          "joints are listed as conflicting");
+    }
+  }
+
+  // Degrees of freedom and redundancy at the assembled pose; when a conflicting joint was found,
+  // of the consistent model without it (joint numbers stay those of the input).
+  auto to_input = [&](int c) { return removed >= 0 && c >= removed ? c + 1 : c; };
+  const std::vector<Pose> poses = model.poses();
   const ConstraintJacobian cj = constraint_jacobian(model, poses, options);
   std::vector<int> body_of_column;
   const Eigen::MatrixXd A = equilibrate(movable_columns(model, cj.J, body_of_column));
@@ -128,9 +166,9 @@ CheckResult check(const Model& input, const SolveOptions& options) {
     const int next_rank = rank_of(next);
     const int repeated = static_cast<int>(rows.size()) - (next_rank - acc_rank);
     if (repeated > 0) {
-      out.redundant.push_back(JointId{c});
+      out.redundant.push_back(JointId{to_input(c)});
       std::ostringstream a;
-      a << joint_name(model, JointId{c}) << ": " << repeated << " of its " << rows.size()
+      a << joint_name(input, JointId{to_input(c)}) << ": " << repeated << " of its " << rows.size()
         << " equations repeat those of the joints before it; the model stays consistent and "
            "keeps its mobility without them (for a planar linkage modelled in 3D, make one of "
            "its revolutes a point-to-point joint)";
@@ -138,39 +176,6 @@ CheckResult check(const Model& input, const SolveOptions& options) {
     }
     acc = std::move(next);
     acc_rank = next_rank;
-  }
-
-  for (const ConstraintReport& c : out.solve.constraints) {
-    if (c.at_limit) out.limits_active.push_back(c.joint);
-  }
-
-  // Conflicting: when the assembly fails, find the joint whose removal lets the rest assemble,
-  // trying the most violated first.
-  if (!out.solve.converged) {
-    std::vector<ConstraintReport> bad;
-    for (const ConstraintReport& c : out.solve.constraints) {
-      if (!c.satisfied) bad.push_back(c);
-    }
-    std::sort(bad.begin(), bad.end(), [](const ConstraintReport& a, const ConstraintReport& b) {
-      return a.residual > b.residual;
-    });
-    SolveOptions o = options;
-    o.max_iterations = std::min(options.max_iterations, 2000);
-    for (const ConstraintReport& c : bad) {
-      Model trial = without(input, c.joint);
-      if (assemble(trial, o).converged) {
-        out.conflicting.push_back(c.joint);
-        out.advice.push_back("removing " + joint_name(model, c.joint) +
-                             " makes the model consistent");
-        break;
-      }
-    }
-    if (out.conflicting.empty()) {
-      for (const ConstraintReport& c : bad) out.conflicting.push_back(c.joint);
-      out.advice.push_back(
-          "no single joint's removal makes the model consistent; the violated "
-          "joints are listed as conflicting");
-    }
   }
 
   std::ostringstream msg;

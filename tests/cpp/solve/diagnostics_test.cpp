@@ -1,0 +1,148 @@
+// Diagnostics on mechanisms of known mobility, on deliberately conflicting models, and the
+// lock-up angles of a Grashof double-rocker against the analytic values.
+#include "dispcon/solve/diagnostics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "dispcon/io/dcl_reader.hpp"
+#include "dispcon/io/sweep_plot.hpp"
+
+namespace dispcon {
+namespace {
+
+Model sample(const std::string& name) {
+  ParseResult r = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/" + name);
+  EXPECT_TRUE(r.ok()) << r.messages();
+  return std::move(*r.model);
+}
+
+std::vector<int> values(const std::vector<JointId>& ids) {
+  std::vector<int> out;
+  for (JointId j : ids) out.push_back(j.value);
+  return out;
+}
+
+TEST(Check, KnownMobilities) {
+  struct Expect {
+    const char* file;
+    int dof;
+  };
+  for (const Expect& e :
+       {Expect{"fourbar.dcl", 1}, Expect{"bennett.dcl", 1}, Expect{"sarrus.dcl", 1},
+        Expect{"peaucellier.dcl", 1}, Expect{"slider-crank.dcl", 1}, Expect{"welded.dcl", 0},
+        Expect{"double-rocker.dcl", 1}}) {
+    SCOPED_TRACE(e.file);
+    const CheckResult c = check(sample(e.file));
+    EXPECT_TRUE(c.solve.converged) << c.message;
+    EXPECT_EQ(c.dof, e.dof) << c.message;
+    EXPECT_TRUE(c.conflicting.empty());
+  }
+}
+
+TEST(Check, PlanarFourBarIn3DHasThreeRedundantEquationsOnItsClosingJoint) {
+  const Model m = sample("fourbar.dcl");
+  const CheckResult c = check(m);
+  EXPECT_EQ(c.dof, 1);
+  EXPECT_EQ(values(c.redundant), std::vector<int>{3});
+  ASSERT_EQ(c.advice.size(), 1u);
+  EXPECT_NE(c.advice[0].find("3 of its 5 equations"), std::string::npos) << c.advice[0];
+  const std::string line = "line " + std::to_string(m.joint(JointId{3}).line);
+  EXPECT_NE(c.advice[0].find(line), std::string::npos) << c.advice[0];
+  for (const char* body : {"crank", "coupler", "rocker"}) {
+    EXPECT_EQ(c.body_dof[static_cast<size_t>(m.find(body)->value)], 1) << body;
+  }
+}
+
+Model chain(int n, bool revolute) {
+  Model m;
+  BodyId prev = Model::kWorld;
+  for (int i = 0; i < n; ++i) {
+    Body b;
+    b.name = "link" + std::to_string(i);
+    b.pose = Pose::from(Vec3(i, 0.1 * i, 0), Vec3(0, 0, 0.1 * i));
+    const BodyId id = m.add_body(b);
+    Joint j;
+    j.body1 = prev;
+    j.body2 = id;
+    j.has_hinge = true;
+    j.p1 = prev == Model::kWorld ? Vec3::Zero() : Vec3(1, 0, 0);
+    if (revolute) j.angle = AngleSpec{Vec3::UnitZ(), Vec3::UnitZ(), 0, 0};
+    m.add_joint(j);
+    prev = id;
+  }
+  return m;
+}
+
+TEST(Check, OpenChainsHaveTheirJointsFreedoms) {
+  EXPECT_EQ(check(chain(5, true)).dof, 5);    // n revolutes: n
+  EXPECT_EQ(check(chain(4, false)).dof, 12);  // n ball joints: 3 n
+  const CheckResult c = check(chain(3, true));
+  // The tip can move in all three ways (it follows every joint); the first link only turns.
+  EXPECT_EQ(c.body_dof[1], 1);
+  EXPECT_EQ(c.body_dof[3], 3);
+}
+
+TEST(Check, ConflictingJointIsNamedWithItsLine) {
+  const CheckResult c = check(sample("conflicting.dcl"));
+  EXPECT_FALSE(c.solve.converged);
+  EXPECT_EQ(values(c.conflicting), std::vector<int>{4});
+  bool named = false;
+  for (const std::string& a : c.advice)
+    named |= a.find("removing joint #4 (line 17)") != std::string::npos;
+  EXPECT_TRUE(named);
+  // The rest of the report is about the consistent model without it: the four-bar.
+  EXPECT_EQ(c.dof, 1);
+  EXPECT_EQ(values(c.redundant), std::vector<int>{3});
+}
+
+TEST(Check, LimitsInContactAreListed) {
+  const CheckResult c = check(sample("monocycle.dcl"));
+  EXPECT_TRUE(c.solve.converged);
+  EXPECT_FALSE(c.limits_active.empty());
+  for (JointId j : c.limits_active)
+    EXPECT_TRUE(c.solve.constraints[static_cast<size_t>(j.value)].at_limit);
+}
+
+TEST(Sweep, GrashofDoubleRockerLocksAtTheAnalyticAngles) {
+  const Model m = sample("double-rocker.dcl");
+  const double a = 2.5, b = 1, c = 2.8, d = 3;
+  const double upper = std::acos((a * a + d * d - (b + c) * (b + c)) / (2 * a * d));
+  const double lower = std::acos((a * a + d * d - (c - b) * (c - b)) / (2 * a * d));
+  Model assembled = m;
+  ASSERT_TRUE(assemble(assembled).converged);
+  const Vec3 x = assembled.body(*m.find("input")).pose.q * Vec3::UnitX();
+  const double start = std::atan2(x.y(), x.x());
+  SweepOptions s;
+  s.body = *m.find("input");
+  s.steps = 60;
+  s.from = 0;
+  s.to = 1.5;
+  const SweepResult up = sweep(m, s);
+  ASSERT_TRUE(up.locked) << up.message;
+  EXPECT_NEAR(start + up.lock_value, upper, 1e-6);
+  s.to = -1.5;
+  const SweepResult down = sweep(m, s);
+  ASSERT_TRUE(down.locked) << down.message;
+  EXPECT_NEAR(start + down.lock_value, lower, 1e-6);
+  // Every other joint's value is reported at every sample, and the plot marks the lock.
+  for (const SweepSample& x : up.samples) EXPECT_EQ(x.joint_values.size(), 4u);
+  const std::string svg = write_sweep_svg(m, up);
+  EXPECT_NE(svg.find("locks at"), std::string::npos);
+  EXPECT_NE(svg.find("<polyline"), std::string::npos);
+}
+
+TEST(Sweep, FullTurnOfACrankDoesNotLock) {
+  SweepOptions s;
+  const Model m = sample("fourbar.dcl");
+  s.body = *m.find("crank");
+  s.steps = 72;
+  const SweepResult r = sweep(m, s);
+  EXPECT_FALSE(r.locked) << r.message;
+  EXPECT_EQ(r.samples.size(), 73u);
+}
+
+}  // namespace
+}  // namespace dispcon
