@@ -31,7 +31,7 @@ std::string write_sweep_svg(const Model& model, const SweepResult& r) {
   const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
                            "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
   std::ostringstream out;
-  char buf[160];
+  char buf[512];
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" "
          "fill=\"white\"/>\n";
@@ -74,10 +74,10 @@ std::string write_sweep_svg(const Model& model, const SweepResult& r) {
     out << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"2\" points=\""
         << path << "\"/>\n";
     const Joint& jt = model.joint(JointId{static_cast<int>(j)});
-    std::snprintf(buf, sizeof buf, "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\">#%zu %s/%s</text>\n",
-                  W - right + 10, top + 14.0 * ++legend, colour, j,
-                  model.body(jt.body1).name.c_str(), model.body(jt.body2).name.c_str());
-    out << buf;
+    // Names can be long: no fixed buffer for them.
+    out << "<text x=\"" << W - right + 10 << "\" y=\"" << top + 14.0 * ++legend << "\" fill=\""
+        << colour << "\">#" << j << " " << model.body(jt.body1).name << "/"
+        << model.body(jt.body2).name << "</text>\n";
   }
   for (const SweepSample& s : r.samples) {
     if (s.limits_active.empty()) continue;
@@ -91,9 +91,9 @@ std::string write_sweep_svg(const Model& model, const SweepResult& r) {
     std::snprintf(buf, sizeof buf,
                   "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"red\" "
                   "stroke-dasharray=\"6 4\"/>\n"
-                  "<text x=\"%.1f\" y=\"%.1f\" fill=\"red\">locks at %.4g</text>\n",
-                  X(r.lock_value), top, X(r.lock_value), top + ph, X(r.lock_value) + 4, top + 14,
-                  r.lock_value);
+                  "<text x=\"%.1f\" y=\"%.1f\" fill=\"red\" text-anchor=\"end\">locks at %.4g</text>\n",
+                  X(r.lock_value), top, X(r.lock_value), top + ph, X(r.lock_value) - 4,
+                  top + ph - 8, r.lock_value);
     out << buf;
   }
   out << "</svg>\n";
