@@ -28,6 +28,22 @@ struct PyDragger {
   BodyId body;
 };
 
+// Repeated solves of one model whose structure stays (a mouse drag with a moving target joint).
+struct PySession {
+  Model* model;
+  Session session;
+  PySolveResult solve(bool keep_best) {
+    std::vector<Pose> poses = model->poses();
+    const SolveResult r = session.solve(poses);
+    if (r.converged) {
+      model->set_poses(poses);
+    } else if (keep_best && r.status != SolveStatus::Diverged) {
+      model->set_poses(r.poses);
+    }
+    return convert(*model, r);
+  }
+};
+
 Pose target_pose(const Model& model, BodyId body, const pyb::object& position,
                  const pyb::object& rotation) {
   Pose p = model.body(body).pose;
@@ -66,7 +82,33 @@ void bind_solve(pyb::module_& m, ModelClass& model) {
           "Holds the body at this pose (rotation vector or 3x3 matrix) while the rest follows. "
           "The model changes only when the solve converged.");
 
+  pyb::class_<PySession>(m, "Session", "Repeated solves of a model whose joints keep their number.")
+      .def("solve", &PySession::solve, pyb::arg("keep_best") = false,
+           "Solves from the model's poses; the model changes only when it converged, or, with "
+           "keep_best, to the best poses reached (a compromise between joints that cannot all "
+           "hold, such as a mouse pulling a linkage where it cannot go).");
+
   model
+      .def(
+          "session",
+          [](Model& self, const pyb::kwargs& kw) {
+            return new PySession{&self, Session(self, solve_options(kw))};
+          },
+          pyb::keep_alive<0, 1>(),
+          "A solver state kept between solves; add no joint while it is in use.")
+      .def(
+          "set_hinge",
+          [](Model& self, int index, const std::optional<Vec3>& p1, const std::optional<Vec3>& p2) {
+            if (index < 0 || index >= self.joint_count()) {
+              throw std::invalid_argument("no joint " + std::to_string(index));
+            }
+            Joint& j = self.joint(JointId{index});
+            if (!j.has_hinge) throw std::invalid_argument("joint " + std::to_string(index) + " has no hinge");
+            if (p1) j.p1 = *p1;
+            if (p2) j.p2 = *p2;
+          },
+          pyb::arg("index"), pyb::arg("p1") = pyb::none(), pyb::arg("p2") = pyb::none(),
+          "Moves a joint's hinge points (a mouse drag's target).")
       .def(
           "assemble",
           [](Model& self, const pyb::kwargs& kw) {

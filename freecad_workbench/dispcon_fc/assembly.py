@@ -1,0 +1,586 @@
+"""The workbench's scripting API: assemblies of parts and joints in a FreeCAD document, solved by
+dispcon. Everything a designer does with the mouse can be done from here under freecadcmd.
+
+    import dispcon_fc.assembly as da
+    asm = da.create_assembly(doc)
+    crank = da.add_part(asm, crank_obj)                # an object of the document
+    pin = da.import_part(asm, "/path/pin.step")        # or a STEP, IGES or BREP file
+    da.add_joint(asm, "Revolute", (ground, "Edge3"), (crank, "Edge1"))
+    result = da.solve(asm)                             # every joint holds, or nothing moved
+    da.drag(asm, crank, placement)                     # the rest follows
+    report = da.check(asm)
+"""
+import math
+import os
+
+import FreeCAD as App
+
+from . import engine, geometry
+
+JOINT_TYPES = ["Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "PointOnLine",
+               "PointOnPlane", "PointOnCurve", "Angle"]
+
+
+# ---------------------------------------------------------------------------------------------
+# Document objects
+
+
+class AssemblyProxy:
+    """An App::DocumentObjectGroupPython holding the parts and the joints of one assembly."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.attach(obj)
+
+    def attach(self, obj):
+        if not hasattr(obj, "Tolerance"):
+            obj.addProperty("App::PropertyFloat", "Tolerance", "Dispcon", "largest violation accepted").Tolerance = 1e-9
+        if not hasattr(obj, "MaxIterations"):
+            obj.addProperty("App::PropertyInteger", "MaxIterations", "Dispcon", "iteration cap").MaxIterations = 10000
+        if not hasattr(obj, "LastSolve"):
+            obj.addProperty("App::PropertyString", "LastSolve", "Dispcon", "what the last solve said")
+
+    def onDocumentRestored(self, obj):
+        self.attach(obj)
+
+    def execute(self, obj):
+        pass
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    dumps = __getstate__
+    loads = __setstate__
+
+
+class JointProxy:
+    """An App::FeaturePython: two references, the joint's type, its points and axes in each part's
+    frame (taken from the picked geometry) and its limits."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        obj.addProperty("App::PropertyEnumeration", "JointType", "Joint", "the kind of joint")
+        obj.JointType = JOINT_TYPES
+        obj.addProperty("App::PropertyLinkSub", "Reference1", "Joint", "part and element 1 (carries the guide)")
+        obj.addProperty("App::PropertyLinkSub", "Reference2", "Joint", "part and element 2")
+        for name, doc in (("Point1", "joint point, part 1's frame"), ("Axis1", "joint axis, part 1's frame"),
+                          ("Perp1", "reference across the axis, part 1's frame"),
+                          ("Point2", "joint point, part 2's frame"), ("Axis2", "joint axis, part 2's frame"),
+                          ("Perp2", "reference across the axis, part 2's frame")):
+            obj.addProperty("App::PropertyVector", name, "Geometry", doc)
+        obj.addProperty("App::PropertyVectorList", "Curve1", "Geometry", "sampled curve, part 1's frame (PointOnCurve)")
+        obj.addProperty("App::PropertyBool", "HasRotationLimits", "Limits", "bound the turn about the axis")
+        obj.addProperty("App::PropertyAngle", "RotationMin", "Limits", "lowest turn from the creation pose")
+        obj.addProperty("App::PropertyAngle", "RotationMax", "Limits", "highest turn from the creation pose")
+        obj.addProperty("App::PropertyBool", "HasTravelLimits", "Limits", "bound the travel along the axis")
+        obj.addProperty("App::PropertyDistance", "TravelMin", "Limits", "lowest travel")
+        obj.addProperty("App::PropertyDistance", "TravelMax", "Limits", "highest travel")
+        obj.addProperty("App::PropertyAngle", "ConeAngle", "Limits", "ball joint: largest tilt of axis 2 from axis 1 (0: none)")
+        obj.addProperty("App::PropertyAngle", "AngleMin", "Limits", "Angle joint: lowest angle between the axes")
+        obj.addProperty("App::PropertyAngle", "AngleMax", "Limits", "Angle joint: highest angle between the axes")
+        obj.AngleMax = 180
+        obj.addProperty("App::PropertyFloat", "Move", "Abilities", "part 1's share of a correction (-1: from the masses)")
+        obj.Move = -1
+        obj.addProperty("App::PropertyFloat", "Residual", "Solve", "violation after the last solve")
+        obj.addProperty("App::PropertyBool", "Violated", "Solve", "not satisfied after the last solve")
+
+    def execute(self, obj):
+        pass
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    dumps = __getstate__
+    loads = __setstate__
+
+
+def _is_joint(obj):
+    return hasattr(obj, "Proxy") and isinstance(getattr(obj, "Proxy", None), JointProxy)
+
+
+def parts(asm):
+    return [o for o in asm.Group if hasattr(o, "Shape") and not _is_joint(o)]
+
+
+def joints(asm):
+    return [o for o in asm.Group if _is_joint(o)]
+
+
+def create_assembly(doc, name="Assembly"):
+    """An empty assembly in `doc`."""
+    doc.openTransaction("Create assembly")
+    obj = doc.addObject("App::DocumentObjectGroupPython", name)
+    AssemblyProxy(obj)
+    doc.commitTransaction()
+    return obj
+
+
+def _part_properties(obj):
+    if not hasattr(obj, "Grounded"):
+        obj.addProperty("App::PropertyBool", "Grounded", "Dispcon", "never moves")
+    if not hasattr(obj, "AbilityToRotate"):
+        obj.addProperty("App::PropertyFloat", "AbilityToRotate", "Dispcon",
+                        "no-physics ability to rotate (0: from the part's size)")
+    if not hasattr(obj, "Density"):
+        obj.addProperty("App::PropertyFloat", "Density", "Dispcon", "mass per unit volume").Density = 1.0
+
+
+def add_part(asm, obj, grounded=False):
+    """Adds an existing object of the document (anything with a Shape) to the assembly."""
+    doc = asm.Document
+    doc.openTransaction("Add part")
+    _part_properties(obj)
+    obj.Grounded = grounded
+    asm.addObject(obj)
+    doc.commitTransaction()
+    return obj
+
+
+def import_part(asm, path, name=None, grounded=False):
+    """Imports a STEP, IGES or BREP file as a part of the assembly."""
+    import Part
+
+    ext = os.path.splitext(path)[1].lower()
+    if ext not in (".step", ".stp", ".iges", ".igs", ".brep", ".brp"):
+        raise ValueError("%s: expected a STEP, IGES or BREP file" % path)
+    shape = Part.Shape()
+    shape.read(path)
+    doc = asm.Document
+    doc.openTransaction("Import part")
+    obj = doc.addObject("Part::Feature", name or os.path.splitext(os.path.basename(path))[0])
+    obj.Shape = shape
+    _part_properties(obj)
+    obj.Grounded = grounded
+    asm.addObject(obj)
+    doc.commitTransaction()
+    return obj
+
+
+def link_part(asm, path, object_name, grounded=False):
+    """Links an object of another .FCStd file (App::Link) as a part."""
+    other = App.openDocument(path, hidden=True) if hasattr(App, "openDocument") else App.open(path)
+    source = other.getObject(object_name)
+    if source is None:
+        raise ValueError("%s has no object %s" % (path, object_name))
+    doc = asm.Document
+    doc.openTransaction("Link part")
+    obj = doc.addObject("App::Link", object_name)
+    obj.LinkedObject = source
+    _part_properties(obj)
+    obj.Grounded = grounded
+    asm.addObject(obj)
+    doc.commitTransaction()
+    return obj
+
+
+def _perpendicular(v):
+    other = App.Vector(1, 0, 0) if abs(v.x) < 0.9 else App.Vector(0, 1, 0)
+    return v.cross(other).normalize()
+
+
+def _sampled_curve(obj, sub, count=64):
+    edge = obj.Shape.getElement(sub)
+    return [geometry.to_local(obj.Placement, point=p) for p in edge.discretize(count)]
+
+
+def add_joint(asm, joint_type, ref1, ref2, **limits):
+    """A joint between two parts from geometry references in FreeCAD's form, (obj, "Edge3").
+    Part 1 carries the guide (the slider's line, the plane, the curve). Limits: rotation=(min, max)
+    in degrees, travel=(min, max) in length units, cone=degrees, angle=(min, max) degrees, move=mu."""
+    if joint_type not in JOINT_TYPES:
+        raise ValueError("unknown joint type %r (expected one of %s)" % (joint_type, ", ".join(JOINT_TYPES)))
+    (o1, s1), (o2, s2) = ref1, ref2
+    if o1 == o2:
+        raise ValueError("a joint needs two different parts")
+    for o in (o1, o2):
+        if o not in asm.Group:
+            raise ValueError("%s is not a part of %s" % (o.Label, asm.Label))
+    f1, f2 = geometry.feature(o1, s1), geometry.feature(o2, s2)
+    doc = asm.Document
+    doc.openTransaction("Add joint")
+    try:
+        j = doc.addObject("App::FeaturePython", joint_type)
+        JointProxy(j)
+        j.JointType = joint_type
+        j.Reference1 = (o1, [s1])
+        j.Reference2 = (o2, [s2])
+        j.Point1 = geometry.to_local(o1.Placement, point=f1.point)
+        j.Axis1 = geometry.to_local(o1.Placement, axis=f1.axis)
+        j.Point2 = geometry.to_local(o2.Placement, point=f2.point)
+        j.Axis2 = geometry.to_local(o2.Placement, axis=f2.axis)
+        # Axes that the user picked pointing apart are taken as the same line.
+        if f1.axis.dot(f2.axis) < 0:
+            j.Axis2 = j.Axis2 * -1
+        # The twist reference: a vector across axis 1, and the same world vector in part 2's frame
+        # at the creation pose, so the turn is measured from where the parts were.
+        perp_world = _perpendicular(f1.axis)
+        j.Perp1 = geometry.to_local(o1.Placement, axis=perp_world)
+        j.Perp2 = geometry.to_local(o2.Placement, axis=perp_world)
+        if joint_type == "PointOnCurve":
+            j.Curve1 = _sampled_curve(o1, s1)
+        _set_limits(j, **limits)
+        asm.addObject(j)
+    except Exception:
+        doc.abortTransaction()
+        raise
+    doc.commitTransaction()
+    return j
+
+
+def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None):
+    if rotation is not None:
+        j.HasRotationLimits = True
+        j.RotationMin, j.RotationMax = rotation
+    if travel is not None:
+        j.HasTravelLimits = True
+        j.TravelMin, j.TravelMax = travel
+    if cone is not None:
+        j.ConeAngle = cone
+    if angle is not None:
+        j.AngleMin, j.AngleMax = angle
+    if move is not None:
+        j.Move = move
+
+
+def set_limits(joint, **limits):
+    """Changes a joint's limits (same keywords as add_joint) in one undo step."""
+    doc = joint.Document
+    doc.openTransaction("Joint limits")
+    _set_limits(joint, **limits)
+    doc.commitTransaction()
+
+
+# ---------------------------------------------------------------------------------------------
+# The adapter: document -> dispcon.Model -> placements
+
+
+def _vec(v):
+    return (v.x, v.y, v.z)
+
+
+def _rotvec(rotation):
+    axis, angle = rotation.Axis, rotation.Angle
+    return (axis.x * angle, axis.y * angle, axis.z * angle)
+
+
+def _joint_kwargs(j):
+    """The joint as dispcon's constraint vocabulary (format.md)."""
+    t = j.JointType
+    p1, p2 = _vec(j.Point1), _vec(j.Point2)
+    a1, a2 = _vec(j.Axis1), _vec(j.Axis2)
+    b1, b2 = _vec(j.Perp1), _vec(j.Perp2)
+    inf = float("inf")
+    rad = math.radians
+    rot = (rad(j.RotationMin.Value), rad(j.RotationMax.Value)) if j.HasRotationLimits else None
+    travel = (j.TravelMin.Value, j.TravelMax.Value) if j.HasTravelLimits else (-inf, inf)
+    kw = {}
+    if t != "Angle":
+        kw["hinge"] = (p1, p2)
+    if t in ("Fixed", "Revolute", "Slider", "Cylindrical", "Planar"):
+        kw["angle"] = (a1, a2, 0.0, 0.0)
+    if t in ("Fixed", "Slider"):
+        kw["twist"] = (b1, b2, 0.0, 0.0)
+    elif t in ("Revolute", "Cylindrical") and rot:
+        kw["twist"] = (b1, b2, rot[0], rot[1])
+    if t in ("Slider", "Cylindrical", "PointOnLine"):
+        kw["axial"] = (a1, travel[0], travel[1])
+    if t in ("Planar", "PointOnPlane"):
+        kw["planar"] = (a1, 0.0, inf)
+    if t == "Ball" and j.ConeAngle.Value > 0:
+        kw["angle"] = (a1, a2, 0.0, rad(j.ConeAngle.Value))
+    if t == "PointOnCurve":
+        kw["polyline"] = [_vec(p) for p in j.Curve1]
+    if t == "Angle":
+        kw["angle"] = (a1, a2, rad(j.AngleMin.Value), rad(j.AngleMax.Value))
+    if j.Move >= 0:
+        kw["move"] = j.Move
+    return kw
+
+
+class Adapter:
+    """One assembly as a dispcon.Model: bodies are the parts (their Placement is the pose), with
+    mass and inertia from their shapes; joints are the joint objects, in order."""
+
+    def __init__(self, asm, physics=False):
+        self.dispcon = engine.load()
+        self.asm = asm
+        self.parts = parts(asm)
+        self.joints = joints(asm)
+        self.model = self.dispcon.Model()
+        self.names = {}
+        for k, p in enumerate(self.parts):
+            name = "p%d_%s" % (k, "".join(c if c.isalnum() else "_" for c in p.Name))
+            self.names[p.Name] = name
+            pl = p.Placement
+            kw = dict(position=_vec(pl.Base), rotation=_rotvec(pl.Rotation),
+                      fixed=bool(getattr(p, "Grounded", False)))
+            props = geometry.mass_properties(p.Shape)
+            if props is not None:
+                volume, com, inertia = props
+                density = getattr(p, "Density", 1.0) or 1.0
+                kw["center"] = _vec(geometry.to_local(pl, point=com))
+                if physics:
+                    R = pl.Rotation.toMatrix()
+                    kw["mass"] = density * volume
+                    kw["inertia"] = self._local_inertia(R, inertia, density)
+            if getattr(p, "AbilityToRotate", 0) > 0:
+                kw["rotate"] = p.AbilityToRotate
+            self.model.add_body(name, **kw)
+        for j in self.joints:
+            o1, o2 = j.Reference1[0], j.Reference2[0]
+            if o1.Name not in self.names or o2.Name not in self.names:
+                raise ValueError("%s joins a part that is not in %s" % (j.Label, asm.Label))
+            self.model.add_joint(self.names[o2.Name], object1=self.names[o1.Name], label=j.Label,
+                                 **_joint_kwargs(j))
+
+    @staticmethod
+    def _local_inertia(R, inertia, density):
+        # inertia is about the centre of mass in global axes of the shape as placed: to local axes.
+        rows = [[R.A[4 * i + j] for j in range(3)] for i in range(3)]
+        out = [[0.0] * 3 for _ in range(3)]
+        for a in range(3):
+            for b in range(3):
+                out[a][b] = density * sum(rows[i][a] * inertia[i][j] * rows[j][b] for i in range(3) for j in range(3))
+        return out
+
+    def part_of(self, name):
+        for p in self.parts:
+            if self.names[p.Name] == name:
+                return p
+        raise KeyError(name)
+
+    def placement_of(self, part):
+        b = self.model.body(self.names[part.Name])
+        q = b.quaternion  # w, x, y, z
+        return App.Placement(App.Vector(*b.position), App.Rotation(q[1], q[2], q[3], q[0]))
+
+    def write_back(self):
+        for p in self.parts:
+            if getattr(p, "Grounded", False):
+                continue
+            p.Placement = self.placement_of(p)
+
+    def mark(self, result):
+        for report, j in zip(result.constraints, self.joints):
+            j.Residual = report.residual
+            j.Violated = not report.satisfied
+
+
+class Result:
+    """What a solve said, with the joints still violated named as the user knows them."""
+
+    def __init__(self, adapter, r):
+        self.converged = r.converged
+        self.iterations = r.iterations
+        self.max_residual = r.max_residual
+        self.violated = [adapter.joints[i] for i in r.violated]
+        names = ", ".join("%s (residual %.3g)" % (adapter.joints[i].Label, r.constraints[i].residual) for i in r.violated)
+        self.message = ("solved in %d iterations" % r.iterations) if r.converged else (
+            "could not make every joint hold; still violated: " + names)
+
+    def __bool__(self):
+        return self.converged
+
+    def __repr__(self):
+        return "<dispcon_fc.Result %s>" % self.message
+
+
+def solve(asm):
+    """Snap: moves the parts from wherever they are until every joint holds (the seed's automatic
+    assembly), grounded parts still. One undo step; a failed solve moves nothing and marks the
+    joints still violated."""
+    adapter = Adapter(asm)
+    r = adapter.model.assemble(tolerance=asm.Tolerance, max_iterations=asm.MaxIterations)
+    doc = asm.Document
+    doc.openTransaction("Solve assembly")
+    if r.converged:
+        adapter.write_back()
+    adapter.mark(r)
+    result = Result(adapter, r)
+    asm.LastSolve = result.message
+    doc.commitTransaction()
+    doc.recompute()
+    return result
+
+
+class Drag:
+    """A live drag of one part: `move(placement)` per mouse event, `finish()` on release. The
+    solver's state is built once; a move that cannot be made leaves everything where it was."""
+
+    def __init__(self, asm, part):
+        self.asm = asm
+        self.adapter = Adapter(asm)
+        self.part = part
+        self.name = self.adapter.names[part.Name]
+        first = self.adapter.model.assemble(tolerance=asm.Tolerance)
+        if not first.converged:
+            raise ValueError("the assembly does not hold yet: solve it first (%s)" % first.message)
+        self.dragger = self.adapter.model.dragger(self.name, tolerance=asm.Tolerance)
+        self.doc = asm.Document
+        self.doc.openTransaction("Drag %s" % part.Label)
+        self.last = None
+
+    def move(self, placement):
+        rot = placement.Rotation.toMatrix()
+        R = [[rot.A[4 * i + j] for j in range(3)] for i in range(3)]
+        r = self.dragger.move_to(position=_vec(placement.Base), rotation=R)
+        if r.converged:
+            self.adapter.write_back()
+        self.last = r
+        return r
+
+    def finish(self):
+        self.doc.commitTransaction()
+        self.doc.recompute()
+
+
+class PointDrag:
+    """A mouse drag: the grabbed point of `part` is pulled towards a moving world point (the
+    cursor on the plane through the grab point), the part free to turn as the linkage needs.
+    Each event: first solve with a joint from the cursor to the grabbed point; when the linkage
+    cannot put the point there (a 1-DOF linkage's point moves on a curve), keep the compromise
+    that pull reached and solve again without it, so the linkage goes as near as it can, joints
+    exact, by continuity (no jump to another branch). One undo step for the whole drag."""
+
+    def __init__(self, asm, part, grab_world):
+        self.asm = asm
+        self.adapter = Adapter(asm)
+        self.part = part
+        name = self.adapter.names[part.Name]
+        model = self.adapter.model
+        first = model.assemble(tolerance=asm.Tolerance)
+        if not first.converged:
+            raise ValueError("the assembly does not hold yet: solve it first (%s)" % first.message)
+        grab_local = geometry.to_local(part.Placement, point=grab_world)
+        # The mouse joint is active at time 0 only: `pull` sees it, `settle` does not.
+        self.handle = model.add_joint(name, hinge=(_vec(grab_world), _vec(grab_local)),
+                                      time=(-1.0, 0.5), label="mouse")
+        self.pull = model.session(tolerance=asm.Tolerance, max_iterations=60, time=0.0)
+        self.settle = model.session(tolerance=asm.Tolerance, max_iterations=500, time=1.0)
+        self.doc = asm.Document
+        self.doc.openTransaction("Drag %s" % part.Label)
+        self.frames = 0
+        self.solver_seconds = 0.0
+
+    def move(self, target):
+        """Pulls the grabbed point towards `target`; returns whether the linkage holds."""
+        import time
+
+        t0 = time.perf_counter()
+        model = self.adapter.model
+        model.set_hinge(self.handle, p1=_vec(target))
+        before = {n: (model.body(n).position.copy(), model.body(n).rotation_vector.copy())
+                  for n in model.body_names()}
+        ok = self.pull.solve(keep_best=True).converged or self.settle.solve().converged
+        if not ok:  # nothing could be made: back to where it was
+            for n, (x, r) in before.items():
+                model.set_pose(n, position=x, rotation=r)
+        else:
+            self.adapter.write_back()
+        self.frames += 1
+        self.solver_seconds += time.perf_counter() - t0
+        return ok
+
+    def finish(self):
+        self.doc.commitTransaction()
+        self.doc.recompute()
+
+
+def drag(asm, part, placement, steps=20):
+    """Moves `part` to `placement` in `steps` steps, the rest following; one undo step. Returns
+    the last step's result; stops at the first step that cannot be made."""
+    d = Drag(asm, part)
+    start = part.Placement
+    r = None
+    for k in range(1, steps + 1):
+        t = k / steps
+        pl = App.Placement(start.Base + (placement.Base - start.Base) * t,
+                           start.Rotation.slerp(placement.Rotation, t))
+        r = d.move(pl)
+        if not r.converged:
+            break
+    d.finish()
+    return r
+
+
+def drive(asm, joint, angles_deg, callback=None):
+    """Turns a revolute (or a part about a joint's axis) through the given angles, in degrees from
+    its current pose: the second part turns about the joint's axis while the rest follows. Returns
+    the angle reached before a lock, or the last one."""
+    part = joint.Reference2[0]
+    axis_world = part.Placement.Rotation.multVec(joint.Axis2)
+    pivot = part.Placement.multVec(joint.Point2)
+    start = part.Placement
+    d = Drag(asm, part)
+    reached = 0.0
+    for a in angles_deg:
+        turn = App.Rotation(axis_world, a)
+        pl = App.Placement(pivot + turn.multVec(start.Base - pivot), turn.multiply(start.Rotation))
+        r = d.move(pl)
+        if not r.converged:
+            break
+        reached = a
+        if callback:
+            callback(a)
+    d.finish()
+    return reached
+
+
+def check(asm):
+    """Degrees of freedom, redundant and conflicting joints (as joint objects), limits in contact."""
+    adapter = Adapter(asm)
+    c = adapter.model.check(tolerance=asm.Tolerance)
+    return {
+        "converged": c.converged,
+        "dof": c.dof,
+        "part_dof": {adapter.part_of(n).Label: v for n, v in c.body_dof.items()},
+        "redundant": [adapter.joints[i] for i in c.redundant],
+        "conflicting": [adapter.joints[i] for i in c.conflicting],
+        "limits_active": [adapter.joints[i] for i in c.limits_active],
+        "advice": list(c.advice),
+        "message": c.message,
+    }
+
+
+def interference(asm):
+    """Pairs of parts whose solids overlap at the current pose, with the overlap volume."""
+    ps = parts(asm)
+    out = []
+    for i in range(len(ps)):
+        for k in range(i + 1, len(ps)):
+            a, b = ps[i].Shape, ps[k].Shape
+            if not a.BoundBox.intersect(b.BoundBox):
+                continue
+            common = a.common(b)
+            if common.Volume > 1e-9:
+                out.append((ps[i], ps[k], common.Volume))
+    return out
+
+
+def export_dcl(asm, path):
+    """Writes the assembly as a .dcl file for the command line."""
+    adapter = Adapter(asm)
+    adapter.model.save(path)
+
+
+def import_dcl(asm, path):
+    """Places the assembly's parts as a .dcl file says (the file's objects named as export_dcl
+    names them): the way back from the command line."""
+    adapter = Adapter(asm)
+    m = engine.load().load(path)
+    doc = asm.Document
+    doc.openTransaction("Import .dcl placements")
+    for p in adapter.parts:
+        name = adapter.names[p.Name]
+        if name in m.body_names():
+            b = m.body(name)
+            q = b.quaternion
+            p.Placement = App.Placement(App.Vector(*b.position), App.Rotation(q[1], q[2], q[3], q[0]))
+    doc.commitTransaction()
+    doc.recompute()

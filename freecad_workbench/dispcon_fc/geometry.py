@@ -1,0 +1,78 @@
+"""Points and axes from FreeCAD geometry: what a picked vertex, edge or face means for a joint."""
+import FreeCAD as App
+
+
+class Feature:
+    """A point and a unit axis in world coordinates, and where they came from."""
+
+    def __init__(self, point, axis, kind):
+        self.point = App.Vector(point)
+        self.axis = App.Vector(axis).normalize() if App.Vector(axis).Length > 0 else App.Vector(0, 0, 1)
+        self.kind = kind
+
+
+def feature(obj, sub):
+    """The joint feature of `obj`'s sub-element `sub` ("Edge3", "Face2", "Vertex1"), in world
+    coordinates: a circular edge gives its centre and axis, a straight edge its midpoint and
+    direction, a cylindrical face its axis (the point nearest to its centre of mass), a planar face
+    its centre and normal, a spherical face its centre, a vertex its point (axis z)."""
+    shape = obj.Shape
+    element = shape.getElement(sub)
+    curve = getattr(element, "Curve", None)
+    surface = getattr(element, "Surface", None)
+    if sub.startswith("Vertex"):
+        return Feature(element.Point, App.Vector(0, 0, 1), "vertex")
+    if sub.startswith("Edge"):
+        if hasattr(curve, "Radius") and hasattr(curve, "Center"):
+            return Feature(curve.Center, curve.Axis, "circle")
+        if curve is not None and curve.TypeId == "Part::GeomLine":
+            a, b = element.Vertexes[0].Point, element.Vertexes[-1].Point
+            return Feature((a + b) * 0.5, b - a, "line")
+        first, last = element.FirstParameter, element.LastParameter
+        return Feature(element.valueAt(0.5 * (first + last)), element.tangentAt(first), "curve")
+    if sub.startswith("Face"):
+        kind = surface.TypeId if surface is not None else ""
+        if kind == "Part::GeomCylinder":
+            centre = element.CenterOfMass
+            base, axis = surface.Center, surface.Axis
+            foot = base + axis * (centre - base).dot(axis)
+            return Feature(foot, axis, "cylinder")
+        if kind == "Part::GeomPlane":
+            u0, u1, v0, v1 = element.ParameterRange
+            return Feature(element.CenterOfMass, element.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1)), "plane")
+        if kind == "Part::GeomSphere":
+            return Feature(surface.Center, App.Vector(0, 0, 1), "sphere")
+        return Feature(element.CenterOfMass, App.Vector(0, 0, 1), "face")
+    raise ValueError("%s.%s: expected a VertexN, EdgeN or FaceN" % (obj.Name, sub))
+
+
+def to_local(placement, point=None, axis=None):
+    """World point / direction into the local frame of an object with this placement."""
+    inverse = placement.inverse()
+    if point is not None:
+        return inverse.multVec(point)
+    return inverse.Rotation.multVec(axis)
+
+
+def mass_properties(shape):
+    """Volume, centre of mass and inertia tensor (about the centre of mass, global axes) of a
+    shape's solids, as FreeCAD computes them; None when it has no solid."""
+    solids = shape.Solids
+    if not solids:
+        return None
+    volume = sum(s.Volume for s in solids)
+    if volume <= 0:
+        return None
+    com = App.Vector(0, 0, 0)
+    for s in solids:
+        com += s.CenterOfMass * (s.Volume / volume)
+    inertia = [[0.0] * 3 for _ in range(3)]
+    for s in solids:
+        m = s.MatrixOfInertia  # about the solid's own centre of mass, unit density
+        d = s.CenterOfMass - com
+        dd = [d.x, d.y, d.z]
+        for i in range(3):
+            for j in range(3):
+                parallel = s.Volume * ((d.dot(d) if i == j else 0.0) - dd[i] * dd[j])
+                inertia[i][j] += m.A[4 * i + j] + parallel
+    return volume, com, inertia

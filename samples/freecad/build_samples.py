@@ -1,0 +1,126 @@
+"""Builds the FreeCAD samples from the STEP parts in samples/freecad/parts/: a crank-rocker
+four-bar, a slider-crank engine and a spatial RSSR linkage, each an assembly with picked joints,
+snapped into place. Run with freecadcmd:
+
+    freecadcmd samples/freecad/build_samples.py --out build/samples
+
+Writes fourbar.FCStd, slider-crank.FCStd and rssr.FCStd, and prints the time of each snap."""
+import math
+import os
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(sys.argv[-1] if sys.argv[-1].endswith(".py") else __file__))
+for arg in sys.argv:
+    if arg.endswith("build_samples.py"):
+        HERE = os.path.dirname(os.path.abspath(arg))
+REPO = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(REPO, "freecad_workbench"))
+sys.path.insert(0, HERE)
+
+import FreeCAD as App  # noqa: E402
+
+import dispcon_fc.assembly as da  # noqa: E402
+import parts  # noqa: E402
+
+PARTS = os.path.join(HERE, "parts")
+
+
+def step(name, shape_fn):
+    """The STEP file of a part, written from parts.py when missing."""
+    path = os.path.join(PARTS, name + ".step")
+    if not os.path.exists(path):
+        parts.write_step(shape_fn(), path)
+    return path
+
+
+def pin(obj, local):
+    return (obj, parts.circle_edge(obj.Shape, App.Vector(*local)))
+
+
+def place(obj, x, y, z, deg=0.0, axis=(0, 0, 1)):
+    obj.Placement = App.Placement(App.Vector(x, y, z), App.Rotation(App.Vector(*axis), deg))
+
+
+def fourbar(doc):
+    asm = da.create_assembly(doc, "FourBar")
+    g = da.import_part(asm, step("ground-3", lambda: parts.ground([(0, 0), (3, 0)])), "Ground", grounded=True)
+    crank = da.import_part(asm, step("link-1", lambda: parts.link(1)), "Crank")
+    coupler = da.import_part(asm, step("link-3", lambda: parts.link(3)), "Coupler")
+    rocker = da.import_part(asm, step("link-2.5", lambda: parts.link(2.5)), "Rocker")
+    place(crank, 0.1, -0.1, 0.05, 23)
+    place(coupler, 1.2, 0.6, -0.1, 11)
+    place(rocker, 2.9, 0.2, 0.1, 109)
+    da.add_joint(asm, "Revolute", pin(g, (0, 0, 0)), pin(crank, (0, 0, 0)))
+    da.add_joint(asm, "Revolute", pin(crank, (1, 0, 0)), pin(coupler, (0, 0, 0)))
+    da.add_joint(asm, "Revolute", pin(coupler, (3, 0, 0)), pin(rocker, (2.5, 0, 0)))
+    da.add_joint(asm, "Revolute", pin(g, (3, 0, 0)), pin(rocker, (0, 0, 0)))
+    return asm
+
+
+def slider_crank(doc):
+    asm = da.create_assembly(doc, "SliderCrank")
+    g = da.import_part(asm, step("ground-1", lambda: parts.ground([(0, 0)])), "Ground", grounded=True)
+    crank = da.import_part(asm, step("link-1", lambda: parts.link(1)), "Crank")
+    rod = da.import_part(asm, step("link-3", lambda: parts.link(3)), "Rod")
+    piston = da.import_part(asm, step("piston", parts.piston), "Piston")
+    place(crank, 0, 0, 0.05, 30)
+    place(rod, 0.8, 0.5, 0, -10)
+    place(piston, 3.5, 0.1, 0)
+    da.add_joint(asm, "Revolute", pin(g, (0, 0, 0)), pin(crank, (0, 0, 0)))
+    da.add_joint(asm, "Revolute", pin(crank, (1, 0, 0)), pin(rod, (0, 0, 0)))
+    bottom = next("Face%d" % (i + 1) for i, f in enumerate(piston.Shape.Faces)
+                  if abs(piston.Placement.inverse().multVec(f.CenterOfMass).z) < 1e-9)
+    da.add_joint(asm, "Ball", pin(rod, (3, 0, 0)), (piston, bottom))
+
+    def along_x(obj, y):
+        inv = obj.Placement.inverse()
+        for i, e in enumerate(obj.Shape.Edges):
+            a, b = inv.multVec(e.Vertexes[0].Point), inv.multVec(e.Vertexes[-1].Point)
+            if (e.Curve.TypeId == "Part::GeomLine" and abs(a.z) < 1e-9 and abs(b.z) < 1e-9
+                    and abs(a.y - y) < 1e-9 and abs(b.y - y) < 1e-9 and abs(b.x - a.x) > 0.1):
+                return "Edge%d" % (i + 1)
+        raise ValueError("no edge along x at y = %g" % y)
+
+    da.add_joint(asm, "Slider", (g, along_x(g, -0.3)), (piston, along_x(piston, -0.2)))
+    return asm
+
+
+def rssr(doc):
+    """A spatial RSSR linkage: a crank turning about z, a rod with ball joints at both ends, and a
+    rocker turning about x on a post."""
+    asm = da.create_assembly(doc, "RSSR")
+    g = da.import_part(asm, step("ground-1", lambda: parts.ground([(0, 0)])), "Ground", grounded=True)
+    post = da.import_part(asm, step("post-x", parts.post), "Post", grounded=True)
+    place(post, 2.0, 1.0, 0.8)
+    crank = da.import_part(asm, step("link-1", lambda: parts.link(1)), "Crank")
+    rod = da.import_part(asm, step("link-2.5", lambda: parts.link(2.5)), "Rod")
+    rocker = da.import_part(asm, step("link-1.5", lambda: parts.link(1.5)), "Rocker")
+    place(crank, 0, 0, 0.02, 20)
+    place(rod, 0.9, 0.4, 0.3, 25)
+    rocker.Placement = App.Placement(App.Vector(2.1, 1.0, 0.8),
+                                     App.Rotation(App.Vector(0, 1, 0), 90).multiply(App.Rotation(App.Vector(0, 0, 1), -60)))
+    da.add_joint(asm, "Revolute", pin(g, (0, 0, 0)), pin(crank, (0, 0, 0)))
+    da.add_joint(asm, "Ball", pin(crank, (1, 0, 0)), pin(rod, (0, 0, 0)))
+    da.add_joint(asm, "Ball", pin(rod, (2.5, 0, 0)), pin(rocker, (1.5, 0, 0)))
+    da.add_joint(asm, "Revolute", pin(post, (0, 0, 0)), pin(rocker, (0, 0, 0)))
+    return asm
+
+
+def main():
+    out = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else os.path.join(REPO, "build", "samples")
+    os.makedirs(out, exist_ok=True)
+    for name, build in (("fourbar", fourbar), ("slider-crank", slider_crank), ("rssr", rssr)):
+        doc = App.newDocument(name.replace("-", "_"))
+        asm = build(doc)
+        t0 = time.perf_counter()
+        r = da.solve(asm)
+        elapsed = time.perf_counter() - t0
+        print("%s: %s, snap %.1f ms" % (name, r.message, 1000 * elapsed))
+        if not r.converged:
+            sys.exit(1)
+        doc.saveAs(os.path.join(out, name + ".FCStd"))
+        App.closeDocument(doc.Name)
+
+
+main()
