@@ -134,6 +134,23 @@ TEST(Sweep, GrashofDoubleRockerLocksAtTheAnalyticAngles) {
   EXPECT_NE(svg.find("<polyline"), std::string::npos);
 }
 
+TEST(Sweep, BricardLoopMovesAlthoughGrueblerSaysItCannot) {
+  const Model m = sample("bricard.dcl");
+  SweepOptions s;
+  s.body = *m.find("link2");
+  s.axis = Vec3(0, -1, 0);  // joint 2's axis
+  s.to = 0.5;
+  s.steps = 25;
+  s.solve.tolerance = 1e-10;
+  const SweepResult r = sweep(m, s);
+  ASSERT_FALSE(r.locked) << r.message;
+  // The other links really move: link4's turn changes along the sweep.
+  const SweepSample& first = r.samples.front();
+  const SweepSample& last = r.samples.back();
+  EXPECT_GT(last.poses[4].q.angularDistance(first.poses[4].q), 0.05);
+  for (const SweepSample& x : r.samples) EXPECT_LT(x.max_residual, 1e-10);
+}
+
 TEST(Sweep, FullTurnOfACrankDoesNotLock) {
   SweepOptions s;
   const Model m = sample("fourbar.dcl");
