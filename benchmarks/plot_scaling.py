@@ -1,0 +1,59 @@
+"""Draws how cost grows with size from a Google Benchmark JSON file (scripts/bench writes one):
+time per solve against the number of parts, log-log, as SVG. Standard library only.
+
+    python3 benchmarks/plot_scaling.py build-bench/bench.json docs/images/scaling.svg"""
+import json
+import math
+import sys
+
+SERIES = [  # (name prefix, label, colour, parts per argument)
+    ("BM_FourBars_dispcon/", "dispcon: N four-bars", "#1f77b4", 3),
+    ("BM_FourBars_slvs/", "SolveSpace: N four-bars", "#d62728", 3),
+    ("BM_ClosedChain/", "dispcon: closed chain of N links", "#2ca02c", 1),
+    ("BM_FourBarGrid/", "dispcon: grid of coupled four-bars", "#ff7f0e", None),
+]
+
+
+def millis(b):
+    return b["cpu_time"] * {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b["time_unit"]]
+
+
+def main(src, dst):
+    runs = json.load(open(src))["benchmarks"]
+    series = []
+    for prefix, label, colour, per in SERIES:
+        pts = []
+        for b in runs:
+            if b["name"].startswith(prefix):
+                arg = int(b["name"][len(prefix):].split("/")[0])
+                parts = b.get("bodies", arg * per if per else arg)
+                pts.append((parts, millis(b)))
+        if pts:
+            series.append((label, colour, sorted(pts)))
+    xs = [p for _, _, s in series for p, _ in s]
+    ys = [t for _, _, s in series for _, t in s]
+    x0, x1 = math.log10(min(xs)), math.log10(max(xs))
+    y0, y1 = math.floor(math.log10(min(ys))), math.ceil(math.log10(max(ys)))
+    W, H, L, R, T, B = 720, 420, 70, 250, 20, 50
+    X = lambda v: L + (math.log10(v) - x0) / (x1 - x0) * (W - L - R)
+    Y = lambda v: T + (y1 - math.log10(v)) / (y1 - y0) * (H - T - B)
+    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="12">' % (W, H),
+           '<rect width="100%" height="100%" fill="white"/>',
+           '<rect x="%d" y="%d" width="%d" height="%d" fill="none" stroke="#888"/>' % (L, T, W - L - R, H - T - B)]
+    for e in range(int(y0), int(y1) + 1):
+        out.append('<text x="%d" y="%.1f" text-anchor="end">%g ms</text>' % (L - 4, Y(10 ** e) + 4, 10 ** e))
+    for e in range(int(math.floor(x0)), int(math.ceil(x1)) + 1):
+        if x0 <= e <= x1:
+            out.append('<text x="%.1f" y="%d" text-anchor="middle">%d</text>' % (X(10 ** e), H - B + 16, 10 ** e))
+    out.append('<text x="%d" y="%d" text-anchor="middle">parts (log scale)</text>' % ((W - R + L) / 2, H - 12))
+    for k, (label, colour, pts) in enumerate(series):
+        out.append('<polyline fill="none" stroke="%s" stroke-width="2" points="%s"/>' % (colour, " ".join("%.1f,%.1f" % (X(p), Y(t)) for p, t in pts)))
+        for p, t in pts:
+            out.append('<circle cx="%.1f" cy="%.1f" r="3" fill="%s"/>' % (X(p), Y(t), colour))
+        out.append('<text x="%d" y="%d" fill="%s">%s</text>' % (W - R + 10, T + 16 + 16 * k, colour, label))
+    out.append("</svg>")
+    open(dst, "w").write("\n".join(out) + "\n")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])
