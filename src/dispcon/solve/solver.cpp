@@ -457,6 +457,7 @@ struct Session::Impl {
       : model(m), o(opt), s(m, m.poses(), opt, held), comps(components(s)) {
     for (const Component& c : comps) progress.emplace_back(c);
     band.assign(s.joints.size(), -0.5 * opt.tolerance);
+    length_scale = m.length_scale();
     for (size_t c = 0; c < s.joints.size(); ++c) {
       const JointState& js = s.joints[c];
       if (js.active && !s.bodies[static_cast<size_t>(js.b1)].movable &&
@@ -473,6 +474,7 @@ struct Session::Impl {
   std::vector<double> band;
   std::vector<Pose> best, before;
   std::vector<int> immovable;  // active joints whose two bodies cannot move
+  double length_scale = 1;     // the model's size when the session was made
 };
 
 Session::Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held)
@@ -495,7 +497,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   SolverState& s = impl_->s;
   s.read_poses(poses);
   SolveResult result;
-  const double polish_threshold = o.polish_below * model.length_scale();
+  const double polish_threshold = o.polish_below * impl_->length_scale;
   std::deque<Progress>& progress = impl_->progress;
   for (Progress& p : progress) {
     p.reset();
