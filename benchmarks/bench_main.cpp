@@ -16,11 +16,8 @@ namespace {
 
 using namespace dispcon;
 
-// N independent four-bars, the crank fixed, coupler and rocker from a rough start.
-void BM_FourBars_dispcon(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  const Model start = bench::fourbars_dispcon(n);
-  SolveOptions o;
+// Times assemble() on a fresh copy of `start` each run; reports the iterations it took.
+void assemble_copies(benchmark::State& state, const Model& start, const SolveOptions& o = {}) {
   int iterations = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -32,6 +29,11 @@ void BM_FourBars_dispcon(benchmark::State& state) {
     benchmark::DoNotOptimize(m);
   }
   state.counters["iterations"] = iterations;
+}
+
+// N independent four-bars, the crank fixed, coupler and rocker from a rough start.
+void BM_FourBars_dispcon(benchmark::State& state) {
+  assemble_copies(state, bench::fourbars_dispcon(static_cast<int>(state.range(0))));
 }
 BENCHMARK(BM_FourBars_dispcon)
     ->Arg(1)
@@ -59,17 +61,7 @@ BENCHMARK(BM_FourBars_slvs)
 
 // A closed chain of n point-to-point links, one fixed, from a perturbed circle.
 void BM_ClosedChain(benchmark::State& state) {
-  const Model start = bench::closed_chain(static_cast<int>(state.range(0)));
-  int iterations = 0;
-  for (auto _ : state) {
-    state.PauseTiming();
-    Model m = start;
-    state.ResumeTiming();
-    const SolveResult r = assemble(m);
-    if (!r.converged) state.SkipWithError(r.message.c_str());
-    iterations = r.iterations;
-  }
-  state.counters["iterations"] = iterations;
+  assemble_copies(state, bench::closed_chain(static_cast<int>(state.range(0))));
 }
 BENCHMARK(BM_ClosedChain)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
@@ -97,16 +89,7 @@ BENCHMARK(BM_DragStep_ClosedChain)->Arg(20)->Arg(100)->Arg(400)->Unit(benchmark:
 void BM_FourBarGrid(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const Model start = bench::fourbar_grid(n, n);
-  int iterations = 0;
-  for (auto _ : state) {
-    state.PauseTiming();
-    Model m = start;
-    state.ResumeTiming();
-    const SolveResult r = assemble(m);
-    if (!r.converged) state.SkipWithError(r.message.c_str());
-    iterations = r.iterations;
-  }
-  state.counters["iterations"] = iterations;
+  assemble_copies(state, start);
   state.counters["bodies"] = start.body_count() - 1;
 }
 BENCHMARK(BM_FourBarGrid)->Arg(3)->Arg(10)->Arg(20)->Unit(benchmark::kMillisecond);
@@ -122,17 +105,7 @@ Model sample(const char* name) {
 
 // The paper's monocycle: assembly from the sample's rough positions.
 void BM_Monocycle_Assemble(benchmark::State& state) {
-  const Model start = sample("monocycle.dcl");
-  int iterations = 0;
-  for (auto _ : state) {
-    state.PauseTiming();
-    Model m = start;
-    state.ResumeTiming();
-    const SolveResult r = assemble(m);
-    if (!r.converged) state.SkipWithError(r.message.c_str());
-    iterations = r.iterations;
-  }
-  state.counters["iterations"] = iterations;
+  assemble_copies(state, sample("monocycle.dcl"));
 }
 BENCHMARK(BM_Monocycle_Assemble)->Unit(benchmark::kMicrosecond);
 

@@ -25,7 +25,24 @@ JOINT_TYPES = ["Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "
 # Document objects
 
 
-class AssemblyProxy:
+class _Proxy:
+    """What FreeCAD saves of a proxy: nothing, every value lives in the object's properties
+    (__getstate__ and __setstate__ for FreeCAD 0.20, dumps and loads for 1.x)."""
+
+    def execute(self, obj):
+        pass
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    dumps = __getstate__
+    loads = __setstate__
+
+
+class AssemblyProxy(_Proxy):
     """An App::DocumentObjectGroupPython holding the parts and the joints of one assembly."""
 
     def __init__(self, obj):
@@ -43,20 +60,9 @@ class AssemblyProxy:
     def onDocumentRestored(self, obj):
         self.attach(obj)
 
-    def execute(self, obj):
-        pass
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    dumps = __getstate__
-    loads = __setstate__
 
 
-class JointProxy:
+class JointProxy(_Proxy):
     """An App::FeaturePython: two references, the joint's type, its points and axes in each part's
     frame (taken from the picked geometry) and its limits."""
 
@@ -87,17 +93,6 @@ class JointProxy:
         obj.addProperty("App::PropertyFloat", "Residual", "Solve", "violation after the last solve")
         obj.addProperty("App::PropertyBool", "Violated", "Solve", "not satisfied after the last solve")
 
-    def execute(self, obj):
-        pass
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    dumps = __getstate__
-    loads = __setstate__
 
 
 def _is_joint(obj):

@@ -37,14 +37,7 @@ void angle_rotations(const Vec3& a1, const Vec3& a2, double min, double max, con
   const double theta = angle_between(a1, a2);
   const double delta = theta - std::clamp(theta, min, max);
   if (delta == 0) return;
-  const Vec3 n = rotation_axis(a1, a2);
-  const Vec3 An1 = b1.A * n;
-  const Vec3 An2 = b2.A * n;
-  const double mobility = n.dot(An1) + n.dot(An2);
-  if (mobility <= 0) return;
-  const double tau = delta / mobility;
-  dR1 += tau * An1;
-  dR2 -= tau * An2;
+  opposite_turns(rotation_axis(a1, a2), delta, b1, b2, dR1, dR2);
 }
 
 PartRows angle_rows(const Vec3& a1, const Vec3& a2, double min, double max, BoundTest bound) {

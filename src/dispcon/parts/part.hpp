@@ -29,4 +29,18 @@ struct PartRows {
   bool at_limit = false;
 };
 
+// Opposite angular impulses tau n on the two bodies, sized so the pair turns relatively by
+// `delta` about n (to first order): dR1 += tau A1 n, dR2 -= tau A2 n, tau = delta / (n.A1 n +
+// n.A2 n). Equal and opposite, so the pair's angular momentum is conserved (seed 4.2).
+inline void opposite_turns(const Vec3& n, double delta, const Mobility& b1, const Mobility& b2,
+                           Vec3& dR1, Vec3& dR2) {
+  const Vec3 An1 = b1.A * n;
+  const Vec3 An2 = b2.A * n;
+  const double mobility = n.dot(An1) + n.dot(An2);
+  if (mobility <= 0) return;
+  const double tau = delta / mobility;
+  dR1 += tau * An1;
+  dR2 -= tau * An2;
+}
+
 }  // namespace dispcon

@@ -46,13 +46,7 @@ void twist_rotations(const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3&
   if (!bisector(a1, a2, h)) return;
   const double delta = twist_violation(twist_angle(a1, a2, b1, b2), min, max);
   if (delta == 0) return;
-  const Vec3 Ah1 = body1.A * h;
-  const Vec3 Ah2 = body2.A * h;
-  const double mobility = h.dot(Ah1) + h.dot(Ah2);
-  if (mobility <= 0) return;
-  const double tau = delta / mobility;
-  dR1 += tau * Ah1;
-  dR2 -= tau * Ah2;
+  opposite_turns(h, delta, body1, body2, dR1, dR2);
 }
 
 PartRows twist_rows(const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2, double min,

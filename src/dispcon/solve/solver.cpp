@@ -316,7 +316,7 @@ std::string describe(const Model& model, const ConstraintReport& c) {
   return out.str();
 }
 
-std::vector<ConstraintReport> report(const Model& model, const SolverState& s, double tolerance) {
+std::vector<ConstraintReport> report(const SolverState& s, double tolerance) {
   std::vector<ConstraintReport> out;
   out.reserve(s.joints.size());
   for (size_t c = 0; c < s.joints.size(); ++c) {
@@ -330,7 +330,6 @@ std::vector<ConstraintReport> report(const Model& model, const SolverState& s, d
     r.at_limit = js.active && js.bounded && s.at_limit(js, contact_band(tolerance));
     out.push_back(r);
   }
-  (void)model;
   return out;
 }
 
@@ -361,7 +360,7 @@ std::vector<JointId> SolveResult::violated() const {
 std::vector<ConstraintReport> measure(const Model& model, const std::vector<Pose>& poses,
                                       const SolveOptions& options) {
   const SolverState s(model, poses, options, {});
-  return report(model, s, options.tolerance);
+  return report(s, options.tolerance);
 }
 
 namespace {
@@ -567,7 +566,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   }
   if (!finite) s.read_poses(poses);
   result.max_residual = r;
-  result.constraints = report(model, s, o.tolerance);
+  result.constraints = report(s, o.tolerance);
   s.write_poses(result.poses);
   if (result.converged) poses = result.poses;
 

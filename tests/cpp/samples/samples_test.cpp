@@ -1,5 +1,7 @@
 // The samples against analytic answers (errors below 1e-9 at tolerance 1e-10), loading the real
 // files so that the samples themselves are validated.
+#include "support/samples.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,11 +17,7 @@
 namespace dispcon {
 namespace {
 
-Model sample(const std::string& name) {
-  ParseResult r = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/" + name);
-  EXPECT_TRUE(r.ok()) << r.messages();
-  return std::move(*r.model);
-}
+using test_support::sample;
 
 SolveOptions tight() {
   SolveOptions o;

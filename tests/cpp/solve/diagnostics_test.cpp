@@ -9,15 +9,12 @@
 
 #include "dispcon/io/dcl_reader.hpp"
 #include "dispcon/io/sweep_plot.hpp"
+#include "support/samples.hpp"
 
 namespace dispcon {
 namespace {
 
-Model sample(const std::string& name) {
-  ParseResult r = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/" + name);
-  EXPECT_TRUE(r.ok()) << r.messages();
-  return std::move(*r.model);
-}
+using test_support::sample;
 
 std::vector<int> values(const std::vector<JointId>& ids) {
   std::vector<int> out;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "dispcon/io/dcl_reader.hpp"
+#include "support/samples.hpp"
 
 namespace dispcon {
 namespace {
@@ -136,9 +136,7 @@ TEST(Dynamics, FreeSystemKeepsItsMomentum) {
 }
 
 TEST(Dynamics, FlyingSnakeSlidesHitsTheBoundAndSwingsBack) {
-  ParseResult pr = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/snake.dcl");
-  ASSERT_TRUE(pr.ok()) << pr.messages();
-  Model m = std::move(*pr.model);
+  Model m = test_support::sample("snake.dcl");
   const BodyId tail = *m.find("tail");
   AnimateOptions o = gravity(3.0, 0.005);
   o.solve.tolerance = 1e-9;
