@@ -99,8 +99,18 @@ def _is_joint(obj):
     return hasattr(obj, "Proxy") and isinstance(getattr(obj, "Proxy", None), JointProxy)
 
 
+def shape_of(obj):
+    """The placed shape of a part: its Shape, or, for an App::Link, the linked shape."""
+    if hasattr(obj, "Shape"):
+        return obj.Shape
+    import Part
+
+    return Part.getShape(obj)
+
+
 def parts(asm):
-    return [o for o in asm.Group if hasattr(o, "Shape") and not _is_joint(o)]
+    return [o for o in asm.Group
+            if not _is_joint(o) and (hasattr(o, "Shape") or o.TypeId == "App::Link")]
 
 
 def joints(asm):
@@ -158,8 +168,11 @@ def import_part(asm, path, name=None, grounded=False):
 
 
 def link_part(asm, path, object_name, grounded=False):
-    """Links an object of another .FCStd file (App::Link) as a part."""
-    other = App.openDocument(path, hidden=True) if hasattr(App, "openDocument") else App.open(path)
+    """Links an object of another .FCStd file (App::Link) as a part. FreeCAD links across
+    documents only from a saved document: save the assembly's document first."""
+    if not asm.Document.FileName:
+        raise ValueError("save %s before linking parts from other files" % asm.Document.Label)
+    other = App.openDocument(path)
     source = other.getObject(object_name)
     if source is None:
         raise ValueError("%s has no object %s" % (path, object_name))
@@ -180,7 +193,7 @@ def _perpendicular(v):
 
 
 def _sampled_curve(obj, sub, count=64):
-    edge = obj.Shape.getElement(sub)
+    edge = shape_of(obj).getElement(sub)
     return [geometry.to_local(obj.Placement, point=p) for p in edge.discretize(count)]
 
 
@@ -315,7 +328,7 @@ class Adapter:
             pl = p.Placement
             kw = dict(position=_vec(pl.Base), rotation=_rotvec(pl.Rotation),
                       fixed=bool(getattr(p, "Grounded", False)))
-            props = geometry.mass_properties(p.Shape)
+            props = geometry.mass_properties(shape_of(p))
             if props is not None:
                 volume, com, inertia = props
                 density = getattr(p, "Density", 1.0) or 1.0
@@ -549,7 +562,7 @@ def interference(asm):
     out = []
     for i in range(len(ps)):
         for k in range(i + 1, len(ps)):
-            a, b = ps[i].Shape, ps[k].Shape
+            a, b = shape_of(ps[i]), shape_of(ps[k])
             if not a.BoundBox.intersect(b.BoundBox):
                 continue
             common = a.common(b)

@@ -111,8 +111,13 @@ def joint_command(kind):
         if len(refs) != 2:
             raise ValueError("select two edges, faces or vertices on two parts for a %s joint" % kind)
         j = da.add_joint(active_assembly(), kind, refs[0], refs[1])
-        Gui.Control.showDialog(JointPanel(j))
+        global last_panel
+        last_panel = JointPanel(j)
+        Gui.Control.showDialog(last_panel)
     return run
+
+
+last_panel = None  # the joint panel shown last (scripts and tests reach its form through it)
 
 
 class JointPanel:
@@ -171,6 +176,7 @@ def _drive():
     reached = da.drive(asm, js[0], [k * 2.0 for k in range(1, 181)], callback=frame)
     report("drove %s by %.1f degrees" % (js[0].Label, reached))
     QtWidgets.QApplication.processEvents()
+    return reached
 
 
 def _export():

@@ -16,7 +16,12 @@ def feature(obj, sub):
     coordinates: a circular edge gives its centre and axis, a straight edge its midpoint and
     direction, a cylindrical face its axis (the point nearest to its centre of mass), a planar face
     its centre and normal, a spherical face its centre, a vertex its point (axis z)."""
-    shape = obj.Shape
+    if hasattr(obj, "Shape"):
+        shape = obj.Shape
+    else:  # an App::Link: the linked shape, placed
+        import Part
+
+        shape = Part.getShape(obj)
     element = shape.getElement(sub)
     curve = getattr(element, "Curve", None)
     surface = getattr(element, "Surface", None)

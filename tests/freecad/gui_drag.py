@@ -105,6 +105,40 @@ try:
     painter.end()
     shot.save(os.path.join(OUT, "session.png"))
 
+    # A joint from picked edges through the workbench's command and its task panel: a limited
+    # revolute (+-30 degrees), then Drive turns it until the limit stops it.
+    import dispcon_fc.commands as commands
+
+    doc3 = App.newDocument("panel")
+    asm3 = da.create_assembly(doc3)
+    base = doc3.addObject("Part::Feature", "Base")
+    base.Shape = parts.ground([(0, 0)])
+    da.add_part(asm3, base, grounded=True)
+    arm = doc3.addObject("Part::Feature", "Arm")
+    arm.Shape = parts.link(1.5)
+    da.add_part(asm3, arm)
+    arm.Placement = App.Placement(App.Vector(0.05, 0.02, 0), App.Rotation())
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0)))
+    Gui.Selection.addSelection(arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0)))
+    Gui.runCommand("Dispcon_JointRevolute")
+    panel = commands.last_panel
+    assert panel is not None and Gui.Control.activeDialog(), "the joint panel did not open"
+    panel.form.hasRotation.setChecked(True)
+    panel.form.rotationMin.setValue(-30)
+    panel.form.rotationMax.setValue(30)
+    panel.accept()
+    joint = da.joints(asm3)[0]
+    assert joint.HasRotationLimits and abs(joint.RotationMax.Value - 30) < 1e-9
+    assert da.solve(asm3).converged
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(joint)
+    start = angle_of(arm)
+    reached = commands._drive()
+    turned = math.degrees(math.remainder(angle_of(arm) - start, 2 * math.pi))
+    assert abs(reached - 30) <= 2 and abs(turned - reached) < 1e-6, (reached, turned)
+    print("panel: revolute limited to +-30 degrees; Drive stopped at %.1f degrees" % reached)
+
     # A 20-part assembly (five four-bars side by side, 15 moving parts and 5 grounds): frames per
     # second of a drag, the solver and FreeCAD's update measured apart.
     doc2 = App.newDocument("twenty")

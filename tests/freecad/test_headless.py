@@ -190,6 +190,48 @@ def test_dcl_round_trip():
 
 
 @test
+def test_iges_brep_and_linked_parts():
+    with tempfile.TemporaryDirectory() as tmp:
+        # A pendulum: an IGES bar hinged to a BREP post, and a linked bar from another .FCStd
+        # hinged to the IGES bar's tip.
+        iges = os.path.join(tmp, "bar.iges")
+        parts.link(1.0).exportIges(iges)
+        brep = os.path.join(tmp, "post.brep")
+        parts.ground([(0, 0)]).exportBrep(brep)
+        library = App.newDocument("library")
+        lib_bar = library.addObject("Part::Feature", "LibraryBar")
+        lib_bar.Shape = parts.link(2.0)
+        library_path = os.path.join(tmp, "library.FCStd")
+        library.saveAs(library_path)
+        doc = App.newDocument("formats")
+        asm = da.create_assembly(doc)
+        try:
+            da.link_part(asm, library_path, "LibraryBar")
+            raise AssertionError("linking from an unsaved document should be refused")
+        except ValueError as e:
+            assert "save" in str(e)
+        doc.saveAs(os.path.join(tmp, "formats.FCStd"))
+        post = da.import_part(asm, brep, grounded=True)
+        bar = da.import_part(asm, iges)
+        linked = da.link_part(asm, library_path, "LibraryBar")
+        bar.Placement = App.Placement(App.Vector(0.1, 0.1, 0), App.Rotation(App.Vector(0, 0, 1), 30))
+        linked.Placement = App.Placement(App.Vector(1.2, 0.3, 0), App.Rotation(App.Vector(0, 0, 1), -20))
+        shape = da.shape_of
+        da.add_joint(asm, "Revolute", (post, parts.circle_edge(shape(post), App.Vector(0, 0, 0))),
+                     (bar, parts.circle_edge(shape(bar), App.Vector(0, 0, 0))))
+        da.add_joint(asm, "Revolute", (bar, parts.circle_edge(shape(bar), App.Vector(1, 0, 0))),
+                     (linked, parts.circle_edge(shape(linked), App.Vector(0, 0, 0))))
+        r = da.solve(asm)
+        assert r.converged, r.message
+        tip = bar.Placement.multVec(App.Vector(1, 0, 0))
+        assert (linked.Placement.Base - tip).Length < 1e-9
+        assert abs(tip.Length - 1) < 1e-9 and abs(tip.z) < 1e-9
+        assert da.check(asm)["dof"] == 2
+        App.closeDocument(doc.Name)
+        App.closeDocument(library.Name)
+
+
+@test
 def test_slider_crank_from_picked_faces_and_edges():
     doc = App.newDocument("slider")
     asm = da.create_assembly(doc)
