@@ -138,6 +138,13 @@ try:
     turned = math.degrees(math.remainder(angle_of(arm) - start, 2 * math.pi))
     assert abs(reached - 30) <= 2 and abs(turned - reached) < 1e-6, (reached, turned)
     print("panel: revolute limited to +-30 degrees; Drive stopped at %.1f degrees" % reached)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(asm3)
+    Gui.runCommand("Dispcon_Check")
+    check = commands.last_panel
+    assert Gui.Control.activeDialog() and check.result["dof"] == 1, check.result
+    assert "degrees of freedom: 1" in check.form.report.toPlainText()
+    check.accept()
 
     # A 20-part assembly (five four-bars side by side, 15 moving parts and 5 grounds): frames per
     # second of a drag, the solver and FreeCAD's update measured apart.
