@@ -571,6 +571,34 @@ def interference(asm):
     return out
 
 
+def interference_along(asm, joint, angles_deg, ignore=()):
+    """Drives `joint` (as `drive` does) through the angles and checks for collisions at each:
+    returns [(angle, part_a, part_b, overlap_volume)], then puts every part back where it was.
+    Pairs listed in `ignore` (such as parts that touch at their joint by design) are skipped."""
+    part = joint.Reference2[0]
+    axis_world = part.Placement.Rotation.multVec(joint.Axis2)
+    pivot = part.Placement.multVec(joint.Point2)
+    start = part.Placement
+    before = {p.Name: p.Placement for p in parts(asm)}
+    skip = {frozenset((a.Name, b.Name)) for a, b in ignore}
+    hits = []
+    d = Drag(asm, part)
+    try:
+        for a in angles_deg:
+            turn = App.Rotation(axis_world, a)
+            r = d.move(App.Placement(pivot + turn.multVec(start.Base - pivot), turn.multiply(start.Rotation)))
+            if not r.converged:
+                break
+            for pa, pb, volume in interference(asm):
+                if frozenset((pa.Name, pb.Name)) not in skip:
+                    hits.append((a, pa, pb, volume))
+    finally:
+        for p in parts(asm):
+            p.Placement = before[p.Name]
+        d.finish()
+    return hits
+
+
 def export_dcl(asm, path):
     """Writes the assembly as a .dcl file for the command line."""
     adapter = Adapter(asm)

@@ -190,6 +190,40 @@ def test_dcl_round_trip():
 
 
 @test
+def test_interference_at_the_pose_and_along_a_sweep():
+    import Part
+
+    with tempfile.TemporaryDirectory() as tmp:
+        doc = App.newDocument("clash")
+        asm, g, crank, coupler, rocker = fourbar(doc, tmp)
+        assert da.solve(asm).converged
+        # An obstacle where the crank passes when it points down (angle -90 degrees).
+        block = doc.addObject("Part::Feature", "Block")
+        block.Shape = Part.makeBox(0.2, 0.2, 0.3, App.Vector(-0.1, -0.9, -0.1))
+        da.add_part(asm, block, grounded=True)
+        # Parts hinged together touch at their bosses by design: only the block counts here.
+        touching = [(j.Reference1[0], j.Reference2[0]) for j in da.joints(asm)]
+        at_pose = [(a.Name, b.Name) for a, b, v in da.interference(asm)
+                   if (a, b) not in touching and (b, a) not in touching]
+        assert at_pose == [], at_pose
+        before = crank.Placement
+        hits = da.interference_along(asm, da.joints(asm)[0], range(0, 360, 10), ignore=touching)
+        # (The coplanar links also cross each other's bosses on the way: real clashes of this
+        # design, reported too; the block's are the ones placed on purpose.)
+        block_hits = [(t, a, b) for t, a, b, _ in hits if "Block" in (a.Name, b.Name)]
+        crank_hits = [t for t, a, b in block_hits if crank.Name in (a.Name, b.Name)]
+        assert crank_hits, "the crank never met the block"
+        # Only the crank and the coupler's boss on its tip come near the block.
+        assert all({a.Name, b.Name} <= {"Block", crank.Name, coupler.Name} for _, a, b in block_hits)
+        angles = sorted({round(t) for t in crank_hits})
+        start = math.degrees(angle_of(crank))
+        assert all(abs(math.remainder(math.radians(start + t + 90), 2 * math.pi)) < math.radians(40)
+                   for t in angles), (start, angles)
+        assert same(crank.Placement, before, 1e-12), "the sweep did not put the parts back"
+        App.closeDocument(doc.Name)
+
+
+@test
 def test_iges_brep_and_linked_parts():
     with tempfile.TemporaryDirectory() as tmp:
         # A pendulum: an IGES bar hinged to a BREP post, and a linked bar from another .FCStd
