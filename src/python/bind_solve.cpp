@@ -103,7 +103,8 @@ void bind_solve(pyb::module_& m, ModelClass& model) {
               throw std::invalid_argument("no joint " + std::to_string(index));
             }
             Joint& j = self.joint(JointId{index});
-            if (!j.has_hinge) throw std::invalid_argument("joint " + std::to_string(index) + " has no hinge");
+            if (!j.has_hinge)
+              throw std::invalid_argument("joint " + std::to_string(index) + " has no hinge");
             if (p1) j.p1 = *p1;
             if (p2) j.p2 = *p2;
           },

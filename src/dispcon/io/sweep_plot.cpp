@@ -88,12 +88,13 @@ std::string write_sweep_svg(const Model& model, const SweepResult& r) {
     out << buf;
   }
   if (r.locked) {
-    std::snprintf(buf, sizeof buf,
-                  "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"red\" "
-                  "stroke-dasharray=\"6 4\"/>\n"
-                  "<text x=\"%.1f\" y=\"%.1f\" fill=\"red\" text-anchor=\"end\">locks at %.4g</text>\n",
-                  X(r.lock_value), top, X(r.lock_value), top + ph, X(r.lock_value) - 4,
-                  top + ph - 8, r.lock_value);
+    std::snprintf(
+        buf, sizeof buf,
+        "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"red\" "
+        "stroke-dasharray=\"6 4\"/>\n"
+        "<text x=\"%.1f\" y=\"%.1f\" fill=\"red\" text-anchor=\"end\">locks at %.4g</text>\n",
+        X(r.lock_value), top, X(r.lock_value), top + ph, X(r.lock_value) - 4, top + ph - 8,
+        r.lock_value);
     out << buf;
   }
   out << "</svg>\n";
