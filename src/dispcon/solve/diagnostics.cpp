@@ -20,8 +20,7 @@ namespace {
 
 constexpr double kRankTolerance = 1e-8;
 
-// Columns of the bodies that can move, each scaled to unit norm (rotation and translation columns
-// have different units; the rank should not depend on them).
+// Columns of the bodies that can move (the fixed ones' columns do not count).
 Eigen::MatrixXd movable_columns(const Model& model,
                                 const Eigen::SparseMatrix<double, Eigen::RowMajor>& J,
                                 std::vector<int>& body_of_column) {
@@ -54,6 +53,12 @@ Eigen::MatrixXd equilibrate(Eigen::MatrixXd A) {
   for (Eigen::Index r = 0; r < A.rows(); ++r) {
     const double n = A.row(r).norm();
     if (n > 0) A.row(r) /= n;
+  }
+  // Rotation and translation columns have different units; scaling a column changes neither the
+  // rank nor which body a null-space direction moves.
+  for (Eigen::Index c = 0; c < A.cols(); ++c) {
+    const double n = A.col(c).norm();
+    if (n > 0) A.col(c) /= n;
   }
   return A;
 }
