@@ -156,15 +156,8 @@ def import_part(asm, path, name=None, grounded=False):
         raise ValueError("%s: expected a STEP, IGES or BREP file" % path)
     shape = Part.Shape()
     shape.read(path)
-    doc = asm.Document
-    doc.openTransaction("Import part")
-    obj = doc.addObject("Part::Feature", name or os.path.splitext(os.path.basename(path))[0])
-    obj.Shape = shape
-    _part_properties(obj)
-    obj.Grounded = grounded
-    asm.addObject(obj)
-    doc.commitTransaction()
-    return obj
+    name = name or os.path.splitext(os.path.basename(path))[0]
+    return _new_part(asm, "Import part", "Part::Feature", name, grounded, Shape=shape)
 
 
 def link_part(asm, path, object_name, grounded=False):
@@ -176,10 +169,16 @@ def link_part(asm, path, object_name, grounded=False):
     source = other.getObject(object_name)
     if source is None:
         raise ValueError("%s has no object %s" % (path, object_name))
+    return _new_part(asm, "Link part", "App::Link", object_name, grounded, LinkedObject=source)
+
+
+def _new_part(asm, action, type_id, name, grounded, **values):
+    """A new object of the document made a part of the assembly, in one undo step."""
     doc = asm.Document
-    doc.openTransaction("Link part")
-    obj = doc.addObject("App::Link", object_name)
-    obj.LinkedObject = source
+    doc.openTransaction(action)
+    obj = doc.addObject(type_id, name)
+    for key, value in values.items():
+        setattr(obj, key, value)
     _part_properties(obj)
     obj.Grounded = grounded
     asm.addObject(obj)

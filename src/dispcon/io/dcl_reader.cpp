@@ -223,6 +223,24 @@ class Parser {
     clamp(hi, "max");
   }
 
+  // A block's statement keyword: a word, not given before in the block (`seen` records it).
+  const std::string& keyword(const Token& t, const char* block, const std::string& where,
+                             std::map<std::string, Place>& seen) {
+    if (t.kind != Token::Word) {
+      error(at(t), std::string("expected ") + (block[0] == 'o' ? "an " : "a ") + block +
+                       " statement or 'end', found " + quote(t));
+      throw StatementError{};
+    }
+    const auto first = seen.find(t.text);
+    if (first != seen.end()) {
+      error(at(t), "'" + t.text + "' given twice in " + where + " (first at line " +
+                       std::to_string(first->second.line) + ")");
+      throw StatementError{};
+    }
+    seen[t.text] = at(t);
+    return t.text;
+  }
+
   // `end` (with an optional `;`) closing a block opened at `open`.
   bool block_end(const std::string& block, Place open) {
     const Token& t = peek();
@@ -261,17 +279,7 @@ class Parser {
     while (!block_end("object '" + ob.body.name + "'", ob.at) && !too_many()) {
       const Token& t = next();
       try {
-        if (t.kind != Token::Word) {
-          error(at(t), "expected an object statement or 'end', found " + quote(t));
-          throw StatementError{};
-        }
-        const std::string& k = t.text;
-        if (seen.count(k)) {
-          error(at(t), "'" + k + "' given twice in object '" + ob.body.name + "' (first at line " +
-                           std::to_string(seen[k].line) + ")");
-          throw StatementError{};
-        }
-        seen[k] = at(t);
+        const std::string& k = keyword(t, "object", "object '" + ob.body.name + "'", seen);
         Body& b = ob.body;
         if (k == "position") {
           b.pose.x = vec3("position");
@@ -335,16 +343,7 @@ class Parser {
     while (!block_end("constraint", cb.at) && !too_many()) {
       const Token& t = next();
       try {
-        if (t.kind != Token::Word) {
-          error(at(t), "expected a constraint statement or 'end', found " + quote(t));
-          throw StatementError{};
-        }
-        const std::string& k = t.text;
-        if (seen.count(k)) {
-          error(at(t), "'" + k + "' given twice in this constraint (first at line " +
-                           std::to_string(seen[k].line) + ")");
-          throw StatementError{};
-        }
+        const std::string& k = keyword(t, "constraint", "this constraint", seen);
         static const char* guides[] = {"axial",  "planar",   "sphere",
                                        "circle", "cylinder", "polyline"};
         bool is_guide = false;
@@ -355,7 +354,6 @@ class Parser {
                            std::to_string(cb.guide_at.line));
           throw StatementError{};
         }
-        seen[k] = at(t);
         if (k == "object1") {
           cb.object1 = name("an object name");
           cb.object1_at = at(t);
