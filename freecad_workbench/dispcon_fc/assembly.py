@@ -154,6 +154,8 @@ def import_part(asm, path, name=None, grounded=False):
     ext = os.path.splitext(path)[1].lower()
     if ext not in (".step", ".stp", ".iges", ".igs", ".brep", ".brp"):
         raise ValueError("%s: expected a STEP, IGES or BREP file" % path)
+    if not os.path.isfile(path):
+        raise ValueError("%s: no such file" % path)
     shape = Part.Shape()
     shape.read(path)
     name = name or os.path.splitext(os.path.basename(path))[0]
@@ -176,12 +178,17 @@ def _new_part(asm, action, type_id, name, grounded, **values):
     """A new object of the document made a part of the assembly, in one undo step."""
     doc = asm.Document
     doc.openTransaction(action)
-    obj = doc.addObject(type_id, name)
-    for key, value in values.items():
-        setattr(obj, key, value)
-    _part_properties(obj)
-    obj.Grounded = grounded
-    asm.addObject(obj)
+    try:
+        obj = doc.addObject(type_id, name)
+        for key, value in values.items():
+            setattr(obj, key, value)
+        _part_properties(obj)
+        obj.Grounded = grounded
+        asm.addObject(obj)
+    except Exception:
+        # A command that fails leaves the document as it was.
+        doc.abortTransaction()
+        raise
     doc.commitTransaction()
     return obj
 

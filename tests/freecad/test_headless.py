@@ -245,6 +245,16 @@ def test_iges_brep_and_linked_parts():
         except ValueError as e:
             assert "save" in str(e)
         doc.saveAs(os.path.join(tmp, "formats.FCStd"))
+        # A file that is not there, or not a CAD file, is refused and adds nothing.
+        before = sorted(o.Name for o in doc.Objects)
+        for bad in (os.path.join(tmp, "missing.step"), os.path.join(tmp, "library.FCStd")):
+            try:
+                da.import_part(asm, bad)
+            except ValueError as e:
+                assert str(e).startswith(bad + ": "), e
+            else:
+                raise AssertionError("importing %s should fail" % bad)
+            assert sorted(o.Name for o in doc.Objects) == before
         post = da.import_part(asm, brep, grounded=True)
         bar = da.import_part(asm, iges)
         linked = da.link_part(asm, library_path, "LibraryBar")
