@@ -160,7 +160,15 @@ try:
             asm2.addObject(j)
         cranks.append(c2)
     assert da.solve(asm2).converged
-    view2 = Gui.ActiveDocument.ActiveView
+    # The 20-part document's own view, in front: the update time must be that of its redraw.
+    Gui.updateGui()
+    Gui.setActiveDocument(doc2.Name)
+    mdi = Gui.getMainWindow().findChild(QtWidgets.QMdiArea)
+    for sub in mdi.subWindowList():
+        if sub.windowTitle().startswith(doc2.Label):
+            mdi.setActiveSubWindow(sub)
+    Gui.updateGui()
+    view2 = Gui.getDocument(doc2.Name).ActiveView
     view2.viewIsometric()
     Gui.SendMsgToActiveView("ViewFit")
     d = da.Drag(asm2, cranks[0])
