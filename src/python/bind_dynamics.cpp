@@ -13,6 +13,7 @@ struct PyFrame {
   std::vector<int> violated;
   std::map<std::string, Vec3> positions;
   std::map<std::string, Eigen::Vector4d> quaternions;
+  std::map<std::string, std::pair<Vec3, Eigen::Vector4d>> poses;
 };
 
 struct PyAnimation {
@@ -34,7 +35,8 @@ void bind_dynamics(pyb::module_& m, ModelClass& model) {
       .def_readonly("converged", &PyFrame::converged)
       .def_readonly("violated", &PyFrame::violated)
       .def_readonly("positions", &PyFrame::positions, "body name -> position")
-      .def_readonly("quaternions", &PyFrame::quaternions, "body name -> (w, x, y, z)");
+      .def_readonly("quaternions", &PyFrame::quaternions, "body name -> (w, x, y, z)")
+      .def_readonly("poses", &PyFrame::poses, "body name -> (position, quaternion (w, x, y, z))");
   pyb::class_<PyAnimation>(m, "AnimateResult")
       .def_readonly("converged", &PyAnimation::converged)
       .def_readonly("stopped", &PyAnimation::stopped)
@@ -76,6 +78,7 @@ void bind_dynamics(pyb::module_& m, ModelClass& model) {
             const std::string& name = self.body(BodyId{i}).name;
             pf.positions[name] = p.x;
             pf.quaternions[name] = Eigen::Vector4d(p.q.w(), p.q.x(), p.q.y(), p.q.z());
+            pf.poses[name] = {pf.positions[name], pf.quaternions[name]};
           }
           out.frames.push_back(std::move(pf));
         }

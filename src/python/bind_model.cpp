@@ -14,6 +14,12 @@ Model parsed(ParseResult r) {
   return std::move(*r.model);
 }
 
+// What a joint joins and where it was declared; read by attribute, or by key as a dict.
+struct JointInfo {
+  int index = 0, line = 0;
+  std::string object1, object2, label;
+};
+
 // A live view of one body of a model.
 struct BodyView {
   Model* model;
@@ -52,7 +58,13 @@ double bound(const pyb::sequence& s, size_t k, double fallback) {
 Mat3 rotation_from(const pyb::object& rotation) {
   const pyb::array_t<double> a = pyb::array_t<double>::ensure(rotation);
   if (a && a.ndim() == 2 && a.shape(0) == 3 && a.shape(1) == 3) {
-    return rotation.cast<Mat3>();
+    const Mat3 r = rotation.cast<Mat3>();
+    // Quat(Mat3) silently returns a meaningless quaternion for a matrix that is no rotation.
+    if (!(r.transpose() * r).isIdentity(1e-6) || r.determinant() < 0) {
+      throw std::invalid_argument(
+          "rotation: the 3x3 matrix is not a rotation (orthonormal, det +1)");
+    }
+    return r;
   }
   return quat_from_rotation_vector(vec3(rotation, "rotation")).toRotationMatrix();
 }
@@ -60,6 +72,27 @@ Mat3 rotation_from(const pyb::object& rotation) {
 }  // namespace
 
 ModelClass bind_model(pyb::module_& m) {
+  pyb::class_<JointInfo>(m, "JointInfo", "One joint: the bodies it joins and its .dcl line.")
+      .def_readonly("index", &JointInfo::index)
+      .def_readonly("object1", &JointInfo::object1)
+      .def_readonly("object2", &JointInfo::object2)
+      .def_readonly("line", &JointInfo::line)
+      .def_readonly("label", &JointInfo::label)
+      .def(
+          "__getitem__",
+          [](const JointInfo& j, const std::string& key) -> pyb::object {
+            if (key == "index") return pyb::int_(j.index);
+            if (key == "line") return pyb::int_(j.line);
+            if (key == "object1") return pyb::str(j.object1);
+            if (key == "object2") return pyb::str(j.object2);
+            if (key == "label") return pyb::str(j.label);
+            throw pyb::key_error(key);
+          },
+          pyb::arg("key"))
+      .def("__repr__", [](const JointInfo& j) {
+        return "<dispcon.JointInfo " + std::to_string(j.index) + ": " + j.object1 + " -> " +
+               j.object2 + ">";
+      });
   pyb::class_<BodyView>(m, "Body", "A live view of one body of a model.")
       .def_property_readonly("name", [](const BodyView& b) { return b.get().name; })
       .def_property_readonly(
@@ -264,15 +297,11 @@ ModelClass bind_model(pyb::module_& m) {
             if (i < 0 || i >= model.joint_count())
               throw std::invalid_argument("no joint " + std::to_string(i));
             const Joint& j = model.joint(JointId{i});
-            pyb::dict d;
-            d["index"] = i;
-            d["object1"] = model.body(j.body1).name;
-            d["object2"] = model.body(j.body2).name;
-            d["line"] = j.line;
-            d["label"] = j.label;
-            return d;
+            return JointInfo{i, j.line, model.body(j.body1).name, model.body(j.body2).name,
+                             j.label};
           },
-          pyb::arg("index"))
+          pyb::arg("index"),
+          "The joint's index, object1, object2, line (0 if built in code), label.")
       .def("to_dcl", &write_dcl, "The model as .dcl text.")
       .def(
           "save",

@@ -43,6 +43,14 @@ def freudenstein(t, a=1.0, b=3.0, c=2.5, d=3.0):
     return math.atan2(B[1] - D[1], B[0] - D[0])
 
 
+def quat_matrix(q):
+    """The rotation matrix of a unit quaternion (w, x, y, z)."""
+    w, x, y, z = q
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
 class Load(unittest.TestCase):
     def test_load_sample_and_assemble(self):
         m = dispcon.load(os.path.join(SRC, "samples", "monocycle.dcl"))
@@ -121,6 +129,60 @@ class Solve(unittest.TestCase):
             self.assertAlmostEqual(angle_of(m, "rocker"), freudenstein(t0 + 0.05 * k), delta=1e-8)
 
 
+class Poses(unittest.TestCase):
+    def test_set_pose_takes_a_rotation_matrix_or_vector(self):
+        m = dispcon.Model()
+        m.add_body("bar")
+        t = 0.7
+        R = np.array([[math.cos(t), -math.sin(t), 0], [math.sin(t), math.cos(t), 0], [0, 0, 1]])
+        m.set_pose("bar", position=[1, 2, 3], rotation=R)
+        b = m.body("bar")
+        np.testing.assert_allclose(b.rotation, R, atol=1e-12)
+        np.testing.assert_allclose(b.rotation_vector, [0, 0, t], atol=1e-12)
+        np.testing.assert_allclose(b.quaternion, [math.cos(t / 2), 0, 0, math.sin(t / 2)], atol=1e-12)
+        np.testing.assert_array_equal(b.position, [1, 2, 3])
+        m.set_pose("bar", rotation=(t, 0, 0))
+        np.testing.assert_allclose(m.body("bar").rotation[1:, 1],
+                                   [math.cos(t), math.sin(t)], atol=1e-12)
+
+    def test_set_pose_refuses_a_matrix_that_is_no_rotation(self):
+        m = dispcon.Model()
+        m.add_body("bar", position=(0.5, 0, 0))
+        with self.assertRaises(ValueError) as e:
+            m.set_pose("bar", rotation=2 * np.eye(3))
+        self.assertIn("not a rotation", str(e.exception))
+        with self.assertRaises(ValueError):
+            m.set_pose("bar", rotation=np.diag([1.0, 1.0, -1.0]))
+        with self.assertRaises(ValueError):
+            m.set_pose("nobody", position=(0, 0, 0))
+        np.testing.assert_array_equal(m.body("bar").rotation, np.eye(3))
+
+    def test_joint_info_names_the_bodies(self):
+        m = fourbar()
+        self.assertEqual(m.joint_count(), 4)
+        j = m.joint(1)
+        self.assertEqual((j.index, j.object1, j.object2, j.line), (1, "crank", "coupler", 0))
+        self.assertEqual(j["object2"], "coupler")
+        loaded = dispcon.loads(m.to_dcl())
+        lines = [loaded.joint(i).line for i in range(loaded.joint_count())]
+        self.assertTrue(all(line > 0 for line in lines), lines)
+        self.assertEqual(lines, sorted(lines))
+        with self.assertRaises(ValueError):
+            m.joint(4)
+
+    def test_residuals_measure_without_moving(self):
+        m = dispcon.Model()
+        m.add_body("bar", position=(0.3, 0.4, 0))
+        m.add_joint("bar", hinge=((0, 0, 0), (0, 0, 0)))
+        reports = m.residuals()
+        self.assertEqual(len(reports), 1)
+        self.assertFalse(reports[0].satisfied)
+        self.assertGreater(reports[0].residual, 0)
+        np.testing.assert_array_equal(m.body("bar").position, [0.3, 0.4, 0])
+        self.assertTrue(m.assemble().converged)
+        self.assertTrue(all(r.satisfied for r in m.residuals()))
+
+
 class Diagnostics(unittest.TestCase):
     def test_pendulum_has_one_degree_of_freedom(self):
         m = dispcon.Model()
@@ -134,6 +196,32 @@ class Diagnostics(unittest.TestCase):
         c = fourbar().check()
         self.assertEqual(c.dof, 1)
         self.assertEqual(c.redundant, [3])
+
+
+    def test_sweep_turns_a_grashof_crank_fully_and_puts_it_back(self):
+        m = fourbar()
+        m.assemble()
+        before = m.body("rocker").position.copy()
+        s = m.sweep("crank", axis=Z, start=0.0, stop=2 * math.pi, steps=36)
+        self.assertFalse(s.locked, s.message)
+        self.assertEqual(len(s.samples), 37)
+        self.assertTrue(all(x.converged for x in s.samples))
+        np.testing.assert_array_equal(m.body("rocker").position, before)
+
+    def test_animated_pendulum_keeps_its_pivot_and_falls(self):
+        m = dispcon.Model()
+        m.add_body("bar", position=(0.5, 0, 0), mass=1.0, inertia=(0.01, 0.1, 0.1))
+        m.add_joint("bar", hinge=((0, 0, 0), (-0.5, 0, 0)), angle=(Z, Z, 0, 0))
+        a = m.animate(duration=0.2, dt=0.01, gravity=(0, -9.81, 0))
+        self.assertTrue(a.converged, a.message)
+        self.assertGreaterEqual(len(a.frames), 20)
+        times = [f.time for f in a.frames]
+        self.assertEqual(times, sorted(times))
+        for f in a.frames:
+            x, q = f.poses["bar"]
+            pivot = x + quat_matrix(q) @ np.array([-0.5, 0, 0])
+            np.testing.assert_allclose(pivot, [0, 0, 0], atol=1e-6)
+        self.assertLess(a.frames[-1].poses["bar"][0][1], -1e-3)
 
 
 class Files(unittest.TestCase):
