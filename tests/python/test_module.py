@@ -98,6 +98,17 @@ class Solve(unittest.TestCase):
         self.assertEqual(len(d.steps), 20)
         self.assertAlmostEqual(angle_of(m, "rocker"), freudenstein(t0 + 1.0), delta=1e-9)
 
+    def test_solver_options_as_keywords(self):
+        for scheme in ("jacobi", "gauss-seidel"):
+            m = fourbar()
+            r = m.assemble(tolerance=1e-10, scheme=scheme, newton_polish=False,
+                           max_iterations=100000)
+            self.assertTrue(r.converged, r.message)
+            self.assertAlmostEqual(angle_of(m, "rocker"), freudenstein(angle_of(m, "crank")),
+                                   delta=1e-8)
+        with self.assertRaises(ValueError):
+            fourbar().assemble(scheme="newton")
+
     def test_held_bodies_do_not_move(self):
         m = fourbar()
         m.assemble()
@@ -207,6 +218,20 @@ class Diagnostics(unittest.TestCase):
         self.assertEqual(len(s.samples), 37)
         self.assertTrue(all(x.converged for x in s.samples))
         np.testing.assert_array_equal(m.body("rocker").position, before)
+
+    def test_sweep_locks_at_the_twist_limits(self):
+        m = dispcon.Model()
+        m.add_body("bar", position=(0.5, 0, 0))
+        X = (1, 0, 0)
+        m.add_joint("bar", hinge=((0, 0, 0), (-0.5, 0, 0)), angle=(Z, Z, 0, 0),
+                    twist=(X, X, -0.5, 0.5))
+        self.assertTrue(m.assemble().converged)
+        for stop, limit in ((1.0, 0.5), (-1.0, -0.5)):
+            s = m.sweep("bar", axis=Z, start=0.0, stop=stop, steps=100)
+            self.assertTrue(s.locked, s.message)
+            self.assertAlmostEqual(s.lock_value, limit, delta=1e-6)
+            self.assertLess(len(s.samples), 101)
+            self.assertEqual(s.samples[-1].limits_active, [0])
 
     def test_animated_pendulum_keeps_its_pivot_and_falls(self):
         m = dispcon.Model()
