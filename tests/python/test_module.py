@@ -93,7 +93,8 @@ class Solve(unittest.TestCase):
         m = fourbar()
         m.assemble()
         t0 = angle_of(m, "crank")
-        d = m.drag("crank", position=(0, 0, 0), rotation=(0, 0, t0 + 1.0), steps=20, tolerance=1e-10)
+        d = m.drag("crank", position=(0, 0, 0), rotation=(0, 0, t0 + 1.0), steps=20,
+                   tolerance=1e-10)
         self.assertTrue(d.converged, d.message)
         self.assertEqual(len(d.steps), 20)
         self.assertAlmostEqual(angle_of(m, "rocker"), freudenstein(t0 + 1.0), delta=1e-9)
@@ -150,7 +151,8 @@ class Poses(unittest.TestCase):
         b = m.body("bar")
         np.testing.assert_allclose(b.rotation, R, atol=1e-12)
         np.testing.assert_allclose(b.rotation_vector, [0, 0, t], atol=1e-12)
-        np.testing.assert_allclose(b.quaternion, [math.cos(t / 2), 0, 0, math.sin(t / 2)], atol=1e-12)
+        np.testing.assert_allclose(b.quaternion, [math.cos(t / 2), 0, 0, math.sin(t / 2)],
+                                   atol=1e-12)
         np.testing.assert_array_equal(b.position, [1, 2, 3])
         m.set_pose("bar", rotation=(t, 0, 0))
         np.testing.assert_allclose(m.body("bar").rotation[1:, 1],
