@@ -130,6 +130,19 @@ class Solve(unittest.TestCase):
         self.assertEqual(sorted(r.violated), [0, 1])
         np.testing.assert_array_equal(m.body("bar").position, [0.3, 0, 0])
 
+    def test_drag_to_an_unreachable_pose_fails_and_keeps_the_poses(self):
+        m = dispcon.Model()
+        m.add_body("bar", position=(0.5, 0, 0))
+        m.add_joint("bar", hinge=((0, 0, 0), (-0.5, 0, 0)), angle=(Z, Z, 0, 0))
+        self.assertTrue(m.assemble().converged)
+        # Turning the bar about its own centre moves its pinned end off the pivot.
+        d = m.drag("bar", position=(0.5, 0, 0), rotation=(0, 0, 1.0), steps=10)
+        self.assertFalse(d.converged)
+        self.assertEqual(d.failed_step, 0)
+        self.assertGreater(d.max_residual, 1e-3)
+        np.testing.assert_array_equal(m.body("bar").position, [0.5, 0, 0])
+        np.testing.assert_array_equal(m.body("bar").rotation_vector, [0, 0, 0])
+
     def test_live_dragger(self):
         m = fourbar()
         m.assemble()
