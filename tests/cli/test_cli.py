@@ -102,6 +102,77 @@ class Check(unittest.TestCase):
         self.assertEqual(doc["redundant"], [])
         self.assertEqual(doc["conflicting"], [])
 
+    def test_two_pins_one_unit_apart_conflict_and_exit_3(self):
+        r = run("check", os.path.join(DATA, "overconstrained.dcl"), "--json", "--max-iterations", "300")
+        self.assertEqual(r.returncode, 3)
+        doc = json.loads(r.stdout)
+        self.assertFalse(doc["converged"])
+        self.assertEqual(len(doc["conflicting"]), 1)
+        self.assertIn(doc["conflicting"][0], (0, 1))
+
+
+class Animate(unittest.TestCase):
+    def test_frames_carry_their_time_and_the_csv_a_row_per_body_per_frame(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "frames.csv")
+            svg = os.path.join(tmp, "frames.svg")
+            r = run("animate", os.path.join(DATA, "pendulum.dcl"), "--duration", "0.1", "--dt", "0.02",
+                    "--gravity", "0", "-9.81", "0", "--csv", path, "--svg", svg, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            doc = json.loads(r.stdout)
+            for key in ("converged", "iterations", "max_residual", "bodies", "constraints", "frames"):
+                self.assertIn(key, doc)
+            times = [f["time"] for f in doc["frames"]]
+            self.assertAlmostEqual(times[-1], 0.1, places=12)
+            self.assertTrue(all(b > a for a, b in zip(times, times[1:])))
+            with open(path) as f:
+                rows = list(csv.reader(f))
+            self.assertEqual(rows[0], ["time", "body", "px", "py", "pz", "qw", "qx", "qy", "qz"])
+            self.assertEqual(len(rows) - 1, len({row[0] for row in rows[1:]}))
+            self.assertAlmostEqual(float(rows[-1][0]), 0.1, places=9)
+            # The hinge holds in every frame: the bar's origin stays at the world's origin.
+            for row in rows[1:]:
+                self.assertLess(math.dist([float(v) for v in row[2:5]], [0, 0, 0]), 1e-9)
+            with open(svg) as f:
+                self.assertIn("<svg", f.read())
+
+    def test_missing_time_step_is_bad_usage(self):
+        r = run("animate", os.path.join(DATA, "pendulum.dcl"), "--duration", "1")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--dt", r.stderr)
+
+
+class Sweep(unittest.TestCase):
+    def test_the_hinge_follows_the_driven_angle(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "sweep.csv")
+            plot = os.path.join(tmp, "sweep.svg")
+            r = run("sweep", os.path.join(DATA, "pendulum.dcl"), "--body", "bar", "--axis", "0", "0", "1",
+                    "--from", "0", "--to", "1", "--steps", "4", "--csv", path, "--plot", plot)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(path) as f:
+                rows = list(csv.reader(f))
+            self.assertEqual(rows[0], ["value", "converged", "max_residual", "joint0"])
+            self.assertEqual(len(rows), 1 + 5)
+            for row in rows[1:]:
+                self.assertEqual(row[1], "1")
+                self.assertAlmostEqual(float(row[3]), float(row[0]), places=5)
+            with open(plot) as f:
+                self.assertIn("<svg", f.read())
+
+    def test_turning_across_the_hinge_locks_and_exits_3(self):
+        r = run("sweep", os.path.join(DATA, "pendulum.dcl"), "--body", "bar", "--axis", "1", "0", "0",
+                "--from", "0", "--to", "1", "--steps", "4", "--json")
+        self.assertEqual(r.returncode, 3)
+        doc = json.loads(r.stdout)
+        self.assertTrue(doc["locked"])
+        self.assertLess(doc["lock_value"], 0.25)
+
+    def test_unknown_body_is_bad_usage(self):
+        r = run("sweep", os.path.join(DATA, "pendulum.dcl"), "--body", "world")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("unknown body 'world'", r.stderr)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -1,0 +1,54 @@
+// The subcommands of `dispcon` (cli.md) and what they share: each one registers its options on
+// the application and returns how to run it. Parsing and printing only; the work is the engine's.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dispcon/model/model.hpp"
+#include "dispcon/solve/solver.hpp"
+
+namespace dispcon::cli {
+
+// Exit codes (cli.md, "Exit codes").
+constexpr int kOk = 0;
+constexpr int kBadInput = 2;
+constexpr int kViolated = 3;
+
+// The file and options every subcommand takes.
+struct Common {
+  std::string file;
+  double tolerance = 1e-9;
+  int max_iterations = 10000;
+  bool json = false;
+};
+
+// A registered subcommand and how to run it once the arguments are parsed.
+struct Subcommand {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+Subcommand add_assemble(CLI::App& app);
+Subcommand add_drag(CLI::App& app);
+Subcommand add_animate(CLI::App& app);
+Subcommand add_check(CLI::App& app);
+Subcommand add_sweep(CLI::App& app);
+
+// FILE, --json and, for subcommands that solve, --tolerance and --max-iterations.
+void add_common(CLI::App* sub, Common& common, bool solves = true);
+SolveOptions options(const Common& common);
+// Reads the file and prints its diagnostics (warnings too) on standard error; empty on errors.
+std::optional<Model> load(const std::string& file);
+// The body called `name`; bad usage (CLI::ValidationError) when there is none or it is the world.
+BodyId body_named(const Model& model, const std::string& name);
+Vec3 vec(const std::vector<double>& v);
+// Writes `text` to `path`; false, with a message on standard error, when it cannot.
+bool write_text(const std::string& path, const std::string& text);
+nlohmann::json joint_list(const std::vector<JointId>& ids);
+
+}  // namespace dispcon::cli

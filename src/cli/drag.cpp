@@ -1,0 +1,98 @@
+// `dispcon drag`: one body held on a path while the rest of the mechanism follows, each step
+// starting from the previous one's result (continuity, seed section 2.3).
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "report.hpp"
+
+namespace dispcon::cli {
+namespace {
+
+using nlohmann::json;
+
+struct DragArgs {
+  Common common;
+  std::string body, csv;
+  std::vector<double> to, rotation;
+  int steps = 50;
+};
+
+int run_drag(const DragArgs& a) {
+  auto m = load(a.common.file);
+  if (!m) return kBadInput;
+  const BodyId body = body_named(*m, a.body);
+  const SolveOptions o = options(a.common);
+  const SolveResult first = assemble(*m, o);
+  Pose target = m->body(body).pose;
+  target.x = vec(a.to);
+  if (!a.rotation.empty()) target.q = quat_from_rotation_vector(vec(a.rotation));
+  std::vector<std::vector<Pose>> poses;
+  DragResult d;
+  if (first.converged) {
+    d = drag(*m, body, target, a.steps, o, &poses);
+  } else {
+    d.converged = false;
+    d.failed_step = 0;
+    d.message = "the model does not assemble: " + first.message;
+  }
+  if (!a.csv.empty()) {
+    std::ofstream out(a.csv);
+    out << "step,body,px,py,pz,qw,qx,qy,qz\n";
+    for (size_t k = 0; k < poses.size(); ++k) csv_rows(out, std::to_string(k + 1), *m, poses[k]);
+    if (!out) {
+      std::cerr << a.csv << ": error: cannot write the file\n";
+      return kBadInput;
+    }
+  }
+  const bool converged = d.converged && first.converged;
+  const std::vector<ConstraintReport> now =
+      d.steps.empty() ? first.constraints : d.steps.back().constraints;
+  if (a.common.json) {
+    json steps = json::array();
+    for (const SolveResult& s : d.steps) {
+      steps.push_back({{"iterations", s.iterations},
+                       {"max_residual", s.max_residual},
+                       {"converged", s.converged}});
+    }
+    json doc = {{"converged", converged},
+                {"iterations", first.iterations + d.iterations},
+                {"max_residual", std::max(first.max_residual, d.max_residual)},
+                {"message", d.message},
+                {"failed_step", d.failed_step},
+                {"bodies", bodies_json(*m, m->poses())},
+                {"constraints", constraints_json(*m, now)},
+                {"steps", steps}};
+    std::cout << doc.dump(2) << "\n";
+  } else {
+    std::cout << a.common.file << ": assembled: " << first.message << "\n" << d.message << "\n";
+    if (!d.steps.empty()) {
+      int worst = 0;
+      for (const SolveResult& s : d.steps) worst = std::max(worst, s.iterations);
+      std::cout << "iterations per step: mean "
+                << (d.iterations - first.iterations) * 1.0 / d.steps.size() << ", worst " << worst
+                << "\n";
+    }
+    print_poses(std::cout, *m, m->poses());
+  }
+  return converged ? kOk : kViolated;
+}
+
+}  // namespace
+
+Subcommand add_drag(CLI::App& app) {
+  auto args = std::make_shared<DragArgs>();
+  CLI::App* sub = app.add_subcommand("drag", "hold one body on a path while the rest follows");
+  add_common(sub, args->common);
+  sub->add_option("--body", args->body, "the body to move")->required();
+  sub->add_option("--to", args->to, "target position X Y Z")->required()->expected(3);
+  sub->add_option("--rotation", args->rotation, "target rotation vector RX RY RZ")->expected(3);
+  sub->add_option("--steps", args->steps, "number of equal steps (default 50)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--csv", args->csv, "write every step's poses");
+  return {sub, [args] { return run_drag(*args); }};
+}
+
+}  // namespace dispcon::cli
