@@ -51,6 +51,12 @@ class Assemble(unittest.TestCase):
         self.assertIn("bad.dcl:4:1: error: expected ';' after hinge", r.stderr)
         self.assertEqual(r.stdout, "")
 
+    def test_warnings_are_printed_and_the_file_still_solves(self):
+        r = run("assemble", os.path.join(DATA, "warning.dcl"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("warning.dcl:3:44: warning: angle max 9 is outside", r.stderr)
+        self.assertIn("converged", r.stdout)
+
     def test_bad_usage_exits_2(self):
         self.assertEqual(run("assemble", os.path.join(DATA, "pendulum.dcl"), "--bogus").returncode, 2)
         self.assertEqual(run("frobnicate").returncode, 2)
