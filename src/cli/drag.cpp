@@ -71,9 +71,8 @@ int run_drag(const DragArgs& a) {
     if (!d.steps.empty()) {
       int worst = 0;
       for (const SolveResult& s : d.steps) worst = std::max(worst, s.iterations);
-      std::cout << "iterations per step: mean "
-                << (d.iterations - first.iterations) * 1.0 / d.steps.size() << ", worst " << worst
-                << "\n";
+      std::cout << "iterations per step: mean " << d.iterations * 1.0 / d.steps.size() << ", worst "
+                << worst << "\n";
     }
     print_poses(std::cout, *m, m->poses());
   }

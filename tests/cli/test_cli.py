@@ -91,6 +91,17 @@ class Drag(unittest.TestCase):
             qw, qz = float(rows[-1][5]), float(rows[-1][8])
             self.assertAlmostEqual(2 * math.atan2(qz, qw), 1.2, places=9)
 
+    def test_text_summary_agrees_with_the_steps(self):
+        args = ("drag", os.path.join(DATA, "pendulum.dcl"), "--body", "bar", "--to", "0", "0", "0",
+                "--rotation", "0", "0", "2", "--steps", "8")
+        steps = json.loads(run(*args, "--json").stdout)["steps"]
+        text = run(*args).stdout
+        line = next(l for l in text.splitlines() if l.startswith("iterations per step"))
+        mean = float(line.split("mean ")[1].split(",")[0])
+        worst = int(line.split("worst ")[1])
+        self.assertAlmostEqual(mean, sum(s["iterations"] for s in steps) / len(steps), places=4)
+        self.assertEqual(worst, max(s["iterations"] for s in steps))
+
     def test_unreachable_target_exits_3(self):
         r = run("drag", os.path.join(DATA, "pendulum.dcl"), "--body", "bar", "--to", "5", "0", "0",
                 "--steps", "2", "--max-iterations", "200", "--json")
