@@ -122,6 +122,28 @@ void gauss_seidel_iteration(SolverState& s, const Component& comp, const SolveOp
   }
 }
 
+// Scratch space of the Newton polish, shared by the components of a session (they are solved one
+// after another): warm after the first, so the iterations allocate nothing.
+struct PolishWork {
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  struct Entry {
+    int v1 = -1, v2 = -1;  // unknowns of the two bodies, -1 when the body does not move
+    Vec6 j1, j2;           // the row's two 6-blocks
+    Vec6 u1, u2;           // M^-1 times them
+  };
+  std::vector<Entry> rows_;
+  std::vector<double> residual_;
+  std::vector<int> var_start_, fill_;          // rows of body v: var_rows_[var_start_[v] ...]
+  std::vector<std::pair<int, int>> var_rows_;  // (row, side 1 or 2)
+  std::vector<Vec6> dq_;
+  Eigen::VectorXd y_;
+  Eigen::MatrixXd dense_;
+  Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> dense_llt_;
+  Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  std::vector<int> pattern_;
+};
+
 // Newton polish. The step is dq = M^-1 J^T y with (J M^-1 J^T + lambda I) y = -r: the
 // displacement produced by constraint impulses J^T y, opposite on the two bodies of each joint,
 // so it conserves first-order momenta like the seed's corrections; lambda regularises redundant
@@ -130,37 +152,37 @@ void gauss_seidel_iteration(SolverState& s, const Component& comp, const SolveOp
 // dense, large ones sparse, reusing the sparse symbolic analysis while the rows keep their pattern.
 class Polisher {
  public:
-  explicit Polisher(const Component& comp) : comp_(&comp) {
-    nv_ = static_cast<int>(comp.bodies.size());
-    rows_of_var_.resize(static_cast<size_t>(nv_));
-    dq_.resize(static_cast<size_t>(nv_));
-  }
+  explicit Polisher(const Component& comp)
+      : comp_(&comp), nv_(static_cast<int>(comp.bodies.size())) {}
 
   // `band[c]` widens what counts as a bound in contact for joint c (see solve()).
   // Returns false when no step could be computed.
-  bool step(SolverState& s, const std::vector<double>& band, double lambda, double max_rotation) {
+  bool step(SolverState& s, PolishWork& work, const std::vector<double>& band, double lambda,
+            double max_rotation) {
+    w_ = &work;
+    w_->dq_.resize(static_cast<size_t>(nv_));
     for (int v = 0; v < nv_; ++v)
       s.bodies[static_cast<size_t>(comp_->bodies[static_cast<size_t>(v)])].n_var = v;
     gather(s, band);
-    const int m = static_cast<int>(rows_.size());
+    const int m = static_cast<int>(w_->rows_.size());
     if (m == 0 || nv_ == 0) return false;
     if (!factor(lambda)) return false;
     // dq = M^-1 J^T y
-    for (Vec6& d : dq_) d.setZero();
+    for (Vec6& d : w_->dq_) d.setZero();
     for (int a = 0; a < m; ++a) {
-      const Entry& e = rows_[static_cast<size_t>(a)];
-      if (e.v1 >= 0) dq_[static_cast<size_t>(e.v1)] += y_(a) * e.u1;
-      if (e.v2 >= 0) dq_[static_cast<size_t>(e.v2)] += y_(a) * e.u2;
+      const Entry& e = w_->rows_[static_cast<size_t>(a)];
+      if (e.v1 >= 0) w_->dq_[static_cast<size_t>(e.v1)] += w_->y_(a) * e.u1;
+      if (e.v2 >= 0) w_->dq_[static_cast<size_t>(e.v2)] += w_->y_(a) * e.u2;
     }
     // Keep each body's turn small (seed 2.3): scale the whole step, never bend it.
     double largest = 0;
-    for (const Vec6& d : dq_) {
+    for (const Vec6& d : w_->dq_) {
       if (!d.allFinite()) return false;
       largest = std::max(largest, d.head<3>().norm());
     }
     const double scale = largest > max_rotation ? max_rotation / largest : 1.0;
     for (int v = 0; v < nv_; ++v) {
-      const Vec6& d = dq_[static_cast<size_t>(v)];
+      const Vec6& d = w_->dq_[static_cast<size_t>(v)];
       s.bodies[static_cast<size_t>(comp_->bodies[static_cast<size_t>(v)])].displace(
           scale * d.head<3>(), scale * d.tail<3>());
     }
@@ -168,16 +190,12 @@ class Polisher {
   }
 
  private:
-  using Vec6 = Eigen::Matrix<double, 6, 1>;
-  struct Entry {
-    int v1 = -1, v2 = -1;  // unknowns of the two bodies, -1 when the body does not move
-    Vec6 j1, j2;           // the row's two 6-blocks
-    Vec6 u1, u2;           // M^-1 times them
-  };
+  using Vec6 = PolishWork::Vec6;
+  using Entry = PolishWork::Entry;
 
   void gather(const SolverState& s, const std::vector<double>& band) {
-    rows_.clear();
-    residual_.clear();
+    w_->rows_.clear();
+    w_->residual_.clear();
     PartRows parts[3];
     for (int c : comp_->joints) {
       const JointState& js = s.joints[static_cast<size_t>(c)];
@@ -195,8 +213,8 @@ class Polisher {
           e.j2 = p.J[k].segment<6>(6).transpose();
           e.u1 = apply_inverse_mass(s.bodies[static_cast<size_t>(js.b1)], e.j1);
           e.u2 = apply_inverse_mass(s.bodies[static_cast<size_t>(js.b2)], e.j2);
-          rows_.push_back(e);
-          residual_.push_back(p.residual[k]);
+          w_->rows_.push_back(e);
+          w_->residual_.push_back(p.residual[k]);
         }
       }
     }
@@ -209,61 +227,88 @@ class Polisher {
     return u;
   }
 
-  // Calls f(a, b, value) for every coupling a >= b of J M^-1 J^T, body by body.
+  // Calls f(a, b, value) for every coupling a >= b of J M^-1 J^T, body by body. The rows of
+  // each body are listed flat (counted, then placed), so nothing is allocated once warm.
   template <typename F>
   void couplings(F&& f) {
-    for (auto& list : rows_of_var_) list.clear();
-    for (int a = 0; a < static_cast<int>(rows_.size()); ++a) {
-      const Entry& e = rows_[static_cast<size_t>(a)];
-      if (e.v1 >= 0) rows_of_var_[static_cast<size_t>(e.v1)].push_back({a, 1});
-      if (e.v2 >= 0) rows_of_var_[static_cast<size_t>(e.v2)].push_back({a, 2});
+    w_->var_start_.assign(static_cast<size_t>(nv_) + 1, 0);
+    for (const Entry& e : w_->rows_) {
+      if (e.v1 >= 0) ++w_->var_start_[static_cast<size_t>(e.v1) + 1];
+      if (e.v2 >= 0) ++w_->var_start_[static_cast<size_t>(e.v2) + 1];
     }
-    for (const auto& list : rows_of_var_) {
-      for (size_t p = 0; p < list.size(); ++p) {
-        const Entry& ea = rows_[static_cast<size_t>(list[p].first)];
-        const Vec6& ja = list[p].second == 1 ? ea.j1 : ea.j2;
-        for (size_t q = 0; q <= p; ++q) {
-          const Entry& eb = rows_[static_cast<size_t>(list[q].first)];
-          const Vec6& ub = list[q].second == 1 ? eb.u1 : eb.u2;
-          f(list[p].first, list[q].first, ja.dot(ub));
+    for (int v = 0; v < nv_; ++v)
+      w_->var_start_[static_cast<size_t>(v) + 1] += w_->var_start_[static_cast<size_t>(v)];
+    w_->var_rows_.resize(static_cast<size_t>(w_->var_start_.back()));
+    w_->fill_.assign(w_->var_start_.begin(), w_->var_start_.end() - 1);
+    for (int a = 0; a < static_cast<int>(w_->rows_.size()); ++a) {
+      const Entry& e = w_->rows_[static_cast<size_t>(a)];
+      if (e.v1 >= 0)
+        w_->var_rows_[static_cast<size_t>(w_->fill_[static_cast<size_t>(e.v1)]++)] = {a, 1};
+      if (e.v2 >= 0)
+        w_->var_rows_[static_cast<size_t>(w_->fill_[static_cast<size_t>(e.v2)]++)] = {a, 2};
+    }
+    for (int v = 0; v < nv_; ++v) {
+      const int begin = w_->var_start_[static_cast<size_t>(v)];
+      const int end = w_->var_start_[static_cast<size_t>(v) + 1];
+      for (int p = begin; p < end; ++p) {
+        const auto [ra, sa] = w_->var_rows_[static_cast<size_t>(p)];
+        const Entry& ea = w_->rows_[static_cast<size_t>(ra)];
+        const Vec6& ja = sa == 1 ? ea.j1 : ea.j2;
+        for (int q = begin; q <= p; ++q) {
+          const auto [rb, sb] = w_->var_rows_[static_cast<size_t>(q)];
+          const Entry& eb = w_->rows_[static_cast<size_t>(rb)];
+          f(ra, rb, ja.dot(sb == 1 ? eb.u1 : eb.u2));
         }
       }
     }
   }
 
   bool factor(double lambda) {
-    const int m = static_cast<int>(rows_.size());
-    const Eigen::Map<const Eigen::VectorXd> r(residual_.data(), m);
+    const int m = static_cast<int>(w_->rows_.size());
+    const Eigen::Map<const Eigen::VectorXd> r(w_->residual_.data(), m);
     if (m <= kDenseRows) {
-      dense_.setZero(m, m);
+      // Lower triangle only; Cholesky first (the regularised matrix is positive definite), the
+      // pivoting LDLT only when rounding defeats it.
+      w_->dense_.resize(m, m);
+      w_->dense_.triangularView<Eigen::Lower>().setZero();
       couplings([&](int a, int b, double v) {
-        dense_(a, b) += v;
-        if (a != b) dense_(b, a) += v;
+        if (a >= b) {
+          w_->dense_(a, b) += v;
+        } else {
+          w_->dense_(b, a) += v;
+        }
       });
-      const double scale = dense_.diagonal().maxCoeff();
+      const double scale = w_->dense_.diagonal().maxCoeff();
       if (!(scale > 0)) return false;
-      dense_.diagonal().array() += lambda * scale;
-      dense_ldlt_.compute(dense_);
-      if (dense_ldlt_.info() != Eigen::Success) return false;
-      y_ = dense_ldlt_.solve(-r);
-      return y_.allFinite();
+      w_->dense_.diagonal().array() += lambda * scale;
+      w_->y_ = -r;
+      w_->dense_llt_.compute(w_->dense_);
+      if (w_->dense_llt_.info() == Eigen::Success) {
+        w_->dense_llt_.solveInPlace(w_->y_);
+      } else {
+        w_->dense_ = w_->dense_.selfadjointView<Eigen::Lower>();
+        w_->dense_ldlt_.compute(w_->dense_);
+        if (w_->dense_ldlt_.info() != Eigen::Success) return false;
+        w_->y_ = w_->dense_ldlt_.solve(-r);
+      }
+      return w_->y_.allFinite();
     }
     // The sparsity depends only on which rows couple. While that holds, the values are written
     // in place (slots_ remembers where each coupling lands) and the symbolic analysis is kept.
-    pattern_.clear();
-    for (const Entry& e : rows_) pattern_.push_back(e.v1), pattern_.push_back(e.v2);
-    if (!analyzed_ || pattern_ != analyzed_pattern_) {
-      triplets_.clear();
-      couplings([&](int a, int b, double v) { triplets_.emplace_back(a, b, v); });
+    w_->pattern_.clear();
+    for (const Entry& e : w_->rows_) w_->pattern_.push_back(e.v1), w_->pattern_.push_back(e.v2);
+    if (!analyzed_ || w_->pattern_ != analyzed_pattern_) {
+      w_->triplets_.clear();
+      couplings([&](int a, int b, double v) { w_->triplets_.emplace_back(a, b, v); });
       sparse_.resize(m, m);
-      sparse_.setFromTriplets(triplets_.begin(), triplets_.end());
+      sparse_.setFromTriplets(w_->triplets_.begin(), w_->triplets_.end());
       sparse_.makeCompressed();
       slots_.clear();
       couplings([&](int a, int b, double) { slots_.push_back(slot(a, b)); });
       diagonal_.resize(static_cast<size_t>(m));
       for (int k = 0; k < m; ++k) diagonal_[static_cast<size_t>(k)] = slot(k, k);
       sparse_ldlt_.analyzePattern(sparse_);
-      analyzed_pattern_ = pattern_;
+      analyzed_pattern_ = w_->pattern_;
       analyzed_ = true;
     }
     double* values = sparse_.valuePtr();
@@ -276,8 +321,8 @@ class Polisher {
     for (int k : diagonal_) values[k] += lambda * scale;
     sparse_ldlt_.factorize(sparse_);
     if (sparse_ldlt_.info() != Eigen::Success) return false;
-    y_ = sparse_ldlt_.solve(-r);
-    return y_.allFinite();
+    w_->y_ = sparse_ldlt_.solve(-r);
+    return w_->y_.allFinite();
   }
 
   // Index in sparse_'s values of entry (a, b), a >= b (column-major, lower triangle).
@@ -291,17 +336,10 @@ class Polisher {
   static constexpr int kDenseRows = 120;
   const Component* comp_;
   int nv_ = 0;
-  std::vector<Entry> rows_;
-  std::vector<double> residual_;
-  std::vector<std::vector<std::pair<int, int>>> rows_of_var_;
-  std::vector<Vec6> dq_;
-  Eigen::VectorXd y_;
-  Eigen::MatrixXd dense_;
-  Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
-  std::vector<Eigen::Triplet<double>> triplets_;
+  PolishWork* w_ = nullptr;  // the session's scratch space, during step()
   Eigen::SparseMatrix<double> sparse_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> sparse_ldlt_;
-  std::vector<int> pattern_, analyzed_pattern_;
+  std::vector<int> analyzed_pattern_;
   std::vector<int> slots_, diagonal_;
   bool analyzed_ = false;
 };
@@ -405,8 +443,8 @@ void load_poses(SolverState& s, const Component& comp, const std::vector<Pose>& 
 // the step over its bound is redone with that limit held at its bound: its band (what counts as
 // contact) is widened to cover the distance the step moved it, so the active set grows instead
 // of the step being damped.
-void iterate(SolverState& s, Progress& p, const SolveOptions& o, double polish_threshold,
-             std::vector<double>& band, std::vector<Pose>& before) {
+void iterate(SolverState& s, Progress& p, PolishWork& work, const SolveOptions& o,
+             double polish_threshold, std::vector<double>& band, std::vector<Pose>& before) {
   const Component& comp = *p.comp;
   ++p.iterations;
   const bool polish = o.newton_polish && p.r < polish_threshold && p.iterations > p.seed_only_until;
@@ -422,7 +460,7 @@ void iterate(SolverState& s, Progress& p, const SolveOptions& o, double polish_t
   }
   ++p.polish;
   save_poses(s, comp, before);
-  const bool stepped = p.polisher.step(s, band, p.lambda, o.max_rotation_step);
+  const bool stepped = p.polisher.step(s, work, band, p.lambda, o.max_rotation_step);
   const double next = stepped ? max_residual(s, comp.joints) : p.r;
   if (stepped && next < p.r) {
     p.r = next;
@@ -472,6 +510,8 @@ struct Session::Impl {
   std::deque<Progress> progress;  // not moved once built: each holds its factorisation
   std::vector<double> band;
   std::vector<Pose> best, before;
+  std::vector<double> history;
+  PolishWork work;
   std::vector<int> immovable;  // active joints whose two bodies cannot move
   double length_scale = 1;     // the model's size when the session was made
 };
@@ -509,36 +549,51 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   before = poses;
   std::vector<double>& band = impl_->band;
   std::fill(band.begin(), band.end(), -0.5 * o.tolerance);
-  // Components advance in lockstep: iteration k is every unfinished component's k-th iteration.
+  // Each component runs to the end before the next starts, so its working set stays in cache.
+  // A history is the largest violation over components after each iteration, as if they had
+  // advanced in lockstep (a finished component keeps its last value).
   bool finite = true;
-  for (int k = 0; k < o.max_iterations; ++k) {
-    double r = 0;
-    bool any = false;
-    for (Progress& p : progress) {
-      if (!p.done) {
-        iterate(s, p, o, polish_threshold, band, before);
-        any = true;
-        if (!std::isfinite(p.r)) finite = false;
-        if (p.r < p.best_r) {
-          p.best_r = p.r;
-          save_poses(s, *p.comp, best);
-        }
-        // An over-constrained or unreachable problem stops improving: give up early rather
-        // than run to the cap (a drag step that cannot be made should fail fast).
-        if (p.best_r < (1 - 1e-3) * p.progress_mark) {
-          p.progress_mark = p.best_r;
-          p.last_progress = p.iterations;
-        } else if (p.iterations - p.last_progress > kStallIterations) {
-          p.stalled = true;
-        }
-        p.done = p.r <= o.tolerance || p.stalled;
-      }
-      r = std::max(r, p.r);
-    }
-    if (!any) break;
-    ++result.iterations;
-    if (o.record_history) result.history.push_back(r);
+  std::vector<double>& history = impl_->history;
+  if (o.record_history) history.clear();
+  for (Progress& p : progress) {
     if (!finite) break;
+    int k = 0;
+    for (; !p.done && k < o.max_iterations; ++k) {
+      iterate(s, p, impl_->work, o, polish_threshold, band, before);
+      if (!std::isfinite(p.r)) {
+        finite = false;
+        break;
+      }
+      if (p.r < p.best_r) {
+        p.best_r = p.r;
+        save_poses(s, *p.comp, best);
+      }
+      // An over-constrained or unreachable problem stops improving: give up early rather than
+      // run to the cap (a drag step that cannot be made should fail fast).
+      if (p.best_r < (1 - 1e-3) * p.progress_mark) {
+        p.progress_mark = p.best_r;
+        p.last_progress = p.iterations;
+      } else if (p.iterations - p.last_progress > kStallIterations) {
+        p.stalled = true;
+      }
+      p.done = p.r <= o.tolerance || p.stalled;
+      if (o.record_history) {
+        if (history.size() <= static_cast<size_t>(k)) history.push_back(0);
+        history[static_cast<size_t>(k)] = std::max(history[static_cast<size_t>(k)], p.r);
+      }
+    }
+    result.iterations = std::max(result.iterations, p.iterations);
+  }
+  if (o.record_history) {
+    // Components that finished early hold their last violation in the later iterations.
+    for (const Progress& p : progress) {
+      for (size_t k = static_cast<size_t>(p.iterations); k < history.size(); ++k) {
+        history[k] = std::max(history[k], p.r);
+      }
+    }
+    result.history.assign(
+        history.begin(),
+        history.begin() + std::min(history.size(), static_cast<size_t>(result.iterations)));
   }
   double r = 0;
   bool any_stalled = false;
