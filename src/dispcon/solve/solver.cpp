@@ -65,9 +65,16 @@ std::vector<Component> components(const SolverState& s) {
   return out;
 }
 
-double max_residual(const SolverState& s, const std::vector<int>& joints) {
+// The largest violation of some joints; each joint's own goes to `store` (indexed by joint), so
+// the final report need not measure again.
+double max_residual(const SolverState& s, const std::vector<int>& joints,
+                    std::vector<double>& store) {
   double r = 0;
-  for (int c : joints) r = std::max(r, s.residual(s.joints[static_cast<size_t>(c)]));
+  for (int c : joints) {
+    const double rc = s.residual(s.joints[static_cast<size_t>(c)]);
+    store[static_cast<size_t>(c)] = rc;
+    r = std::max(r, rc);
+  }
   return r;
 }
 
@@ -122,6 +129,43 @@ void gauss_seidel_iteration(SolverState& s, const Component& comp, const SolveOp
   }
 }
 
+// Solves A y = b in place for a small symmetric positive definite A given by its lower triangle
+// (column-major, overwritten by the factor L). Column-oriented so every inner loop runs over
+// contiguous memory; for the few dozen rows of a mechanism's component this beats the general
+// blocked factorisations. Returns false when a pivot is not positive.
+bool cholesky_solve(Eigen::MatrixXd& A, Eigen::VectorXd& y) {
+  const Eigen::Index m = A.rows();
+  double* a = A.data();
+  for (Eigen::Index j = 0; j < m; ++j) {
+    double* cj = a + j * m;
+    for (Eigen::Index k = 0; k < j; ++k) {
+      const double* ck = a + k * m;
+      const double f = ck[j];
+      if (f == 0) continue;
+      for (Eigen::Index i = j; i < m; ++i) cj[i] -= f * ck[i];
+    }
+    if (!(cj[j] > 0)) return false;
+    const double d = std::sqrt(cj[j]);
+    cj[j] = d;
+    const double inv = 1 / d;
+    for (Eigen::Index i = j + 1; i < m; ++i) cj[i] *= inv;
+  }
+  double* x = y.data();
+  for (Eigen::Index j = 0; j < m; ++j) {  // L z = b
+    const double* cj = a + j * m;
+    x[j] /= cj[j];
+    const double xj = x[j];
+    for (Eigen::Index i = j + 1; i < m; ++i) x[i] -= xj * cj[i];
+  }
+  for (Eigen::Index j = m - 1; j >= 0; --j) {  // L^T y = z
+    const double* cj = a + j * m;
+    double sum = x[j];
+    for (Eigen::Index i = j + 1; i < m; ++i) sum -= cj[i] * x[i];
+    x[j] = sum / cj[j];
+  }
+  return true;
+}
+
 // Scratch space of the Newton polish, shared by the components of a session (they are solved one
 // after another): warm after the first, so the iterations allocate nothing.
 struct PolishWork {
@@ -138,7 +182,6 @@ struct PolishWork {
   std::vector<Vec6> dq_;
   Eigen::VectorXd y_;
   Eigen::MatrixXd dense_;
-  Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> dense_llt_;
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
   std::vector<Eigen::Triplet<double>> triplets_;
   std::vector<int> pattern_;
@@ -222,8 +265,8 @@ class Polisher {
 
   static Vec6 apply_inverse_mass(const BodyState& b, const Vec6& j) {
     Vec6 u;
-    u.head<3>() = b.inverse_inertia() * j.head<3>();
-    u.tail<3>() = j.tail<3>() / b.m;
+    u.head<3>() = b.K * (b.inv_m * j.head<3>());
+    u.tail<3>() = b.inv_m * j.tail<3>();
     return u;
   }
 
@@ -269,44 +312,49 @@ class Polisher {
     if (m <= kDenseRows) {
       // Lower triangle only; Cholesky first (the regularised matrix is positive definite), the
       // pivoting LDLT only when rounding defeats it.
-      w_->dense_.resize(m, m);
-      w_->dense_.triangularView<Eigen::Lower>().setZero();
-      couplings([&](int a, int b, double v) {
-        if (a >= b) {
-          w_->dense_(a, b) += v;
-        } else {
-          w_->dense_(b, a) += v;
-        }
-      });
-      const double scale = w_->dense_.diagonal().maxCoeff();
-      if (!(scale > 0)) return false;
-      w_->dense_.diagonal().array() += lambda * scale;
+      auto assemble = [&] {
+        w_->dense_.resize(m, m);
+        w_->dense_.triangularView<Eigen::Lower>().setZero();
+        couplings([&](int a, int b, double v) { w_->dense_(a, b) += v; });
+        const double scale = w_->dense_.diagonal().maxCoeff();
+        w_->dense_.diagonal().array() += lambda * scale;
+        return scale;
+      };
+      if (!(assemble() > 0)) return false;
       w_->y_ = -r;
-      w_->dense_llt_.compute(w_->dense_);
-      if (w_->dense_llt_.info() == Eigen::Success) {
-        w_->dense_llt_.solveInPlace(w_->y_);
-      } else {
-        w_->dense_ = w_->dense_.selfadjointView<Eigen::Lower>();
-        w_->dense_ldlt_.compute(w_->dense_);
-        if (w_->dense_ldlt_.info() != Eigen::Success) return false;
-        w_->y_ = w_->dense_ldlt_.solve(-r);
-      }
+      if (cholesky_solve(w_->dense_, w_->y_)) return w_->y_.allFinite();
+      assemble();
+      w_->dense_ = w_->dense_.selfadjointView<Eigen::Lower>();
+      w_->dense_ldlt_.compute(w_->dense_);
+      if (w_->dense_ldlt_.info() != Eigen::Success) return false;
+      w_->y_ = w_->dense_ldlt_.solve(-r);
       return w_->y_.allFinite();
     }
-    // The sparsity depends only on which rows couple. While that holds, the values are written
-    // in place (slots_ remembers where each coupling lands) and the symbolic analysis is kept.
+    // The sparsity depends only on which rows couple. While that holds, the rows keep the
+    // fill-reducing order found once (AMD), the values are written in place (slots_ remembers
+    // where each coupling lands, upper triangle of the reordered matrix, so the factorisation
+    // reads it without a copy) and the symbolic analysis is kept.
     w_->pattern_.clear();
     for (const Entry& e : w_->rows_) w_->pattern_.push_back(e.v1), w_->pattern_.push_back(e.v2);
     if (!analyzed_ || w_->pattern_ != analyzed_pattern_) {
       w_->triplets_.clear();
       couplings([&](int a, int b, double v) { w_->triplets_.emplace_back(a, b, v); });
+      Eigen::SparseMatrix<double> lower(m, m);
+      lower.setFromTriplets(w_->triplets_.begin(), w_->triplets_.end());
+      Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+      Eigen::AMDOrdering<int>()(lower.selfadjointView<Eigen::Lower>(), inverse);
+      // Row a goes to order_[a] (Eigen's orderings return the inverse permutation).
+      const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> forward =
+          inverse.inverse();
+      order_ = forward.indices();
+      for (auto& t : w_->triplets_) t = reordered(t.row(), t.col(), t.value());
       sparse_.resize(m, m);
       sparse_.setFromTriplets(w_->triplets_.begin(), w_->triplets_.end());
       sparse_.makeCompressed();
       slots_.clear();
-      couplings([&](int a, int b, double) { slots_.push_back(slot(a, b)); });
+      couplings([&](int a, int b, double) { slots_.push_back(slot(reordered(a, b))); });
       diagonal_.resize(static_cast<size_t>(m));
-      for (int k = 0; k < m; ++k) diagonal_[static_cast<size_t>(k)] = slot(k, k);
+      for (int k = 0; k < m; ++k) diagonal_[static_cast<size_t>(k)] = slot(reordered(k, k));
       sparse_ldlt_.analyzePattern(sparse_);
       analyzed_pattern_ = w_->pattern_;
       analyzed_ = true;
@@ -321,16 +369,26 @@ class Polisher {
     for (int k : diagonal_) values[k] += lambda * scale;
     sparse_ldlt_.factorize(sparse_);
     if (sparse_ldlt_.info() != Eigen::Success) return false;
-    w_->y_ = sparse_ldlt_.solve(-r);
+    rhs_.resize(m);
+    for (int a = 0; a < m; ++a) rhs_(order_(a)) = -r(a);
+    solution_ = sparse_ldlt_.solve(rhs_);
+    w_->y_.resize(m);
+    for (int a = 0; a < m; ++a) w_->y_(a) = solution_(order_(a));
     return w_->y_.allFinite();
   }
 
-  // Index in sparse_'s values of entry (a, b), a >= b (column-major, lower triangle).
-  int slot(int a, int b) const {
+  // Entry (a, b) of J M^-1 J^T in the reordered matrix's upper triangle.
+  Eigen::Triplet<double> reordered(int a, int b, double v = 0) const {
+    const int pa = order_(a), pb = order_(b);
+    return Eigen::Triplet<double>(std::min(pa, pb), std::max(pa, pb), v);
+  }
+
+  // Index in sparse_'s values of an upper-triangle entry (column-major).
+  int slot(const Eigen::Triplet<double>& t) const {
     const int* inner = sparse_.innerIndexPtr();
-    const int* begin = inner + sparse_.outerIndexPtr()[b];
-    const int* end = inner + sparse_.outerIndexPtr()[b + 1];
-    return static_cast<int>(std::lower_bound(begin, end, a) - inner);
+    const int* begin = inner + sparse_.outerIndexPtr()[t.col()];
+    const int* end = inner + sparse_.outerIndexPtr()[t.col() + 1];
+    return static_cast<int>(std::lower_bound(begin, end, t.row()) - inner);
   }
 
   static constexpr int kDenseRows = 120;
@@ -338,7 +396,10 @@ class Polisher {
   int nv_ = 0;
   PolishWork* w_ = nullptr;  // the session's scratch space, during step()
   Eigen::SparseMatrix<double> sparse_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> sparse_ldlt_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>>
+      sparse_ldlt_;
+  Eigen::VectorXi order_;  // fill-reducing order of the rows
+  Eigen::VectorXd rhs_, solution_;
   std::vector<int> analyzed_pattern_;
   std::vector<int> slots_, diagonal_;
   bool analyzed_ = false;
@@ -354,7 +415,9 @@ std::string describe(const Model& model, const ConstraintReport& c) {
   return out.str();
 }
 
-std::vector<ConstraintReport> report(const SolverState& s, double tolerance) {
+// `known`, when given, holds every joint's residual at the current poses.
+std::vector<ConstraintReport> report(const SolverState& s, double tolerance,
+                                     const std::vector<double>* known = nullptr) {
   std::vector<ConstraintReport> out;
   out.reserve(s.joints.size());
   for (size_t c = 0; c < s.joints.size(); ++c) {
@@ -363,7 +426,7 @@ std::vector<ConstraintReport> report(const SolverState& s, double tolerance) {
     r.joint = JointId{static_cast<int>(c)};
     r.line = js.joint->line;
     r.active = js.active;
-    r.residual = s.residual(js);
+    r.residual = known ? (*known)[c] : s.residual(js);
     r.satisfied = r.residual <= tolerance;
     r.at_limit = js.active && js.bounded && s.at_limit(js, contact_band(tolerance));
     out.push_back(r);
@@ -444,7 +507,8 @@ void load_poses(SolverState& s, const Component& comp, const std::vector<Pose>& 
 // contact) is widened to cover the distance the step moved it, so the active set grows instead
 // of the step being damped.
 void iterate(SolverState& s, Progress& p, PolishWork& work, const SolveOptions& o,
-             double polish_threshold, std::vector<double>& band, std::vector<Pose>& before) {
+             double polish_threshold, std::vector<double>& band, std::vector<Pose>& before,
+             std::vector<double>& joint_r) {
   const Component& comp = *p.comp;
   ++p.iterations;
   const bool polish = o.newton_polish && p.r < polish_threshold && p.iterations > p.seed_only_until;
@@ -455,13 +519,13 @@ void iterate(SolverState& s, Progress& p, PolishWork& work, const SolveOptions& 
       gauss_seidel_iteration(s, comp, o);
     }
     ++p.seed;
-    p.r = max_residual(s, comp.joints);
+    p.r = max_residual(s, comp.joints, joint_r);
     return;
   }
   ++p.polish;
   save_poses(s, comp, before);
   const bool stepped = p.polisher.step(s, work, band, p.lambda, o.max_rotation_step);
-  const double next = stepped ? max_residual(s, comp.joints) : p.r;
+  const double next = stepped ? max_residual(s, comp.joints, joint_r) : p.r;
   if (stepped && next < p.r) {
     p.r = next;
     p.lambda = std::max(1e-12, p.lambda * 0.1);
@@ -511,6 +575,7 @@ struct Session::Impl {
   std::vector<double> band;
   std::vector<Pose> best, before;
   std::vector<double> history;
+  std::vector<double> joint_r;  // each joint's residual at the current poses
   PolishWork work;
   std::vector<int> immovable;  // active joints whose two bodies cannot move
   double length_scale = 1;     // the model's size when the session was made
@@ -535,12 +600,14 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   }
   SolverState& s = impl_->s;
   s.read_poses(poses);
+  std::vector<double>& joint_r = impl_->joint_r;
+  joint_r.assign(s.joints.size(), 0.0);
   SolveResult result;
   const double polish_threshold = o.polish_below * impl_->length_scale;
   std::deque<Progress>& progress = impl_->progress;
   for (Progress& p : progress) {
     p.reset();
-    p.r = p.best_r = p.progress_mark = max_residual(s, p.comp->joints);
+    p.r = p.best_r = p.progress_mark = max_residual(s, p.comp->joints, joint_r);
     p.done = p.r <= o.tolerance;
   }
   std::vector<Pose>& best = impl_->best;
@@ -559,7 +626,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
     if (!finite) break;
     int k = 0;
     for (; !p.done && k < o.max_iterations; ++k) {
-      iterate(s, p, impl_->work, o, polish_threshold, band, before);
+      iterate(s, p, impl_->work, o, polish_threshold, band, before, joint_r);
       if (!std::isfinite(p.r)) {
         finite = false;
         break;
@@ -601,6 +668,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
     if ((!p.done || p.stalled) && finite) {
       load_poses(s, *p.comp, best);  // not converged: keep the best poses seen
       p.r = p.best_r;
+      max_residual(s, p.comp->joints, joint_r);
     }
     any_stalled = any_stalled || p.stalled;
     r = std::max(r, p.r);
@@ -610,7 +678,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
     }
   }
   // Joints between bodies that cannot move are measured too: nothing can fix them.
-  for (int c : impl_->immovable) r = std::max(r, s.residual(s.joints[static_cast<size_t>(c)]));
+  r = std::max(r, max_residual(s, impl_->immovable, joint_r));
   if (!finite) r = std::numeric_limits<double>::infinity();
   if (!finite) {
     result.status = SolveStatus::Diverged;
@@ -621,7 +689,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   }
   if (!finite) s.read_poses(poses);
   result.max_residual = r;
-  result.constraints = report(s, o.tolerance);
+  result.constraints = report(s, o.tolerance, finite ? &joint_r : nullptr);
   s.write_poses(result.poses);
   if (result.converged) poses = result.poses;
 

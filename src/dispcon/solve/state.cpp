@@ -75,6 +75,7 @@ SolverState::SolverState(const Model& model, const std::vector<Pose>& poses,
     s.k = k[static_cast<size_t>(i)];
     if (s.physics) {
       s.m = *b.mass;
+      s.inv_m = 1 / s.m;
       s.inertia_inv_local = b.inertia->inverse();
     }
     s.set_pose(poses.at(static_cast<size_t>(i)));

@@ -22,6 +22,7 @@ struct BodyState {
   bool physics = false;  // K = m J^-1 (world) rather than k I
   double k = 1;          // no-physics ability to rotate
   double m = 1;          // mass (1 without physics)
+  double inv_m = 1;      // 1 / m, so the polish multiplies
   Mat3 inertia_inv_local = Mat3::Identity();
   Mat3 K = Mat3::Identity();  // m J^-1 or k I, world frame
   Vec3 dR = Vec3::Zero();     // accumulated proposals of one iteration
@@ -34,7 +35,7 @@ struct BodyState {
   // Turns the body by the rotation vector dR about its centre, then moves the centre by dx.
   void displace(const Vec3& dR, const Vec3& dx);
   // Rotation per unit moment for the Newton metric: J^-1 (physics) or k (no physics, m = 1).
-  Mat3 inverse_inertia() const { return K / m; }
+  Mat3 inverse_inertia() const { return K * inv_m; }
 };
 
 struct JointState {
