@@ -476,6 +476,7 @@ struct Progress {
   Polisher polisher;
   double r = 0;       // largest violation now
   double best_r = 0;  // and the best seen, whose poses are kept
+  double size = 1;    // the group's size when the session was made: where the polish begins
   double lambda = 1e-12;
   int iterations = 0, seed = 0, polish = 0;
   int seed_only_until = 0;   // after a failed polish, let the seed iterations work a while
@@ -493,6 +494,27 @@ struct Progress {
   }
 };
 
+// A group's size: the diagonal of the box around its bodies and its joints' points. The switch to
+// Newton steps is relative to it, so a group solves the same whatever else is in the model.
+double size(const SolverState& s, const Component& comp) {
+  Eigen::AlignedBox3d box;
+  for (int b : comp.bodies) {
+    box.extend(s.bodies[static_cast<size_t>(b)].x);
+    box.extend(s.bodies[static_cast<size_t>(b)].G);
+  }
+  for (int c : comp.joints) {
+    const JointState& js = s.joints[static_cast<size_t>(c)];
+    const BodyState& b1 = s.bodies[static_cast<size_t>(js.b1)];
+    const BodyState& b2 = s.bodies[static_cast<size_t>(js.b2)];
+    box.extend(b1.R * js.joint->p1 + b1.x);
+    box.extend(b2.R * js.joint->p2 + b2.x);
+    if (js.joint->guide) {
+      for (const Vec3& q : js.joint->guide->points) box.extend(b1.R * q + b1.x);
+    }
+  }
+  return box.isEmpty() ? 1e-6 : std::max(1e-6, box.diagonal().norm());
+}
+
 void save_poses(const SolverState& s, const Component& comp, std::vector<Pose>& out) {
   for (int b : comp.bodies) out[static_cast<size_t>(b)] = s.bodies[static_cast<size_t>(b)].pose();
 }
@@ -507,9 +529,9 @@ void load_poses(SolverState& s, const Component& comp, const std::vector<Pose>& 
 // contact) is widened to cover the distance the step moved it, so the active set grows instead
 // of the step being damped.
 void iterate(SolverState& s, Progress& p, PolishWork& work, const SolveOptions& o,
-             double polish_threshold, std::vector<double>& band, std::vector<Pose>& before,
-             std::vector<double>& joint_r) {
+             std::vector<double>& band, std::vector<Pose>& before, std::vector<double>& joint_r) {
   const Component& comp = *p.comp;
+  const double polish_threshold = o.polish_below * p.size;
   ++p.iterations;
   const bool polish = o.newton_polish && p.r < polish_threshold && p.iterations > p.seed_only_until;
   if (!polish) {
@@ -558,7 +580,7 @@ struct Session::Impl {
       : model(m), o(opt), s(m, m.poses(), opt, held), comps(components(s)) {
     for (const Component& c : comps) progress.emplace_back(c);
     band.assign(s.joints.size(), -0.5 * opt.tolerance);
-    length_scale = m.length_scale();
+    for (Progress& p : progress) p.size = size(s, *p.comp);
     for (size_t c = 0; c < s.joints.size(); ++c) {
       const JointState& js = s.joints[c];
       if (js.active && !s.bodies[static_cast<size_t>(js.b1)].movable &&
@@ -578,7 +600,6 @@ struct Session::Impl {
   std::vector<double> joint_r;  // each joint's residual at the current poses
   PolishWork work;
   std::vector<int> immovable;  // active joints whose two bodies cannot move
-  double length_scale = 1;     // the model's size when the session was made
 };
 
 Session::Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held)
@@ -603,7 +624,6 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   std::vector<double>& joint_r = impl_->joint_r;
   joint_r.assign(s.joints.size(), 0.0);
   SolveResult result;
-  const double polish_threshold = o.polish_below * impl_->length_scale;
   std::deque<Progress>& progress = impl_->progress;
   for (Progress& p : progress) {
     p.reset();
@@ -626,7 +646,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
     if (!finite) break;
     int k = 0;
     for (; !p.done && k < o.max_iterations; ++k) {
-      iterate(s, p, impl_->work, o, polish_threshold, band, before, joint_r);
+      iterate(s, p, impl_->work, o, band, before, joint_r);
       if (!std::isfinite(p.r)) {
         finite = false;
         break;

@@ -33,9 +33,9 @@ struct SolveOptions {
 
   bool record_history = false;  // keep the largest violation after every iteration
 
-  bool newton_polish = true;   // finish with Newton steps once close
-  double polish_below = 1e-2;  // switch to Newton when the largest violation is below this times
-                               // the model's length scale (radians: below this)
+  bool newton_polish = true;  // finish with Newton steps once close
+  double polish_below = 0.1;  // switch to Newton when the largest violation is below this times
+                              // the size of the group of bodies it moves (radians: below this)
 };
 
 // One joint as the solve left it.
