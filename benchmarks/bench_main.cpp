@@ -94,6 +94,30 @@ void BM_FourBarGrid(benchmark::State& state) {
 }
 BENCHMARK(BM_FourBarGrid)->Arg(3)->Arg(10)->Arg(20)->Unit(benchmark::kMillisecond);
 
+// One drag step of a grid of coupled four-bars (rows = cols = n): the first link, a vertical of
+// the bottom row pinned to the ground at its origin, is turned about its pin a little each frame
+// and every loop shears to follow. (Pushing a top link sideways while holding its height asks
+// for the impossible: the columns are straight, so any shear lowers the top row.)
+void BM_DragStep_FourBarGrid(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Model m = bench::fourbar_grid(n, n);
+  if (!assemble(m).converged) state.SkipWithError("the grid does not assemble");
+  const BodyId b{1};
+  const Pose p0 = m.body(b).pose;
+  Dragger drag(m, b);
+  int k = 0, iterations = 0;
+  for (auto _ : state) {
+    Pose t = p0;
+    t.q = quat_from_rotation_vector(Vec3(0, 0, 0.2 * std::sin(0.01 * k++))) * p0.q;
+    const SolveResult r = drag.move_to(t);
+    if (!r.converged) state.SkipWithError(r.message.c_str());
+    iterations = std::max(iterations, r.iterations);
+  }
+  state.counters["iterations"] = iterations;
+  state.counters["bodies"] = m.body_count() - 1;
+}
+BENCHMARK(BM_DragStep_FourBarGrid)->Arg(3)->Arg(7)->Arg(10)->Unit(benchmark::kMicrosecond);
+
 Model sample(const char* name) {
   ParseResult r = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/" + name);
   if (!r.ok()) {

@@ -1,0 +1,166 @@
+// The Newton polish of large groups (sparse systems), checked against properties every answer
+// must have. A grid of unit links pinned at lattice nodes (loops sharing bodies: the
+// saddle-point form) is made of four-bars with four equal sides, so every cell is a rhombus: the
+// verticals of a row stay parallel, and so do the horizontals of a level. A free closed chain of
+// masses (a few rows per body: J M^-1 J^T itself) keeps its centre of mass, since every
+// correction is a pair of opposite impulses (seed 4.2, footnote 5).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "dispcon/solve/solver.hpp"
+
+namespace dispcon {
+namespace {
+
+struct Grid {
+  Model model;
+  std::vector<std::vector<BodyId>> vertical;    // [row][col], row r links level r to r + 1
+  std::vector<std::vector<BodyId>> horizontal;  // [level][col], level 1 .. n, col to col + 1
+};
+
+// n x n cells of unit links from a rough lattice; links are hinged about z at the nodes, the
+// bottom nodes on the ground.
+Grid grid(int n) {
+  Grid g;
+  Model& m = g.model;
+  auto node = [](int r, int c) {
+    return Vec3(c + 0.05 * std::sin(3.0 * r + c), r + 0.05 * std::cos(r + 2.0 * c), 0);
+  };
+  const size_t side = static_cast<size_t>(n + 1);
+  std::vector<std::vector<BodyId>> pin(side, std::vector<BodyId>(side, Model::kWorld));
+  std::vector<std::vector<Vec3>> local(side, std::vector<Vec3>(side));
+  for (int c = 0; c <= n; ++c) local[0][static_cast<size_t>(c)] = Vec3(c, 0, 0);
+  auto attach = [&](int r, int c, BodyId link, const Vec3& at) {
+    BodyId& p = pin[static_cast<size_t>(r)][static_cast<size_t>(c)];
+    if (r == 0 || p != Model::kWorld) {
+      Joint j;
+      j.body1 = p;
+      j.body2 = link;
+      j.has_hinge = true;
+      j.p1 = local[static_cast<size_t>(r)][static_cast<size_t>(c)];
+      j.p2 = at;
+      j.angle = AngleSpec{Vec3::UnitZ(), Vec3::UnitZ(), 0, 0};
+      m.add_joint(j);
+    } else {
+      p = link;
+      local[static_cast<size_t>(r)][static_cast<size_t>(c)] = at;
+    }
+  };
+  int count = 0;
+  auto link = [&](int r0, int c0, int r1, int c1) {
+    const Vec3 a = node(r0, c0), b = node(r1, c1);
+    Body body;
+    body.name = "k" + std::to_string(count++);
+    body.pose = Pose::from(a, Vec3(0, 0, std::atan2(b.y() - a.y(), b.x() - a.x())));
+    const BodyId id = m.add_body(body);
+    attach(r0, c0, id, Vec3::Zero());
+    attach(r1, c1, id, Vec3(1, 0, 0));
+    return id;
+  };
+  g.vertical.resize(static_cast<size_t>(n));
+  g.horizontal.resize(static_cast<size_t>(n + 1));
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c <= n; ++c) g.vertical[static_cast<size_t>(r)].push_back(link(r, c, r + 1, c));
+    for (int c = 0; c < n; ++c) {
+      g.horizontal[static_cast<size_t>(r + 1)].push_back(link(r + 1, c, r + 1, c + 1));
+    }
+  }
+  return g;
+}
+
+Vec3 direction(const Model& m, BodyId b) {
+  return m.body(b).pose.q * Vec3::UnitX();
+}
+
+// Largest angle between the first link of each list and the others.
+double spread(const Model& m, const std::vector<std::vector<BodyId>>& lists) {
+  double worst = 0;
+  for (const std::vector<BodyId>& list : lists) {
+    for (BodyId b : list) {
+      const Vec3 d0 = direction(m, list.front()), d = direction(m, b);
+      worst = std::max(worst, std::atan2(d0.cross(d).norm(), d0.dot(d)));
+    }
+  }
+  return worst;
+}
+
+TEST(SparsePolish, GridOfFourBarsAssemblesIntoRhombi) {
+  Grid g = grid(6);  // 78 links, 570 rows: solved sparse
+  SolveOptions o;
+  o.tolerance = 1e-10;
+  const SolveResult r = assemble(g.model, o);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LE(r.max_residual, 1e-10);
+  EXPECT_LT(spread(g.model, g.vertical), 1e-8);
+  EXPECT_LT(spread(g.model, g.horizontal), 1e-8);
+  for (const std::vector<BodyId>& level : g.horizontal) {
+    for (BodyId b : level) EXPECT_NEAR(g.model.body(b).pose.x.z(), 0, 1e-9);
+  }
+}
+
+TEST(SparsePolish, DraggedVerticalShearsItsRow) {
+  Grid g = grid(6);
+  ASSERT_TRUE(assemble(g.model).converged);
+  const BodyId first = g.vertical[0][0];
+  const Vec3 d0 = direction(g.model, first);
+  const double start = std::atan2(d0.y(), d0.x());
+  Pose target = g.model.body(first).pose;
+  target.q = quat_from_rotation_vector(Vec3(0, 0, -0.3)) * target.q;
+  const DragResult d = drag(g.model, first, target, 15);
+  ASSERT_TRUE(d.converged) << d.message;
+  // Every vertical of the bottom row turned with the dragged one: the row sheared as a whole.
+  for (BodyId b : g.vertical[0]) {
+    const Vec3 v = direction(g.model, b);
+    EXPECT_NEAR(std::atan2(v.y(), v.x()), start - 0.3, 1e-8);
+  }
+  EXPECT_LT(spread(g.model, g.vertical), 1e-8);
+  EXPECT_LT(spread(g.model, g.horizontal), 1e-8);
+}
+
+TEST(SparsePolish, FreeClosedChainKeepsItsCentreOfMass) {
+  const int n = 60;  // 180 rows: solved sparse
+  Model m;
+  std::vector<BodyId> ids;
+  const double R = n / (2 * kPi), L = 2 * R * std::sin(kPi / n);
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * kPi * i / n;
+    Body b;
+    b.name = "l" + std::to_string(i);
+    b.pose = Pose::from(Vec3(R * std::cos(a) + 0.02 * std::sin(7.0 * i),
+                             R * std::sin(a) + 0.02 * std::cos(3.0 * i), 0.02 * std::sin(5.0 * i)),
+                        Vec3(0, 0, a + kPi / 2 + kPi / n));
+    b.center = Vec3(L / 2, 0, 0);
+    b.mass = 1 + 0.5 * std::sin(i);
+    b.inertia = Vec3(0.01, 0.1, 0.1).asDiagonal() * *b.mass;
+    ids.push_back(m.add_body(b));
+  }
+  for (int i = 0; i < n; ++i) {
+    Joint j;
+    j.body1 = ids[static_cast<size_t>(i)];
+    j.body2 = ids[static_cast<size_t>((i + 1) % n)];
+    j.has_hinge = true;
+    j.p1 = Vec3(L, 0, 0);
+    m.add_joint(j);
+  }
+  auto centre = [&] {
+    Vec3 sum = Vec3::Zero();
+    double mass = 0;
+    for (BodyId b : ids) {
+      sum += *m.body(b).mass * m.body(b).world_center();
+      mass += *m.body(b).mass;
+    }
+    return Vec3(sum / mass);
+  };
+  const Vec3 before = centre();
+  SolveOptions o;
+  o.tolerance = 1e-10;
+  const SolveResult r = assemble(m, o);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_GT(r.polish_iterations, 0);
+  EXPECT_LT((centre() - before).norm(), 1e-12 * R);
+}
+
+}  // namespace
+}  // namespace dispcon
