@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "dispcon/io/dcl_reader.hpp"
+#include "common.hpp"
 #include "dispcon/solve/solver.hpp"
 #include "mechanisms.hpp"
 #include "slvs_include.hpp"
@@ -15,21 +15,8 @@
 namespace {
 
 using namespace dispcon;
-
-// Times assemble() on a fresh copy of `start` each run; reports the iterations it took.
-void assemble_copies(benchmark::State& state, const Model& start, const SolveOptions& o = {}) {
-  int iterations = 0;
-  for (auto _ : state) {
-    state.PauseTiming();
-    Model m = start;
-    state.ResumeTiming();
-    const SolveResult r = assemble(m, o);
-    if (!r.converged) state.SkipWithError(r.message.c_str());
-    iterations = r.iterations;
-    benchmark::DoNotOptimize(m);
-  }
-  state.counters["iterations"] = iterations;
-}
+using bench::assemble_copies;
+using bench::sample;
 
 // N independent four-bars, the crank fixed, coupler and rocker from a rough start.
 void BM_FourBars_dispcon(benchmark::State& state) {
@@ -93,15 +80,6 @@ void BM_FourBarGrid(benchmark::State& state) {
   state.counters["bodies"] = start.body_count() - 1;
 }
 BENCHMARK(BM_FourBarGrid)->Arg(3)->Arg(10)->Arg(20)->Unit(benchmark::kMillisecond);
-
-Model sample(const char* name) {
-  ParseResult r = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/" + name);
-  if (!r.ok()) {
-    std::fprintf(stderr, "%s", r.messages().c_str());
-    std::abort();
-  }
-  return std::move(*r.model);
-}
 
 // The paper's monocycle: assembly from the sample's rough positions.
 void BM_Monocycle_Assemble(benchmark::State& state) {
