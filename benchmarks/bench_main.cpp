@@ -16,7 +16,6 @@ namespace {
 
 using namespace dispcon;
 using bench::assemble_copies;
-using bench::sample;
 
 // N independent four-bars, the crank fixed, coupler and rocker from a rough start.
 void BM_FourBars_dispcon(benchmark::State& state) {
@@ -80,34 +79,6 @@ void BM_FourBarGrid(benchmark::State& state) {
   state.counters["bodies"] = start.body_count() - 1;
 }
 BENCHMARK(BM_FourBarGrid)->Arg(3)->Arg(10)->Arg(20)->Unit(benchmark::kMillisecond);
-
-// The paper's monocycle: assembly from the sample's rough positions.
-void BM_Monocycle_Assemble(benchmark::State& state) {
-  assemble_copies(state, sample("monocycle.dcl"));
-}
-BENCHMARK(BM_Monocycle_Assemble)->Unit(benchmark::kMicrosecond);
-
-// The monocycle pedalled: one 0.01 rad turn of the wheel per step.
-void BM_Monocycle_DragStep(benchmark::State& state) {
-  Model m = sample("monocycle.dcl");
-  assemble(m);
-  const BodyId wheel = *m.find("wheel");
-  const Pose w = m.body(wheel).pose;
-  const Vec3 axle = w.q * Vec3::UnitX();
-  Dragger pedal(m, wheel);
-  int k = 0;
-  double iterations = 0, steps = 0;
-  for (auto _ : state) {
-    Pose p = w;
-    p.q = quat_from_rotation_vector(axle * (0.01 * ++k)) * w.q;
-    const SolveResult r = pedal.move_to(p);
-    if (!r.converged) state.SkipWithError(r.message.c_str());
-    iterations += r.iterations;
-    ++steps;
-  }
-  state.counters["iterations"] = iterations / std::max(1.0, steps);
-}
-BENCHMARK(BM_Monocycle_DragStep)->Unit(benchmark::kMicrosecond);
 
 // Both solvers must agree on the four-bars before their times are compared.
 bool same_answer() {
