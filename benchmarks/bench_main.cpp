@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "dispcon/io/dcl_reader.hpp"
+#include "common.hpp"
 #include "dispcon/solve/solver.hpp"
 #include "mechanisms.hpp"
 #include "slvs_include.hpp"
@@ -15,21 +15,7 @@
 namespace {
 
 using namespace dispcon;
-
-// Times assemble() on a fresh copy of `start` each run; reports the iterations it took.
-void assemble_copies(benchmark::State& state, const Model& start, const SolveOptions& o = {}) {
-  int iterations = 0;
-  for (auto _ : state) {
-    state.PauseTiming();
-    Model m = start;
-    state.ResumeTiming();
-    const SolveResult r = assemble(m, o);
-    if (!r.converged) state.SkipWithError(r.message.c_str());
-    iterations = r.iterations;
-    benchmark::DoNotOptimize(m);
-  }
-  state.counters["iterations"] = iterations;
-}
+using bench::assemble_copies;
 
 // N independent four-bars, the crank fixed, coupler and rocker from a rough start.
 void BM_FourBars_dispcon(benchmark::State& state) {
@@ -117,43 +103,6 @@ void BM_DragStep_FourBarGrid(benchmark::State& state) {
   state.counters["bodies"] = m.body_count() - 1;
 }
 BENCHMARK(BM_DragStep_FourBarGrid)->Arg(3)->Arg(7)->Arg(10)->Unit(benchmark::kMicrosecond);
-
-Model sample(const char* name) {
-  ParseResult r = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/" + name);
-  if (!r.ok()) {
-    std::fprintf(stderr, "%s", r.messages().c_str());
-    std::abort();
-  }
-  return std::move(*r.model);
-}
-
-// The paper's monocycle: assembly from the sample's rough positions.
-void BM_Monocycle_Assemble(benchmark::State& state) {
-  assemble_copies(state, sample("monocycle.dcl"));
-}
-BENCHMARK(BM_Monocycle_Assemble)->Unit(benchmark::kMicrosecond);
-
-// The monocycle pedalled: one 0.01 rad turn of the wheel per step.
-void BM_Monocycle_DragStep(benchmark::State& state) {
-  Model m = sample("monocycle.dcl");
-  assemble(m);
-  const BodyId wheel = *m.find("wheel");
-  const Pose w = m.body(wheel).pose;
-  const Vec3 axle = w.q * Vec3::UnitX();
-  Dragger pedal(m, wheel);
-  int k = 0;
-  double iterations = 0, steps = 0;
-  for (auto _ : state) {
-    Pose p = w;
-    p.q = quat_from_rotation_vector(axle * (0.01 * ++k)) * w.q;
-    const SolveResult r = pedal.move_to(p);
-    if (!r.converged) state.SkipWithError(r.message.c_str());
-    iterations += r.iterations;
-    ++steps;
-  }
-  state.counters["iterations"] = iterations / std::max(1.0, steps);
-}
-BENCHMARK(BM_Monocycle_DragStep)->Unit(benchmark::kMicrosecond);
 
 // Both solvers must agree on the four-bars before their times are compared.
 bool same_answer() {
