@@ -29,6 +29,20 @@ BENCHMARK(BM_FourBars_dispcon)
     ->Arg(1000)
     ->Unit(benchmark::kMillisecond);
 
+// The same on one core (the independent four-bars are otherwise shared among the cores).
+void BM_FourBars_dispcon_1core(benchmark::State& state) {
+  SolveOptions o;
+  o.threads = 1;
+  assemble_copies(state, bench::fourbars_dispcon(static_cast<int>(state.range(0))), o);
+}
+BENCHMARK(BM_FourBars_dispcon_1core)
+    ->Arg(1)
+    ->Arg(10)
+    ->Arg(100)
+    ->Arg(400)
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond);
+
 void BM_FourBars_slvs(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   for (auto _ : state) {

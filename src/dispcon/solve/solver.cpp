@@ -3,12 +3,15 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <deque>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "dispcon/solve/state.hpp"
 
@@ -86,17 +89,23 @@ void jacobi_iteration(SolverState& s, const Component& comp, const SolveOptions&
     s.bodies[static_cast<size_t>(b)].dR.setZero();
     s.bodies[static_cast<size_t>(b)].dx.setZero();
   }
+  // Only the group's own (movable) bodies are written: groups may run on several threads, and
+  // the bodies that cannot move (the world, fixed parts) are shared between them.
   Vec3 d1, d2;
+  auto add = [&](int b, Vec3 BodyState::*field, const Vec3& d, double w) {
+    BodyState& body = s.bodies[static_cast<size_t>(b)];
+    if (body.movable) body.*field += w * d;
+  };
   auto add_translations = [&](const JointState& js) {
     s.propose_translations(js, d1, d2);
-    s.bodies[static_cast<size_t>(js.b1)].dx += js.w * d1;
-    s.bodies[static_cast<size_t>(js.b2)].dx += js.w * d2;
+    add(js.b1, &BodyState::dx, d1, js.w);
+    add(js.b2, &BodyState::dx, d2, js.w);
   };
   for (int c : comp.joints) {
     const JointState& js = s.joints[static_cast<size_t>(c)];
     s.propose_rotations(js, d1, d2);
-    s.bodies[static_cast<size_t>(js.b1)].dR += js.w * d1;
-    s.bodies[static_cast<size_t>(js.b2)].dR += js.w * d2;
+    add(js.b1, &BodyState::dR, d1, js.w);
+    add(js.b2, &BodyState::dR, d2, js.w);
     if (!o.translate_after_rotate) add_translations(js);
   }
   for (int b : comp.bodies) {
@@ -565,6 +574,7 @@ struct Progress {
   double progress_mark = 0;  // the best violation then
   bool stalled = false;
   bool done = false;
+  std::vector<double> history;  // r after each iteration (record_history)
 
   // Ready for another solve; the polisher keeps its symbolic analysis.
   void reset() {
@@ -572,6 +582,7 @@ struct Progress {
     iterations = seed = polish = seed_only_until = last_progress = 0;
     stalled = false;
     done = false;
+    history.clear();
   }
 };
 
@@ -656,12 +667,25 @@ void iterate(SolverState& s, Progress& p, PolishWork& work, const SolveOptions& 
 
 }  // namespace
 
+// Threads for a solve: one unless there are several groups with enough work between them to pay
+// for starting threads (about a hundred joints); then SolveOptions::threads, or every core.
+int thread_count(const SolveOptions& o, const std::vector<Component>& comps) {
+  size_t joints = 0;
+  for (const Component& c : comps) joints += c.joints.size();
+  if (o.threads == 1 || comps.size() < 2 || joints < 100) return 1;
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  const int wanted = o.threads > 1 ? o.threads : std::max(1, cores);
+  return std::min(wanted, static_cast<int>(comps.size()));
+}
+
 struct Session::Impl {
   Impl(const Model& m, const SolveOptions& opt, const std::vector<bool>& held)
       : model(m), o(opt), s(m, m.poses(), opt, held), comps(components(s)) {
     for (const Component& c : comps) progress.emplace_back(c);
     band.assign(s.joints.size(), -0.5 * opt.tolerance);
     for (Progress& p : progress) p.size = size(s, *p.comp);
+    threads = thread_count(opt, comps);
+    more_work.resize(static_cast<size_t>(std::max(0, threads - 1)));
     for (size_t c = 0; c < s.joints.size(); ++c) {
       const JointState& js = s.joints[c];
       if (js.active && !s.bodies[static_cast<size_t>(js.b1)].movable &&
@@ -677,10 +701,11 @@ struct Session::Impl {
   std::deque<Progress> progress;  // not moved once built: each holds its factorisation
   std::vector<double> band;
   std::vector<Pose> best, before;
-  std::vector<double> history;
   std::vector<double> joint_r;  // each joint's residual at the current poses
   PolishWork work;
-  std::vector<int> immovable;  // active joints whose two bodies cannot move
+  std::deque<PolishWork> more_work;  // one per extra thread
+  int threads = 1;                   // threads a solve uses
+  std::vector<int> immovable;        // active joints whose two bodies cannot move
 };
 
 Session::Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held)
@@ -717,20 +742,16 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   before = poses;
   std::vector<double>& band = impl_->band;
   std::fill(band.begin(), band.end(), -0.5 * o.tolerance);
-  // Each component runs to the end before the next starts, so its working set stays in cache.
-  // A history is the largest violation over components after each iteration, as if they had
-  // advanced in lockstep (a finished component keeps its last value).
-  bool finite = true;
-  std::vector<double>& history = impl_->history;
-  if (o.record_history) history.clear();
-  for (Progress& p : progress) {
-    if (!finite) break;
-    int k = 0;
-    for (; !p.done && k < o.max_iterations; ++k) {
-      iterate(s, p, impl_->work, o, band, before, joint_r);
+  // Each group runs to the end before the next starts, so its working set stays in cache; with
+  // many groups, several threads take the next unsolved group in turn (each group touches only
+  // its own bodies and joints, so the answer does not depend on the threads).
+  std::atomic<bool> finite{true};
+  auto run = [&](Progress& p, PolishWork& work) {
+    for (int k = 0; !p.done && k < o.max_iterations; ++k) {
+      iterate(s, p, work, o, band, before, joint_r);
       if (!std::isfinite(p.r)) {
         finite = false;
-        break;
+        return;
       }
       if (p.r < p.best_r) {
         p.best_r = p.r;
@@ -745,23 +766,45 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
         p.stalled = true;
       }
       p.done = p.r <= o.tolerance || p.stalled;
-      if (o.record_history) {
-        if (history.size() <= static_cast<size_t>(k)) history.push_back(0);
-        history[static_cast<size_t>(k)] = std::max(history[static_cast<size_t>(k)], p.r);
-      }
+      if (o.record_history) p.history.push_back(p.r);
     }
-    result.iterations = std::max(result.iterations, p.iterations);
+  };
+  const int threads = impl_->threads;
+  if (threads <= 1) {
+    for (Progress& p : progress) {
+      if (!finite) break;
+      run(p, impl_->work);
+    }
+  } else {
+    std::atomic<size_t> next{0};
+    std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
+    auto worker = [&](int t) {
+      try {
+        PolishWork& work = t == 0 ? impl_->work : impl_->more_work[static_cast<size_t>(t - 1)];
+        for (size_t i; finite && (i = next++) < progress.size();) run(progress[i], work);
+      } catch (...) {
+        errors[static_cast<size_t>(t)] = std::current_exception();
+        finite = false;
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(worker, t);
+    worker(0);
+    for (std::thread& t : pool) t.join();
+    for (const std::exception_ptr& e : errors) {
+      if (e) std::rethrow_exception(e);
+    }
   }
+  for (const Progress& p : progress) result.iterations = std::max(result.iterations, p.iterations);
   if (o.record_history) {
-    // Components that finished early hold their last violation in the later iterations.
+    // The largest violation over groups after each iteration, as if they had advanced in
+    // lockstep (a group that finished early keeps its last violation).
+    result.history.assign(static_cast<size_t>(result.iterations), 0.0);
     for (const Progress& p : progress) {
-      for (size_t k = static_cast<size_t>(p.iterations); k < history.size(); ++k) {
-        history[k] = std::max(history[k], p.r);
+      for (size_t k = 0; k < result.history.size(); ++k) {
+        result.history[k] = std::max(result.history[k], k < p.history.size() ? p.history[k] : p.r);
       }
     }
-    result.history.assign(
-        history.begin(),
-        history.begin() + std::min(history.size(), static_cast<size_t>(result.iterations)));
   }
   double r = 0;
   bool any_stalled = false;

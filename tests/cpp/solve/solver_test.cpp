@@ -141,6 +141,70 @@ struct FourBar {
   }
 };
 
+// Sixty four-bars side by side (along z), each from its own rough start: sixty groups of bodies,
+// enough for a solve to share them among threads.
+Model many_fourbars(int n) {
+  Model m;
+  FourBar one;
+  for (int k = 0; k < n; ++k) {
+    const int base = m.body_count() - 1;
+    for (int b = 1; b < one.m.body_count(); ++b) {
+      Body body = one.m.body(BodyId{b});
+      body.name += std::to_string(k);
+      body.pose.x += Vec3(0.01 * std::sin(k), 0.02 * std::cos(k), 5.0 * k);
+      body.pose.q = quat_from_rotation_vector(Vec3(0, 0, 0.05 * std::sin(3.0 * k))) * body.pose.q;
+      m.add_body(body);
+    }
+    for (int c = 0; c < one.m.joint_count(); ++c) {
+      Joint j = one.m.joint(JointId{c});
+      for (BodyId* id : {&j.body1, &j.body2}) {
+        if (*id == Model::kWorld) {
+          (id == &j.body1 ? j.p1 : j.p2) += Vec3(0, 0, 5.0 * k);
+        } else {
+          *id = BodyId{id->value + base};
+        }
+      }
+      m.add_joint(j);
+    }
+  }
+  return m;
+}
+
+TEST(Threads, GroupsSolveTheSameOnAnyNumberOfThreads) {
+  const Model start = many_fourbars(60);
+  std::vector<SolveResult> results;
+  std::vector<std::vector<Pose>> poses;
+  for (int threads : {1, 2, 3}) {
+    Model m = start;
+    SolveOptions o;
+    o.threads = threads;
+    o.record_history = true;
+    results.push_back(assemble(m, o));
+    ASSERT_TRUE(results.back().converged) << results.back().message;
+    poses.push_back(m.poses());
+  }
+  for (size_t t = 1; t < results.size(); ++t) {
+    EXPECT_EQ(results[t].iterations, results[0].iterations);
+    EXPECT_EQ(results[t].history, results[0].history);
+    for (size_t b = 0; b < poses[0].size(); ++b) {
+      EXPECT_EQ(poses[t][b].x, poses[0][b].x) << "body " << b;
+      EXPECT_EQ(poses[t][b].q.coeffs(), poses[0][b].q.coeffs()) << "body " << b;
+    }
+  }
+  // And each four-bar closes as Freudenstein says.
+  FourBar fb;
+  Model m = start;
+  ASSERT_TRUE(assemble(m).converged);
+  for (int k = 0; k < 60; ++k) {
+    auto angle = [&](const std::string& name) {
+      const Vec3 x = m.body(*m.find(name + std::to_string(k))).pose.q * Vec3::UnitX();
+      return std::atan2(x.y(), x.x());
+    };
+    const double err = std::remainder(angle("rocker") - fb.rocker_angle(angle("crank")), 2 * kPi);
+    EXPECT_LT(std::abs(err), 1e-8) << "four-bar " << k;
+  }
+}
+
 TEST(Drag, FourBarFollowsFreudensteinOverAFullTurn) {
   FourBar fb;
   SolveOptions o;
