@@ -59,6 +59,26 @@ BENCHMARK(BM_FourBars_slvs)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
 
+void BM_FourBars_slvs_rigid(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    const bench::SlvsResult r = bench::fourbars_slvs_rigid(n);
+    if (r.result == SLVS_RESULT_TOO_MANY_UNKNOWNS) {
+      state.SkipWithError("SolveSpace refuses: too many unknowns");  // 150 four-bars and more
+    } else if (r.result != SLVS_RESULT_OKAY) {
+      state.SkipWithError("SolveSpace did not solve");
+    }
+    benchmark::DoNotOptimize(r);
+  }
+}
+BENCHMARK(BM_FourBars_slvs_rigid)
+    ->Arg(1)
+    ->Arg(10)
+    ->Arg(100)
+    ->Arg(400)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+
 // A closed chain of n point-to-point links, one fixed, from a perturbed circle.
 void BM_ClosedChain(benchmark::State& state) {
   assemble_copies(state, bench::closed_chain(static_cast<int>(state.range(0))));
@@ -125,19 +145,27 @@ bool same_answer() {
     SolveOptions o;
     o.tolerance = 1e-12;
     if (!assemble(m, o).converged) return false;
-    const bench::SlvsResult s = bench::fourbars_slvs(n);
-    if (s.result != SLVS_RESULT_OKAY) return false;
-    for (int k = 0; k < n; ++k) {
-      const double diff = std::abs(std::remainder(
-          bench::rocker_angle_dispcon(m, k) - s.rocker[static_cast<size_t>(k)], 2 * M_PI));
-      if (diff > 1e-8) {
-        std::fprintf(stderr, "four-bar %d: dispcon and SolveSpace differ by %g rad\n", k, diff);
+    for (const bool rigid : {false, true}) {
+      const bench::SlvsResult s = rigid ? bench::fourbars_slvs_rigid(n) : bench::fourbars_slvs(n);
+      if (s.result != SLVS_RESULT_OKAY) {
+        std::fprintf(stderr, "SolveSpace (%s) failed: result %d\n", rigid ? "rigid" : "2D",
+                     s.result);
         return false;
+      }
+      for (int k = 0; k < n; ++k) {
+        const double diff = std::abs(std::remainder(
+            bench::rocker_angle_dispcon(m, k) - s.rocker[static_cast<size_t>(k)], 2 * M_PI));
+        if (diff > 1e-8) {
+          std::fprintf(stderr, "four-bar %d: dispcon and SolveSpace (%s) differ by %g rad\n", k,
+                       rigid ? "rigid" : "2D", diff);
+          return false;
+        }
       }
     }
   }
   std::fprintf(stderr,
-               "check: dispcon and SolveSpace give the same rocker angles (within 1e-8 rad)\n");
+               "check: dispcon and SolveSpace (2D and rigid) give the same rocker angles (within "
+               "1e-8 rad)\n");
   return true;
 }
 

@@ -24,7 +24,10 @@ struct SlvsResult {
   int result = -1;
   std::vector<double> rocker;  // the rocker's angle of each copy
 };
+// SolveSpace at its easiest: 2D points in one workplane, distances (4 unknowns per four-bar).
 SlvsResult fourbars_slvs(int n, const FourBarProblem& p = {});
+// SolveSpace on dispcon's problem: rigid links in 3D (frames of 7 parameters each).
+SlvsResult fourbars_slvs_rigid(int n, const FourBarProblem& p = {});
 
 // A closed chain of n links, one fixed, on a circle, perturbed by 0.01.
 dispcon::Model closed_chain(int n);

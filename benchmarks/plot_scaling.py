@@ -8,14 +8,16 @@ import sys
 
 SERIES = [  # (name prefix, label, colour, parts per argument)
     ("BM_FourBars_dispcon/", "dispcon: N four-bars", "#1f77b4", 3),
-    ("BM_FourBars_slvs/", "SolveSpace: N four-bars", "#d62728", 3),
+    ("BM_FourBars_slvs/", "SolveSpace: N four-bars, 2D sketch", "#d62728", 3),
+    ("BM_FourBars_slvs_rigid/", "SolveSpace: N four-bars, rigid 3D", "#9467bd", 3),
+    ("BM_FourBars_dispcon_1core/", "dispcon: N four-bars, one core", "#17becf", 3),
     ("BM_ClosedChain/", "dispcon: closed chain of N links", "#2ca02c", 1),
     ("BM_FourBarGrid/", "dispcon: grid of coupled four-bars", "#ff7f0e", None),
 ]
 
 
 def millis(b):
-    return b["cpu_time"] * {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b["time_unit"]]
+    return b["real_time"] * {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b["time_unit"]]
 
 
 def main(src, dst):
@@ -24,7 +26,7 @@ def main(src, dst):
     for prefix, label, colour, per in SERIES:
         pts = []
         for b in runs:
-            if b["name"].startswith(prefix):
+            if b["name"].startswith(prefix) and not b.get("error_occurred"):
                 arg = int(b["name"][len(prefix):].split("/")[0])
                 parts = b.get("bodies", arg * per if per else arg)
                 pts.append((parts, millis(b)))
