@@ -142,7 +142,7 @@ void gauss_seidel_iteration(SolverState& s, const Component& comp, const SolveOp
 // (column-major, overwritten by the factor L). Column-oriented so every inner loop runs over
 // contiguous memory; for the few dozen rows of a mechanism's component this beats the general
 // blocked factorisations. Returns false when a pivot is not positive.
-bool cholesky_solve(Eigen::MatrixXd& A, Eigen::VectorXd& y) {
+bool cholesky_solve(Eigen::Ref<Eigen::MatrixXd> A, Eigen::Ref<Eigen::VectorXd> y) {
   const Eigen::Index m = A.rows();
   double* a = A.data();
   for (Eigen::Index j = 0; j < m; ++j) {
@@ -189,8 +189,11 @@ struct PolishWork {
   std::vector<int> var_start_, fill_;          // rows of body v: var_rows_[var_start_[v] ...]
   std::vector<std::pair<int, int>> var_rows_;  // (row, side 1 or 2)
   std::vector<Vec6> dq_;
-  Eigen::VectorXd y_;
-  Eigen::MatrixXd dense_;
+  // Plain buffers under Eigen maps: groups of different sizes share them, and an Eigen matrix
+  // would reallocate at every change of size.
+  std::vector<double> y_;
+  std::vector<double> dense_;
+  Eigen::MatrixXd full_;  // the fallback LDLT's copy
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
   std::vector<Eigen::Triplet<double>> triplets_;
   std::vector<int> pattern_;
@@ -225,8 +228,9 @@ class Polisher {
       for (Vec6& d : w_->dq_) d.setZero();
       for (int a = 0; a < m; ++a) {
         const Entry& e = w_->rows_[static_cast<size_t>(a)];
-        if (e.v1 >= 0) w_->dq_[static_cast<size_t>(e.v1)] += w_->y_(a) * e.u1;
-        if (e.v2 >= 0) w_->dq_[static_cast<size_t>(e.v2)] += w_->y_(a) * e.u2;
+        const double ya = w_->y_[static_cast<size_t>(a)];
+        if (e.v1 >= 0) w_->dq_[static_cast<size_t>(e.v1)] += ya * e.u1;
+        if (e.v2 >= 0) w_->dq_[static_cast<size_t>(e.v2)] += ya * e.u2;
       }
     }
     // Keep each body's turn small (seed 2.3): scale the whole step, never bend it.
@@ -355,23 +359,26 @@ class Polisher {
     if (m <= kDenseRows) {
       // Lower triangle only; Cholesky first (the regularised matrix is positive definite), the
       // pivoting LDLT only when rounding defeats it.
+      w_->dense_.resize(static_cast<size_t>(m) * static_cast<size_t>(m));
+      w_->y_.resize(static_cast<size_t>(m));
+      Eigen::Map<Eigen::MatrixXd> A(w_->dense_.data(), m, m);
+      Eigen::Map<Eigen::VectorXd> y(w_->y_.data(), m);
       auto assemble = [&] {
-        w_->dense_.resize(m, m);
-        w_->dense_.triangularView<Eigen::Lower>().setZero();
-        couplings([&](int a, int b, double v) { w_->dense_(a, b) += v; });
-        const double scale = w_->dense_.diagonal().maxCoeff();
-        w_->dense_.diagonal().array() += lambda * scale;
+        A.triangularView<Eigen::Lower>().setZero();
+        couplings([&](int a, int b, double v) { A(a, b) += v; });
+        const double scale = A.diagonal().maxCoeff();
+        A.diagonal().array() += lambda * scale;
         return scale;
       };
       if (!(assemble() > 0)) return false;
-      w_->y_ = -r;
-      if (cholesky_solve(w_->dense_, w_->y_)) return w_->y_.allFinite();
+      y = -r;
+      if (cholesky_solve(A, y)) return y.allFinite();
       assemble();
-      w_->dense_ = w_->dense_.selfadjointView<Eigen::Lower>();
-      w_->dense_ldlt_.compute(w_->dense_);
+      w_->full_ = A.selfadjointView<Eigen::Lower>();
+      w_->dense_ldlt_.compute(w_->full_);
       if (w_->dense_ldlt_.info() != Eigen::Success) return false;
-      w_->y_ = w_->dense_ldlt_.solve(-r);
-      return w_->y_.allFinite();
+      y = w_->dense_ldlt_.solve(-r);
+      return y.allFinite();
     }
     return factor_sparse(s, lambda);
   }
@@ -438,8 +445,8 @@ class Polisher {
         for (int i = 0; i < 6; ++i) d(i) = solution_(order_(6 * v + i));
       }
     } else {
-      w_->y_.resize(m);
-      for (int a = 0; a < m; ++a) w_->y_(a) = solution_(order_(a));
+      w_->y_.resize(static_cast<size_t>(m));
+      for (int a = 0; a < m; ++a) w_->y_[static_cast<size_t>(a)] = solution_(order_(a));
     }
     return solution_.allFinite();
   }
