@@ -32,8 +32,8 @@ struct SolveOptions {
   bool use_physics = true;  // bodies with mass and inertia use m J^-1 (eqs. 11-19); else k
 
   bool record_history = false;  // keep the largest violation after every iteration
-  int threads = 0;  // independent groups of bodies solved on this many threads; 0: every core
-                    // when there are several groups and enough work (a hundred joints or more)
+  int threads = 0;  // independent groups of bodies shared among this many threads; 0: every
+                    // core when there are several groups and a thousand joints or more
 
   bool newton_polish = true;  // finish with Newton steps once close
   double polish_below = 0.1;  // switch to Newton when the largest violation is below this times
