@@ -213,16 +213,25 @@ class Polisher {
 
   // `band[c]` widens what counts as a bound in contact for joint c (see solve()).
   // Returns false when no step could be computed.
+  // With `reuse`, a large group in the saddle-point form may solve with the factorisation of its
+  // last step instead of a new one (a chord step: the Jacobian moved little since); reused()
+  // tells whether it did.
   bool step(SolverState& s, PolishWork& work, const std::vector<double>& band, double lambda,
-            double max_rotation) {
+            double max_rotation, bool reuse) {
     w_ = &work;
+    reused_ = false;
     w_->dq_.resize(static_cast<size_t>(nv_));
     for (int v = 0; v < nv_; ++v)
       s.bodies[static_cast<size_t>(comp_->bodies[static_cast<size_t>(v)])].n_var = v;
     gather(s, band);
     const int m = static_cast<int>(w_->rows_.size());
     if (m == 0 || nv_ == 0) return false;
-    if (!factor(s, lambda)) return false;
+    if (reuse && factored_ && m > kDenseRows && kkt_ && same_pattern()) {
+      reused_ = true;
+      if (!solve_factored()) return false;
+    } else if (!factor(s, lambda)) {
+      return false;
+    }
     if (m <= kDenseRows || !kkt_) {
       // dq = M^-1 J^T y
       for (Vec6& d : w_->dq_) d.setZero();
@@ -247,6 +256,7 @@ class Polisher {
     }
     return true;
   }
+  bool reused() const { return reused_; }
 
  private:
   using Vec6 = PolishWork::Vec6;
@@ -403,9 +413,8 @@ class Polisher {
       for (int a = 0; a < m; ++a) f(a, a, mu);
     };
     auto kkt_form = [&](auto&& f) { kkt_entries(s, mu, f); };
-    w_->pattern_.clear();
-    for (const Entry& e : w_->rows_) w_->pattern_.push_back(e.v1), w_->pattern_.push_back(e.v2);
-    if (!analyzed_ || w_->pattern_ != analyzed_pattern_) {
+    factored_ = false;
+    if (!same_pattern()) {
       std::vector<double>& per_body = w_->rows_per_body_;
       per_body.assign(static_cast<size_t>(nv_), 0.0);
       for (const Entry& e : w_->rows_) {
@@ -435,6 +444,20 @@ class Polisher {
     }
     sparse_ldlt_.factorize(sparse_);
     if (sparse_ldlt_.info() != Eigen::Success) return false;
+    factored_ = kkt_;
+    return solve_factored();
+  }
+
+  // Whether the rows join the same bodies as when the sparse system was analysed.
+  bool same_pattern() {
+    w_->pattern_.clear();
+    for (const Entry& e : w_->rows_) w_->pattern_.push_back(e.v1), w_->pattern_.push_back(e.v2);
+    return analyzed_ && w_->pattern_ == analyzed_pattern_;
+  }
+
+  // The step from the current residuals with the factorisation in hand.
+  bool solve_factored() {
+    const int m = static_cast<int>(w_->rows_.size());
     const int base = kkt_ ? 6 * nv_ : 0;
     rhs_.setZero(base + m);
     for (int a = 0; a < m; ++a) rhs_(order_(base + a)) = -w_->residual_[static_cast<size_t>(a)];
@@ -495,6 +518,8 @@ class Polisher {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>>
       sparse_ldlt_;
   bool kkt_ = false;       // the sparse system is the saddle-point form
+  bool factored_ = false;  // ... and its factorisation can serve a chord step
+  bool reused_ = false;    // the last step was a chord step
   Eigen::VectorXi order_;  // fill-reducing order of the rows
   Eigen::VectorXd rhs_, solution_;
   std::vector<int> analyzed_pattern_;
@@ -575,6 +600,7 @@ struct Progress {
   double best_r = 0;  // and the best seen, whose poses are kept
   double size = 1;    // the group's size when the session was made: where the polish begins
   double lambda = 1e-12;
+  bool chord = false;  // the next Newton step may reuse the last factorisation (kept across solves)
   int iterations = 0, seed = 0, polish = 0;
   int seed_only_until = 0;   // after a failed polish, let the seed iterations work a while
   int last_progress = 0;     // the iteration at which the best violation last shrank by 0.1 %
@@ -645,11 +671,20 @@ void iterate(SolverState& s, Progress& p, PolishWork& work, const SolveOptions& 
   }
   ++p.polish;
   save_poses(s, comp, before);
-  const bool stepped = p.polisher.step(s, work, band, p.lambda, o.max_rotation_step);
+  const bool stepped = p.polisher.step(s, work, band, p.lambda, o.max_rotation_step, p.chord);
+  const bool chord = p.polisher.reused();
   const double next = stepped ? max_residual(s, comp.joints, joint_r) : p.r;
   if (stepped && next < p.r) {
+    // After a Newton step the next may reuse its factorisation; a chord step that gained less
+    // than a factor of four asks for a new one.
+    p.chord = !chord || next < 0.01 * p.r;
     p.r = next;
     p.lambda = std::max(1e-12, p.lambda * 0.1);
+    return;
+  }
+  if (chord) {  // the old factorisation no longer serves: try again with a new one
+    load_poses(s, comp, before);
+    p.chord = false;
     return;
   }
   bool widened = false;
