@@ -17,17 +17,19 @@ namespace {
 using namespace dispcon;
 using bench::assemble_copies;
 
+// The numbers of four-bars solved side by side (SolveSpace only up to 400: it takes seconds).
+void fourbar_counts(benchmark::internal::Benchmark* b, int up_to) {
+  for (int n : {1, 10, 100, 400, 1000}) {
+    if (n <= up_to) b->Arg(n);
+  }
+  b->Unit(benchmark::kMillisecond);
+}
+
 // N independent four-bars, the crank fixed, coupler and rocker from a rough start.
 void BM_FourBars_dispcon(benchmark::State& state) {
   assemble_copies(state, bench::fourbars_dispcon(static_cast<int>(state.range(0))));
 }
-BENCHMARK(BM_FourBars_dispcon)
-    ->Arg(1)
-    ->Arg(10)
-    ->Arg(100)
-    ->Arg(400)
-    ->Arg(1000)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FourBars_dispcon)->Apply([](auto* b) { fourbar_counts(b, 1000); });
 
 // The same on one core (the independent four-bars are otherwise shared among the cores).
 void BM_FourBars_dispcon_1core(benchmark::State& state) {
@@ -35,49 +37,30 @@ void BM_FourBars_dispcon_1core(benchmark::State& state) {
   o.threads = 1;
   assemble_copies(state, bench::fourbars_dispcon(static_cast<int>(state.range(0))), o);
 }
-BENCHMARK(BM_FourBars_dispcon_1core)
-    ->Arg(1)
-    ->Arg(10)
-    ->Arg(100)
-    ->Arg(400)
-    ->Arg(1000)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FourBars_dispcon_1core)->Apply([](auto* b) { fourbar_counts(b, 1000); });
 
-void BM_FourBars_slvs(benchmark::State& state) {
+// SolveSpace on the same four-bars, set up by `solve` (2D sketch or rigid links in 3D).
+void solvespace(benchmark::State& state,
+                bench::SlvsResult (*solve)(int, const bench::FourBarProblem&)) {
   const int n = static_cast<int>(state.range(0));
   for (auto _ : state) {
-    const bench::SlvsResult r = bench::fourbars_slvs(n);
-    if (r.result != SLVS_RESULT_OKAY) state.SkipWithError("SolveSpace did not solve");
-    benchmark::DoNotOptimize(r);
-  }
-}
-BENCHMARK(BM_FourBars_slvs)
-    ->Arg(1)
-    ->Arg(10)
-    ->Arg(100)
-    ->Arg(400)
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3);
-
-void BM_FourBars_slvs_rigid(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  for (auto _ : state) {
-    const bench::SlvsResult r = bench::fourbars_slvs_rigid(n);
+    const bench::SlvsResult r = solve(n, {});
     if (r.result == SLVS_RESULT_TOO_MANY_UNKNOWNS) {
-      state.SkipWithError("SolveSpace refuses: too many unknowns");  // 150 four-bars and more
+      state.SkipWithError("SolveSpace refuses: too many unknowns");  // rigid: 147 four-bars on
     } else if (r.result != SLVS_RESULT_OKAY) {
       state.SkipWithError("SolveSpace did not solve");
     }
     benchmark::DoNotOptimize(r);
   }
 }
-BENCHMARK(BM_FourBars_slvs_rigid)
-    ->Arg(1)
-    ->Arg(10)
-    ->Arg(100)
-    ->Arg(400)
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3);
+void BM_FourBars_slvs(benchmark::State& state) {
+  solvespace(state, bench::fourbars_slvs);
+}
+BENCHMARK(BM_FourBars_slvs)->Apply([](auto* b) { fourbar_counts(b, 400); }) -> Iterations(3);
+void BM_FourBars_slvs_rigid(benchmark::State& state) {
+  solvespace(state, bench::fourbars_slvs_rigid);
+}
+BENCHMARK(BM_FourBars_slvs_rigid)->Apply([](auto* b) { fourbar_counts(b, 400); }) -> Iterations(3);
 
 // A closed chain of n point-to-point links, one fixed, from a perturbed circle.
 void BM_ClosedChain(benchmark::State& state) {

@@ -111,19 +111,8 @@ SlvsResult fourbars_slvs(int n, const FourBarProblem& p) {
     distance(A, B, p.b);
     distance(B, D, p.c);
   }
-  Slvs_System sys = {};
-  sys.param = param.data();
-  sys.params = static_cast<int>(param.size());
-  sys.entity = entity.data();
-  sys.entities = static_cast<int>(entity.size());
-  sys.constraint = constraint.data();
-  sys.constraints = static_cast<int>(constraint.size());
-  std::vector<Slvs_hConstraint> failed(constraint.size());
-  sys.failed = failed.data();
-  sys.faileds = static_cast<int>(failed.size());
-  Slvs_Solve(&sys, g2);
   SlvsResult out;
-  out.result = sys.result;
+  out.result = solve_slvs(param, entity, constraint, g2);
   for (int k = 0; k < n; ++k) {
     const double bx = param[b_params[static_cast<size_t>(k)] - 1].val - 10.0 * k;
     const double by = param[b_params[static_cast<size_t>(k)]].val;

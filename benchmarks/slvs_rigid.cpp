@@ -81,19 +81,8 @@ SlvsResult fourbars_slvs_rigid(int n, const FourBarProblem& p) {
     pin(coupler_b, rocker_b);
     pin(D, rocker_origin);
   }
-  Slvs_System sys = {};
-  sys.param = param.data();
-  sys.params = static_cast<int>(param.size());
-  sys.entity = entity.data();
-  sys.entities = static_cast<int>(entity.size());
-  sys.constraint = constraint.data();
-  sys.constraints = static_cast<int>(constraint.size());
-  std::vector<Slvs_hConstraint> failed(constraint.size());
-  sys.failed = failed.data();
-  sys.faileds = static_cast<int>(failed.size());
-  Slvs_Solve(&sys, g2);
   SlvsResult out;
-  out.result = sys.result;
+  out.result = solve_slvs(param, entity, constraint, g2);
   for (Slvs_hParam h : rocker_q) {
     const double w = param[h - 1].val, x = param[h].val, y = param[h + 1].val, z = param[h + 2].val;
     // The rocker frame's x axis, rotated by the quaternion.
