@@ -212,22 +212,4 @@ double Model::move_share(JointId id) const {
   return 0.5;
 }
 
-double Model::length_scale() const {
-  Eigen::AlignedBox3d box;
-  for (const Body& b : bodies_) {
-    box.extend(b.pose.x);
-    box.extend(b.world_center());
-  }
-  for (const Joint& j : joints_) {
-    const Body& b1 = body(j.body1);
-    const Body& b2 = body(j.body2);
-    box.extend(b1.pose.apply(j.p1));
-    box.extend(b2.pose.apply(j.p2));
-    if (j.guide) {
-      for (const Vec3& p : j.guide->points) box.extend(b1.pose.apply(p));
-    }
-  }
-  return std::max(1e-6, box.diagonal().norm());
-}
-
 }  // namespace dispcon

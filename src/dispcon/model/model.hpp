@@ -51,10 +51,6 @@ class Model {
   // 0 when body1 is fixed, 1 when body2 is fixed (whatever was asked).
   double move_share(JointId id) const;
 
-  // Largest distance between any two points of interest (body origins, centres, hinge points):
-  // the length scale for relative thresholds. At least 1e-6.
-  double length_scale() const;
-
  private:
   std::vector<Body> bodies_;
   std::vector<Joint> joints_;

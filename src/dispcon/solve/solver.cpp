@@ -676,7 +676,7 @@ void iterate(SolverState& s, Progress& p, PolishWork& work, const SolveOptions& 
   const double next = stepped ? max_residual(s, comp.joints, joint_r) : p.r;
   if (stepped && next < p.r) {
     // After a Newton step the next may reuse its factorisation; a chord step that gained less
-    // than a factor of four asks for a new one.
+    // than a hundredfold asks for a new one.
     p.chord = !chord || next < 0.01 * p.r;
     p.r = next;
     p.lambda = std::max(1e-12, p.lambda * 0.1);
