@@ -4,7 +4,8 @@ dispcon, every mouse event; the whole drag is one undo step."""
 import FreeCAD as App
 import FreeCADGui as Gui
 
-from . import assembly as da
+from .objects import parts
+from .operations import PointDrag
 
 _active = None
 
@@ -39,10 +40,10 @@ class DragMode:
         if event.getState() == self.coin.SoMouseButtonEvent.DOWN:
             info = self.view.getObjectInfo((int(pos[0]), int(pos[1])))
             part = App.ActiveDocument.getObject(info["Object"]) if info else None
-            if part is None or part not in da.parts(self.asm) or getattr(part, "Grounded", False):
+            if part is None or part not in parts(self.asm) or getattr(part, "Grounded", False):
                 return
             self.grab = App.Vector(info["x"], info["y"], info["z"])
-            self.drag = da.PointDrag(self.asm, part, self.grab)
+            self.drag = PointDrag(self.asm, part, self.grab)
             self.part = part
             self.normal = self.view.getViewDirection()
             event_cb.setHandled()

@@ -1,0 +1,140 @@
+"""The adapter between FreeCAD and the engine: an assembly's parts (their Placements are the
+poses, their solids give centres of mass, masses and inertias) and joints (points and axes in each
+part's frame) become a dispcon.Model; the solved poses come back as Placements."""
+import math
+
+import FreeCAD as App
+
+from . import engine, geometry
+from .objects import joints, parts, shape_of
+
+
+def _vec(v):
+    return (v.x, v.y, v.z)
+
+
+def _rotvec(rotation):
+    axis, angle = rotation.Axis, rotation.Angle
+    return (axis.x * angle, axis.y * angle, axis.z * angle)
+
+
+def _joint_kwargs(j):
+    """The joint as dispcon's constraint vocabulary (format.md)."""
+    t = j.JointType
+    p1, p2 = _vec(j.Point1), _vec(j.Point2)
+    a1, a2 = _vec(j.Axis1), _vec(j.Axis2)
+    b1, b2 = _vec(j.Perp1), _vec(j.Perp2)
+    inf = float("inf")
+    rad = math.radians
+    rot = (rad(j.RotationMin.Value), rad(j.RotationMax.Value)) if j.HasRotationLimits else None
+    travel = (j.TravelMin.Value, j.TravelMax.Value) if j.HasTravelLimits else (-inf, inf)
+    kw = {}
+    if t != "Angle":
+        kw["hinge"] = (p1, p2)
+    if t in ("Fixed", "Revolute", "Slider", "Cylindrical", "Planar"):
+        kw["angle"] = (a1, a2, 0.0, 0.0)
+    if t in ("Fixed", "Slider"):
+        kw["twist"] = (b1, b2, 0.0, 0.0)
+    elif t in ("Revolute", "Cylindrical") and rot:
+        kw["twist"] = (b1, b2, rot[0], rot[1])
+    if t in ("Slider", "Cylindrical", "PointOnLine"):
+        kw["axial"] = (a1, travel[0], travel[1])
+    if t in ("Planar", "PointOnPlane"):
+        kw["planar"] = (a1, 0.0, inf)
+    if t == "Ball" and j.ConeAngle.Value > 0:
+        kw["angle"] = (a1, a2, 0.0, rad(j.ConeAngle.Value))
+    if t == "PointOnCurve":
+        kw["polyline"] = [_vec(p) for p in j.Curve1]
+    if t == "Angle":
+        kw["angle"] = (a1, a2, rad(j.AngleMin.Value), rad(j.AngleMax.Value))
+    if j.Move >= 0:
+        kw["move"] = j.Move
+    return kw
+
+
+class Adapter:
+    """One assembly as a dispcon.Model: bodies are the parts (their Placement is the pose), with
+    mass and inertia from their shapes; joints are the joint objects, in order."""
+
+    def __init__(self, asm, physics=False):
+        self.dispcon = engine.load()
+        self.asm = asm
+        self.parts = parts(asm)
+        self.joints = joints(asm)
+        self.model = self.dispcon.Model()
+        self.names = {}
+        for k, p in enumerate(self.parts):
+            name = "p%d_%s" % (k, "".join(c if c.isalnum() else "_" for c in p.Name))
+            self.names[p.Name] = name
+            pl = p.Placement
+            kw = dict(position=_vec(pl.Base), rotation=_rotvec(pl.Rotation),
+                      fixed=bool(getattr(p, "Grounded", False)))
+            props = geometry.mass_properties(shape_of(p))
+            if props is not None:
+                volume, com, inertia = props
+                density = getattr(p, "Density", 1.0) or 1.0
+                kw["center"] = _vec(geometry.to_local(pl, point=com))
+                if physics:
+                    R = pl.Rotation.toMatrix()
+                    kw["mass"] = density * volume
+                    kw["inertia"] = self._local_inertia(R, inertia, density)
+            if getattr(p, "AbilityToRotate", 0) > 0:
+                kw["rotate"] = p.AbilityToRotate
+            self.model.add_body(name, **kw)
+        for j in self.joints:
+            o1, o2 = j.Reference1[0], j.Reference2[0]
+            if o1.Name not in self.names or o2.Name not in self.names:
+                raise ValueError("%s joins a part that is not in %s" % (j.Label, asm.Label))
+            self.model.add_joint(self.names[o2.Name], object1=self.names[o1.Name], label=j.Label,
+                                 **_joint_kwargs(j))
+
+    @staticmethod
+    def _local_inertia(R, inertia, density):
+        # inertia is about the centre of mass in global axes of the shape as placed: to local axes.
+        rows = [[R.A[4 * i + j] for j in range(3)] for i in range(3)]
+        out = [[0.0] * 3 for _ in range(3)]
+        for a in range(3):
+            for b in range(3):
+                out[a][b] = density * sum(rows[i][a] * inertia[i][j] * rows[j][b] for i in range(3) for j in range(3))
+        return out
+
+    def part_of(self, name):
+        for p in self.parts:
+            if self.names[p.Name] == name:
+                return p
+        raise KeyError(name)
+
+    def placement_of(self, part):
+        b = self.model.body(self.names[part.Name])
+        q = b.quaternion  # w, x, y, z
+        return App.Placement(App.Vector(*b.position), App.Rotation(q[1], q[2], q[3], q[0]))
+
+    def write_back(self):
+        for p in self.parts:
+            if getattr(p, "Grounded", False):
+                continue
+            p.Placement = self.placement_of(p)
+
+    def mark(self, result):
+        for report, j in zip(result.constraints, self.joints):
+            j.Residual = report.residual
+            j.Violated = not report.satisfied
+
+
+class Result:
+    """What a solve said, with the joints still violated named as the user knows them."""
+
+    def __init__(self, adapter, r):
+        self.converged = r.converged
+        self.iterations = r.iterations
+        self.max_residual = r.max_residual
+        self.violated = [adapter.joints[i] for i in r.violated]
+        names = ", ".join("%s (residual %.3g)" % (adapter.joints[i].Label, r.constraints[i].residual) for i in r.violated)
+        self.message = ("solved in %d iterations" % r.iterations) if r.converged else (
+            "could not make every joint hold; still violated: " + names)
+
+    def __bool__(self):
+        return self.converged
+
+    def __repr__(self):
+        return "<dispcon_fc.Result %s>" % self.message

@@ -1,0 +1,20 @@
+"""The workbench's task panels. Their forms are Qt Designer files in Resources/ui, loaded when a
+panel opens, so the layout can change without touching the code."""
+import FreeCADGui as Gui
+
+from ..resources import ui_path
+
+last_panel = None  # the panel shown last (scripts and tests reach its form through it)
+
+
+def load_ui(name):
+    """The form of Resources/ui/<name>."""
+    return Gui.PySideUic.loadUi(ui_path(name))
+
+
+def show(panel):
+    """Opens `panel` in the task view and returns it."""
+    global last_panel
+    last_panel = panel
+    Gui.Control.showDialog(panel)
+    return panel
