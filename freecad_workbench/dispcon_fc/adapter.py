@@ -1,7 +1,9 @@
 """The adapter between FreeCAD and the engine: an assembly's parts (their Placements are the
 poses, their solids give centres of mass, masses and inertias) and joints (points and axes in each
 part's frame) become a dispcon.Model; the solved poses come back as Placements."""
+import contextlib
 import math
+import re
 
 import FreeCAD as App
 
@@ -16,6 +18,32 @@ def _vec(v):
 def _rotvec(rotation):
     axis, angle = rotation.Axis, rotation.Angle
     return (axis.x * angle, axis.y * angle, axis.z * angle)
+
+
+def live_curve(j, count=64):
+    """The curve of a PointOnCurve joint, sampled now from part 1's picked edge, in part 1's
+    frame: the geometry as it is, whenever the joint was made or its type changed."""
+    part, subs = j.Reference1[0], j.Reference1[1]
+    sub = subs[0] if subs else ""
+    if not sub.startswith("Edge"):
+        raise ValueError("%s: a PointOnCurve joint needs an edge of %s as its first reference, not %s"
+                         % (j.Label, part.Label, sub or "the whole part"))
+    try:
+        edge = shape_of(part).getElement(sub)
+    except Exception:
+        raise ValueError("%s: %s has no %s any more (its shape changed): pick the curve again"
+                         % (j.Label, part.Label, sub)) from None
+    return [geometry.to_local(part.Placement, point=p) for p in edge.discretize(count)]
+
+
+def missing_part(j, parts_by_name):
+    """Why the joint cannot be solved for want of a part ("" when both are there)."""
+    for ref in (j.Reference1, j.Reference2):
+        if ref is None or ref[0] is None:
+            return "one of its parts was deleted"
+        if ref[0].Name not in parts_by_name:
+            return "%s is not a part of the assembly" % ref[0].Label
+    return ""
 
 
 def _joint_kwargs(j):
@@ -44,7 +72,7 @@ def _joint_kwargs(j):
     if t == "Ball" and j.ConeAngle.Value > 0:
         kw["angle"] = (a1, a2, 0.0, rad(j.ConeAngle.Value))
     if t == "PointOnCurve":
-        kw["polyline"] = [_vec(p) for p in j.Curve1]
+        kw["polyline"] = [_vec(p) for p in live_curve(j)]
     if t == "Angle":
         kw["angle"] = (a1, a2, rad(j.AngleMin.Value), rad(j.AngleMax.Value))
     if j.Move >= 0:
@@ -81,12 +109,40 @@ class Adapter:
             if getattr(p, "AbilityToRotate", 0) > 0:
                 kw["rotate"] = p.AbilityToRotate
             self.model.add_body(name, **kw)
+        # A joint that lost a part is left out of the model and reported, by its label.
+        self.skipped = []
+        active = []
         for j in self.joints:
-            o1, o2 = j.Reference1[0], j.Reference2[0]
-            if o1.Name not in self.names or o2.Name not in self.names:
-                raise ValueError("%s joins a part that is not in %s" % (j.Label, asm.Label))
-            self.model.add_joint(self.names[o2.Name], object1=self.names[o1.Name], label=j.Label,
-                                 **_joint_kwargs(j))
+            why = missing_part(j, self.names)
+            if why:
+                self.skipped.append((j, why))
+            else:
+                active.append(j)
+        self.joints = active
+        with self.engine_errors():
+            for j in self.joints:
+                o1, o2 = j.Reference1[0], j.Reference2[0]
+                self.model.add_joint(self.names[o2.Name], object1=self.names[o1.Name], label=j.Label,
+                                     **_joint_kwargs(j))
+
+    def labelled(self, text):
+        """`text` with the model's internal body names (p0_Base) as the parts' labels."""
+        labels = {self.names[p.Name]: p.Label for p in self.parts if p.Name in self.names}
+        if not labels:
+            return text
+        pattern = re.compile(r"\b(%s)\b" % "|".join(re.escape(n) for n in sorted(labels, key=len, reverse=True)))
+        return pattern.sub(lambda m: labels[m.group(1)], text)
+
+    @contextlib.contextmanager
+    def engine_errors(self):
+        """The engine's errors as ValueErrors that name the parts by their labels."""
+        try:
+            yield
+        except (RuntimeError, ValueError, IndexError, KeyError) as e:
+            raise ValueError(self.labelled(str(e))) from None
+
+    def skipped_message(self):
+        return "; ".join("skipped %s (%s)" % (j.Label, why) for j, why in self.skipped)
 
     @staticmethod
     def _local_inertia(R, inertia, density):
@@ -130,8 +186,13 @@ class Result:
         self.max_residual = r.max_residual
         self.violated = [adapter.joints[i] for i in r.violated]
         names = ", ".join("%s (residual %.3g)" % (adapter.joints[i].Label, r.constraints[i].residual) for i in r.violated)
+        self.skipped = [j for j, _ in adapter.skipped]
         self.message = ("solved in %d iterations" % r.iterations) if r.converged else (
             "could not make every joint hold; still violated: " + names)
+        if not adapter.joints:
+            self.message = "nothing to solve: %s has no joint" % adapter.asm.Label
+        if adapter.skipped:
+            self.message += "; " + adapter.skipped_message()
 
     def __bool__(self):
         return self.converged

@@ -13,9 +13,11 @@ mouse can be done from here under freecadcmd.
     report = da.check(asm)
 """
 from . import engine, geometry  # noqa: F401  (scripts reach the engine as da.engine)
-from .adapter import Adapter, Result  # noqa: F401
-from .objects import (JOINT_TYPES, AssemblyProxy, JointProxy, is_assembly, is_joint,  # noqa: F401
-                      joints, part_properties, parts, shape_of)
-from .operations import (Drag, PointDrag, add_joint, add_part, check, create_assembly,  # noqa: F401
-                         drag, drive, export_dcl, import_dcl, import_part, interference,
-                         interference_along, link_part, set_limits, solve)
+from .adapter import Adapter, Result, live_curve  # noqa: F401
+from .objects import (JOINT_TYPES, AssemblyProxy, JointProxy, adopt, adopt_document,  # noqa: F401
+                      is_assembly, is_joint, joints, part_properties, parts, preferences, shape_of)
+from .operations import (Drag, PointDrag, Transaction, add_joint, add_part, check,  # noqa: F401
+                         create_assembly, drag, drive, driven_side, edit_joint, export_dcl,
+                         import_dcl, import_part, interference, interference_along,
+                         link_part, linkable_objects, set_grounded, set_limits, solve,
+                         transaction)

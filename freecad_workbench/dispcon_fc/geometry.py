@@ -22,7 +22,10 @@ def feature(obj, sub):
         import Part
 
         shape = Part.getShape(obj)
-    element = shape.getElement(sub)
+    try:
+        element = shape.getElement(sub)
+    except Exception:
+        raise ValueError("%s has no %s" % (obj.Label, sub or "sub-element: pick an edge, face or vertex")) from None
     curve = getattr(element, "Curve", None)
     surface = getattr(element, "Surface", None)
     if sub.startswith("Vertex"):
@@ -48,7 +51,7 @@ def feature(obj, sub):
         if kind == "Part::GeomSphere":
             return Feature(surface.Center, App.Vector(0, 0, 1), "sphere")
         return Feature(element.CenterOfMass, App.Vector(0, 0, 1), "face")
-    raise ValueError("%s.%s: expected a VertexN, EdgeN or FaceN" % (obj.Name, sub))
+    raise ValueError("%s.%s: expected a VertexN, EdgeN or FaceN" % (obj.Label, sub))
 
 
 def to_local(placement, point=None, axis=None):

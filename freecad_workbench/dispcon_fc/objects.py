@@ -1,6 +1,8 @@
 """The workbench's document objects: the assembly (a group of parts and joints), the joints, and
 the properties that make an object of the document a part. Every value lives in the objects'
 properties; the Python proxies hold nothing (FreeCAD saves a proxy's state, and ours is None)."""
+import math
+
 import FreeCAD as App
 
 JOINT_TYPES = ["Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "PointOnLine",
@@ -24,6 +26,48 @@ class _Proxy:
     loads = __setstate__
 
 
+PARAMETERS = "User parameter:BaseApp/Preferences/Mod/Dispcon"
+DEFAULT_TOLERANCE = 1e-9
+DEFAULT_MAX_ITERATIONS = 10000
+DEFAULT_DRAG_STEPS = 20
+
+
+def preferences():
+    """The defaults a person set on the preferences page (Edit > Preferences > Dispcon); a value
+    that is missing or not a positive number gives the built-in default."""
+    p = App.ParamGet(PARAMETERS)
+    # The page's tolerance field is text ("1e-9": readable, any magnitude).
+    try:
+        tolerance = float(p.GetString("Tolerance", "") or DEFAULT_TOLERANCE)
+    except ValueError:
+        App.Console.PrintWarning("Dispcon preferences: tolerance %r is not a number; using %g\n"
+                                 % (p.GetString("Tolerance", ""), DEFAULT_TOLERANCE))
+        tolerance = DEFAULT_TOLERANCE
+    iterations = p.GetInt("MaxIterations", DEFAULT_MAX_ITERATIONS)
+    steps = p.GetInt("DragSteps", DEFAULT_DRAG_STEPS)
+    return {"Tolerance": tolerance if 0 < tolerance < math.inf else DEFAULT_TOLERANCE,
+            "MaxIterations": iterations if iterations > 0 else DEFAULT_MAX_ITERATIONS,
+            "DragSteps": steps if steps > 0 else DEFAULT_DRAG_STEPS}
+
+
+def _add(obj, type_id, name, group, doc, value=None):
+    """Adds a property the object lacks (new objects, and documents saved by an older workbench
+    or without it); keeps the value of one it has."""
+    if name not in obj.PropertiesList:
+        obj.addProperty(type_id, name, group, doc)
+        if value is not None:
+            setattr(obj, name, value)
+
+
+def _mark(obj, kind):
+    """The stored property that says what the object is, so it is recognised even when its
+    Python proxy could not be restored (the workbench missing when the file was opened)."""
+    _add(obj, "App::PropertyString", "DispconType", "Dispcon", "what this object is to the Dispcon workbench")
+    if obj.DispconType != kind:
+        obj.DispconType = kind
+    obj.setEditorMode("DispconType", 1)  # read-only: it is what the object is
+
+
 class AssemblyProxy(_Proxy):
     """An App::DocumentObjectGroupPython holding the parts and the joints of one assembly."""
 
@@ -32,12 +76,17 @@ class AssemblyProxy(_Proxy):
         self.attach(obj)
 
     def attach(self, obj):
-        if not hasattr(obj, "Tolerance"):
-            obj.addProperty("App::PropertyFloat", "Tolerance", "Dispcon", "largest violation accepted").Tolerance = 1e-9
-        if not hasattr(obj, "MaxIterations"):
-            obj.addProperty("App::PropertyInteger", "MaxIterations", "Dispcon", "iteration cap").MaxIterations = 10000
-        if not hasattr(obj, "LastSolve"):
-            obj.addProperty("App::PropertyString", "LastSolve", "Dispcon", "what the last solve said")
+        _mark(obj, "Assembly")
+        prefs = preferences()
+        tolerance = prefs["Tolerance"]
+        if "Tolerance" in obj.PropertiesList and obj.getTypeIdOfProperty("Tolerance") == "App::PropertyFloat":
+            # Saved by an earlier workbench as a plain float, which the property editor shows
+            # as "0.00": the same value in a property that shows its digits.
+            tolerance = obj.Tolerance
+            obj.removeProperty("Tolerance")
+        _add(obj, "App::PropertyPrecision", "Tolerance", "Dispcon", "largest violation accepted", tolerance)
+        _add(obj, "App::PropertyInteger", "MaxIterations", "Dispcon", "iteration cap", prefs["MaxIterations"])
+        _add(obj, "App::PropertyString", "LastSolve", "Dispcon", "what the last solve said")
 
     def onDocumentRestored(self, obj):
         self.attach(obj)
@@ -49,30 +98,35 @@ class JointProxy(_Proxy):
 
     def __init__(self, obj):
         obj.Proxy = self
-        obj.addProperty("App::PropertyEnumeration", "JointType", "Joint", "the kind of joint")
-        obj.JointType = JOINT_TYPES
-        obj.addProperty("App::PropertyLinkSub", "Reference1", "Joint", "part and element 1 (carries the guide)")
-        obj.addProperty("App::PropertyLinkSub", "Reference2", "Joint", "part and element 2")
+        self.attach(obj)
+
+    def attach(self, obj):
+        _mark(obj, "Joint")
+        if "JointType" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyEnumeration", "JointType", "Joint", "the kind of joint")
+            obj.JointType = JOINT_TYPES
+        _add(obj, "App::PropertyLinkSub", "Reference1", "Joint", "part and element 1 (carries the guide)")
+        _add(obj, "App::PropertyLinkSub", "Reference2", "Joint", "part and element 2")
         for name, doc in (("Point1", "joint point, part 1's frame"), ("Axis1", "joint axis, part 1's frame"),
                           ("Perp1", "reference across the axis, part 1's frame"),
                           ("Point2", "joint point, part 2's frame"), ("Axis2", "joint axis, part 2's frame"),
                           ("Perp2", "reference across the axis, part 2's frame")):
-            obj.addProperty("App::PropertyVector", name, "Geometry", doc)
-        obj.addProperty("App::PropertyVectorList", "Curve1", "Geometry", "sampled curve, part 1's frame (PointOnCurve)")
-        obj.addProperty("App::PropertyBool", "HasRotationLimits", "Limits", "bound the turn about the axis")
-        obj.addProperty("App::PropertyAngle", "RotationMin", "Limits", "lowest turn from the creation pose")
-        obj.addProperty("App::PropertyAngle", "RotationMax", "Limits", "highest turn from the creation pose")
-        obj.addProperty("App::PropertyBool", "HasTravelLimits", "Limits", "bound the travel along the axis")
-        obj.addProperty("App::PropertyDistance", "TravelMin", "Limits", "lowest travel")
-        obj.addProperty("App::PropertyDistance", "TravelMax", "Limits", "highest travel")
-        obj.addProperty("App::PropertyAngle", "ConeAngle", "Limits", "ball joint: largest tilt of axis 2 from axis 1 (0: none)")
-        obj.addProperty("App::PropertyAngle", "AngleMin", "Limits", "Angle joint: lowest angle between the axes")
-        obj.addProperty("App::PropertyAngle", "AngleMax", "Limits", "Angle joint: highest angle between the axes")
-        obj.AngleMax = 180
-        obj.addProperty("App::PropertyFloat", "Move", "Abilities", "part 1's share of a correction (-1: from the masses)")
-        obj.Move = -1
-        obj.addProperty("App::PropertyFloat", "Residual", "Solve", "violation after the last solve")
-        obj.addProperty("App::PropertyBool", "Violated", "Solve", "not satisfied after the last solve")
+            _add(obj, "App::PropertyVector", name, "Geometry", doc)
+        _add(obj, "App::PropertyBool", "HasRotationLimits", "Limits", "bound the turn about the axis")
+        _add(obj, "App::PropertyAngle", "RotationMin", "Limits", "lowest turn from the creation pose")
+        _add(obj, "App::PropertyAngle", "RotationMax", "Limits", "highest turn from the creation pose")
+        _add(obj, "App::PropertyBool", "HasTravelLimits", "Limits", "bound the travel along the axis")
+        _add(obj, "App::PropertyDistance", "TravelMin", "Limits", "lowest travel")
+        _add(obj, "App::PropertyDistance", "TravelMax", "Limits", "highest travel")
+        _add(obj, "App::PropertyAngle", "ConeAngle", "Limits", "ball joint: largest tilt of axis 2 from axis 1 (0: none)")
+        _add(obj, "App::PropertyAngle", "AngleMin", "Limits", "Angle joint: lowest angle between the axes")
+        _add(obj, "App::PropertyAngle", "AngleMax", "Limits", "Angle joint: highest angle between the axes", 180)
+        _add(obj, "App::PropertyFloat", "Move", "Abilities", "part 1's share of a correction (-1: from the masses)", -1)
+        _add(obj, "App::PropertyFloat", "Residual", "Solve", "violation after the last solve")
+        _add(obj, "App::PropertyBool", "Violated", "Solve", "not satisfied after the last solve")
+
+    def onDocumentRestored(self, obj):
+        self.attach(obj)
 
 
 def part_properties(obj):
@@ -86,12 +140,58 @@ def part_properties(obj):
         obj.addProperty("App::PropertyFloat", "Density", "Dispcon", "mass per unit volume").Density = 1.0
 
 
+def _kind(obj):
+    """"Assembly", "Joint" or None: from the proxy when it was restored, else from the stored
+    properties (a document saved where the workbench was missing keeps those, not the proxy)."""
+    proxy = getattr(obj, "Proxy", None)
+    if isinstance(proxy, AssemblyProxy):
+        return "Assembly"
+    if isinstance(proxy, JointProxy):
+        return "Joint"
+    props = getattr(obj, "PropertiesList", ())
+    if "DispconType" in props:
+        return obj.DispconType or None
+    # Saved before DispconType existed, and the proxy lost since.
+    if obj.TypeId == "App::FeaturePython" and {"JointType", "Reference1", "Reference2", "Point1"} <= set(props):
+        return "Joint"
+    if obj.TypeId == "App::DocumentObjectGroupPython" and {"Tolerance", "MaxIterations", "LastSolve"} <= set(props):
+        return "Assembly"
+    return None
+
+
 def is_joint(obj):
-    return hasattr(obj, "Proxy") and isinstance(getattr(obj, "Proxy", None), JointProxy)
+    return _kind(obj) == "Joint"
 
 
 def is_assembly(obj):
-    return hasattr(obj, "Proxy") and isinstance(getattr(obj, "Proxy", None), AssemblyProxy)
+    return _kind(obj) == "Assembly"
+
+
+def adopt(obj):
+    """Gives a recognised assembly or joint whose Python proxy was lost (opened where the
+    workbench was missing) its proxy back, with any property it lacks; returns whether it did."""
+    kind = _kind(obj)
+    proxy = {"Assembly": AssemblyProxy, "Joint": JointProxy}.get(kind)
+    if proxy is None:
+        return False
+    _view(obj, kind)
+    if isinstance(getattr(obj, "Proxy", None), proxy):
+        return False
+    proxy(obj)
+    return True
+
+
+def _view(obj, kind):
+    """The object's view provider, when the GUI is up."""
+    if App.GuiUp:
+        from . import viewproviders
+
+        viewproviders.attach(obj, kind)
+
+
+def adopt_document(doc):
+    """adopt() for every object of `doc`; returns how many got their proxy back."""
+    return sum(adopt(o) for o in doc.Objects)
 
 
 def shape_of(obj):
@@ -115,10 +215,12 @@ def joints(asm):
 def new_assembly(doc, name):
     obj = doc.addObject("App::DocumentObjectGroupPython", name)
     AssemblyProxy(obj)
+    _view(obj, "Assembly")
     return obj
 
 
 def new_joint(doc, name):
     obj = doc.addObject("App::FeaturePython", name)
     JointProxy(obj)
+    _view(obj, "Joint")
     return obj

@@ -1,6 +1,7 @@
 """The operations on an assembly: what a command or a script does to the document. Each is one
-undo step (one transaction); each validates its input first, so a refused operation leaves the
-document as it was."""
+undo step (one transaction); each checks its input before it changes anything, and one that fails
+half-way is rolled back, so a failed operation leaves the document as it was."""
+import contextlib
 import os
 
 import FreeCAD as App
@@ -10,68 +11,164 @@ from .adapter import Adapter, Result, _vec
 from .objects import joints, parts, shape_of
 
 
+class Transaction:
+    """One undo step on a document, rolled back by abort(). A document without undo (freecadcmd's
+    default) gets it for the transaction's time: the rollback needs it."""
+
+    def __init__(self, doc, name):
+        self.doc = doc
+        self.undo_mode = doc.UndoMode
+        if not self.undo_mode:
+            doc.UndoMode = 1
+        doc.openTransaction(name)
+
+    def _close(self):
+        if not self.undo_mode:
+            self.doc.UndoMode = self.undo_mode
+
+    def commit(self):
+        self.doc.commitTransaction()
+        self._close()
+
+    def abort(self):
+        self.doc.abortTransaction()
+        self._close()
+
+
+@contextlib.contextmanager
+def transaction(doc, name):
+    """`with transaction(doc, "Add joint"):` one undo step, rolled back when the body raises."""
+    t = Transaction(doc, name)
+    try:
+        yield
+    except BaseException:
+        t.abort()
+        raise
+    t.commit()
+
+
+def _assembly(asm):
+    """The assembly, checked, with its and its joints' proxies back if a restore lost them."""
+    if asm is None or not objects.is_assembly(asm):
+        raise ValueError("%s is not a Dispcon assembly" % getattr(asm, "Label", asm))
+    objects.adopt(asm)
+    for o in asm.Group:
+        objects.adopt(o)
+    return asm
+
+
+def tolerance(asm):
+    t = float(asm.Tolerance)
+    if not t > 0:
+        raise ValueError("%s: Tolerance must be above 0 (it is %g)" % (asm.Label, t))
+    return t
+
+
 def create_assembly(doc, name="Assembly"):
-    """An empty assembly in `doc`."""
-    doc.openTransaction("Create assembly")
-    obj = objects.new_assembly(doc, name)
-    doc.commitTransaction()
+    """An empty assembly in `doc`, with the tolerance and iteration cap of the preferences."""
+    with transaction(doc, "Create assembly"):
+        obj = objects.new_assembly(doc, name)
     return obj
 
 
 def add_part(asm, obj, grounded=False):
     """Adds an existing object of the document (anything with a Shape) to the assembly."""
-    doc = asm.Document
-    doc.openTransaction("Add part")
-    objects.part_properties(obj)
-    obj.Grounded = grounded
-    asm.addObject(obj)
-    doc.commitTransaction()
+    _assembly(asm)
+    if not (hasattr(obj, "Shape") or obj.TypeId == "App::Link") or objects.is_joint(obj) or obj == asm:
+        raise ValueError("%s has no shape: only solids can be parts" % obj.Label)
+    with transaction(asm.Document, "Add part"):
+        objects.part_properties(obj)
+        obj.Grounded = grounded
+        asm.addObject(obj)
     return obj
+
+
+def set_grounded(part, grounded=True):
+    """Grounds a part (it never moves) or frees it, in one undo step."""
+    if "Grounded" not in part.PropertiesList:
+        raise ValueError("%s is not a part of an assembly" % part.Label)
+    with transaction(part.Document, "Ground" if grounded else "Unground"):
+        part.Grounded = bool(grounded)
+    return part
 
 
 def import_part(asm, path, name=None, grounded=False):
     """Imports a STEP, IGES or BREP file as a part of the assembly."""
     import Part
 
+    _assembly(asm)
     ext = os.path.splitext(path)[1].lower()
     if ext not in (".step", ".stp", ".iges", ".igs", ".brep", ".brp"):
         raise ValueError("%s: expected a STEP, IGES or BREP file" % path)
     if not os.path.isfile(path):
         raise ValueError("%s: no such file" % path)
     shape = Part.Shape()
-    shape.read(path)
+    try:
+        shape.read(path)
+    except Exception as e:
+        raise ValueError("%s: not readable (%s)" % (path, e)) from None
     name = name or os.path.splitext(os.path.basename(path))[0]
     return _new_part(asm, "Import part", "Part::Feature", name, grounded, Shape=shape)
 
 
-def link_part(asm, path, object_name, grounded=False):
-    """Links an object of another .FCStd file (App::Link) as a part. FreeCAD links across
-    documents only from a saved document: save the assembly's document first."""
+def linkable_objects(path):
+    """The objects of an .FCStd file that can be inserted as parts (those with a solid, outermost
+    first): what a person chooses from when inserting a part from another file."""
+    other = App.getDocument(_doc_name(path)) if _doc_name(path) else App.openDocument(path)
+    out = []
+    for o in other.Objects:
+        shape = getattr(o, "Shape", None)
+        if shape is not None and shape.Solids and not any(hasattr(p, "Shape") for p in o.InList):
+            out.append(o)
+    return out
+
+
+def _doc_name(path):
+    """The name of the open document saved at `path`, or None."""
+    target = os.path.realpath(path)
+    for name, d in App.listDocuments().items():
+        if d.FileName and os.path.realpath(d.FileName) == target:
+            return name
+    return None
+
+
+def link_part(asm, path, object_name=None, grounded=False):
+    """Inserts an object of another .FCStd file as a part, as a link (App::Link) that follows the
+    file's changes: FreeCAD 1.x's "Insert component". Without object_name, the file's only solid
+    (or its first, outermost one). FreeCAD links across documents only from a saved document:
+    save the assembly's document first."""
+    _assembly(asm)
     if not asm.Document.FileName:
         raise ValueError("save %s before linking parts from other files" % asm.Document.Label)
-    other = App.openDocument(path)
-    source = other.getObject(object_name)
-    if source is None:
-        raise ValueError("%s has no object %s" % (path, object_name))
-    return _new_part(asm, "Link part", "App::Link", object_name, grounded, LinkedObject=source)
+    if os.path.splitext(path)[1].lower() != ".fcstd":
+        raise ValueError("%s: expected a FreeCAD document (.FCStd)" % path)
+    if not os.path.isfile(path):
+        raise ValueError("%s: no such file" % path)
+    if object_name is None:
+        candidates = linkable_objects(path)
+        if not candidates:
+            raise ValueError("%s has no solid to insert" % path)
+        source = candidates[0]
+    else:
+        name = _doc_name(path)
+        other = App.getDocument(name) if name else App.openDocument(path)
+        source = other.getObject(object_name) or next(
+            (o for o in other.Objects if o.Label == object_name), None)
+        if source is None:
+            raise ValueError("%s has no object %s" % (path, object_name))
+    return _new_part(asm, "Link part", "App::Link", source.Label, grounded, LinkedObject=source)
 
 
 def _new_part(asm, action, type_id, name, grounded, **values):
     """A new object of the document made a part of the assembly, in one undo step."""
-    doc = asm.Document
-    doc.openTransaction(action)
-    try:
-        obj = doc.addObject(type_id, name)
+    with transaction(asm.Document, action):
+        obj = asm.Document.addObject(type_id, name)
+        obj.Label = name  # the name as given; the object's Name is FreeCAD's identifier for it
         for key, value in values.items():
             setattr(obj, key, value)
         objects.part_properties(obj)
         obj.Grounded = grounded
         asm.addObject(obj)
-    except Exception:
-        # A command that fails leaves the document as it was.
-        doc.abortTransaction()
-        raise
-    doc.commitTransaction()
     return obj
 
 
@@ -80,28 +177,27 @@ def _perpendicular(v):
     return v.cross(other).normalize()
 
 
-def _sampled_curve(obj, sub, count=64):
-    edge = shape_of(obj).getElement(sub)
-    return [geometry.to_local(obj.Placement, point=p) for p in edge.discretize(count)]
-
-
 def add_joint(asm, joint_type, ref1, ref2, **limits):
     """A joint between two parts from geometry references in FreeCAD's form, (obj, "Edge3").
     Part 1 carries the guide (the slider's line, the plane, the curve). Limits: rotation=(min, max)
-    in degrees, travel=(min, max) in length units, cone=degrees, angle=(min, max) degrees, move=mu."""
+    in degrees, travel=(min, max) in length units, cone=degrees, angle=(min, max) degrees, move=mu;
+    rotation=False and travel=False (edit_joint) take such limits off."""
+    _assembly(asm)
     if joint_type not in objects.JOINT_TYPES:
         raise ValueError("unknown joint type %r (expected one of %s)" % (joint_type, ", ".join(objects.JOINT_TYPES)))
     (o1, s1), (o2, s2) = ref1, ref2
     if o1 == o2:
-        raise ValueError("a joint needs two different parts")
+        raise ValueError("a joint needs two different parts (both references are on %s)" % o1.Label)
     for o in (o1, o2):
         if o not in asm.Group:
             raise ValueError("%s is not a part of %s" % (o.Label, asm.Label))
+    if joint_type == "PointOnCurve" and not s1.startswith("Edge"):
+        raise ValueError("a PointOnCurve joint needs an edge of %s as its first reference, not %s"
+                         % (o1.Label, s1 or "the whole part"))
+    _check_limits(joint_type, **limits)
     f1, f2 = geometry.feature(o1, s1), geometry.feature(o2, s2)
-    doc = asm.Document
-    doc.openTransaction("Add joint")
-    try:
-        j = objects.new_joint(doc, joint_type)
+    with transaction(asm.Document, "Add joint"):
+        j = objects.new_joint(asm.Document, joint_type)
         j.JointType = joint_type
         j.Reference1 = (o1, [s1])
         j.Reference2 = (o2, [s2])
@@ -117,24 +213,36 @@ def add_joint(asm, joint_type, ref1, ref2, **limits):
         perp_world = _perpendicular(f1.axis)
         j.Perp1 = geometry.to_local(o1.Placement, axis=perp_world)
         j.Perp2 = geometry.to_local(o2.Placement, axis=perp_world)
-        if joint_type == "PointOnCurve":
-            j.Curve1 = _sampled_curve(o1, s1)
         _set_limits(j, **limits)
         asm.addObject(j)
-    except Exception:
-        doc.abortTransaction()
-        raise
-    doc.commitTransaction()
     return j
 
 
+def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move=None):
+    """Refuses limits that cannot hold, before anything changes; names the joint and the limit."""
+    for what, pair, unit in (("rotation", rotation, "deg"), ("travel", travel, "mm"), ("angle", angle, "deg")):
+        if pair not in (None, False):
+            lo, hi = pair
+            if lo > hi:
+                raise ValueError("%s: %s min %g %s is above max %g %s" % (label, what, lo, unit, hi, unit))
+    if cone is not None and not 0 <= cone <= 180:
+        raise ValueError("%s: cone angle %g deg is outside 0..180" % (label, cone))
+    if angle is not None and not (0 <= angle[0] and angle[1] <= 180):
+        raise ValueError("%s: angle limits %g..%g deg are outside 0..180" % (label, angle[0], angle[1]))
+    if move is not None and not (move == -1 or 0 <= move <= 1):
+        raise ValueError("%s: move %g is outside 0..1 (or -1: from the masses)" % (label, move))
+
+
 def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None):
+    # rotation=False, travel=False: no such limits any more.
     if rotation is not None:
-        j.HasRotationLimits = True
-        j.RotationMin, j.RotationMax = rotation
+        j.HasRotationLimits = rotation is not False
+        if rotation is not False:
+            j.RotationMin, j.RotationMax = rotation
     if travel is not None:
-        j.HasTravelLimits = True
-        j.TravelMin, j.TravelMax = travel
+        j.HasTravelLimits = travel is not False
+        if travel is not False:
+            j.TravelMin, j.TravelMax = travel
     if cone is not None:
         j.ConeAngle = cone
     if angle is not None:
@@ -145,58 +253,98 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None)
 
 def set_limits(joint, **limits):
     """Changes a joint's limits (same keywords as add_joint) in one undo step."""
-    doc = joint.Document
-    doc.openTransaction("Joint limits")
-    _set_limits(joint, **limits)
-    doc.commitTransaction()
+    return edit_joint(joint, **limits)
+
+
+def edit_joint(joint, joint_type=None, **limits):
+    """Changes a joint's type and limits (same keywords as add_joint) in one undo step; limits
+    that cannot hold are refused before anything changes."""
+    if not objects.is_joint(joint):
+        raise ValueError("%s is not a Dispcon joint" % joint.Label)
+    objects.adopt(joint)
+    if joint_type is not None and joint_type not in objects.JOINT_TYPES:
+        raise ValueError("%s: unknown joint type %r (expected one of %s)"
+                         % (joint.Label, joint_type, ", ".join(objects.JOINT_TYPES)))
+    kind = joint_type or joint.JointType
+    ref = joint.Reference1
+    if kind == "PointOnCurve" and ref and not (ref[1] and ref[1][0].startswith("Edge")):
+        raise ValueError("%s: a PointOnCurve joint needs an edge of %s as its first reference"
+                         % (joint.Label, ref[0].Label))
+    _check_limits(joint.Label, **limits)
+    with transaction(joint.Document, "Edit joint"):
+        if joint_type is not None:
+            joint.JointType = joint_type
+        _set_limits(joint, **limits)
+    return joint
 
 
 def solve(asm):
     """Snap: moves the parts from wherever they are until every joint holds (the seed's automatic
     assembly), grounded parts still. One undo step; a failed solve moves nothing and marks the
-    joints still violated."""
+    joints still violated. A joint that lost a part is skipped and named in the message."""
+    _assembly(asm)
     adapter = Adapter(asm)
-    r = adapter.model.assemble(tolerance=asm.Tolerance, max_iterations=asm.MaxIterations)
-    doc = asm.Document
-    doc.openTransaction("Solve assembly")
-    if r.converged:
-        adapter.write_back()
-    adapter.mark(r)
-    result = Result(adapter, r)
-    asm.LastSolve = result.message
-    doc.commitTransaction()
-    doc.recompute()
+    with adapter.engine_errors():
+        r = adapter.model.assemble(tolerance=tolerance(asm), max_iterations=asm.MaxIterations)
+    with transaction(asm.Document, "Solve assembly"):
+        if r.converged:
+            adapter.write_back()
+        adapter.mark(r)
+        result = Result(adapter, r)
+        asm.LastSolve = result.message
+    asm.Document.recompute()
     return result
 
 
+def _holding(asm, adapter):
+    """Refuses to move an assembly whose joints do not hold yet."""
+    with adapter.engine_errors():
+        first = adapter.model.assemble(tolerance=tolerance(asm))
+    if not first.converged:
+        raise ValueError("%s does not hold yet: solve it first (%s)" % (asm.Label, adapter.labelled(first.message)))
+
+
+def _movable(adapter, part):
+    if part.Name not in adapter.names:
+        raise ValueError("%s is not a part of %s" % (part.Label, adapter.asm.Label))
+    if getattr(part, "Grounded", False):
+        raise ValueError("%s is grounded: it cannot be moved" % part.Label)
+    return adapter.names[part.Name]
+
+
 class Drag:
-    """A live drag of one part: `move(placement)` per mouse event, `finish()` on release. The
-    solver's state is built once; a move that cannot be made leaves everything where it was."""
+    """A live drag of one part: `move(placement)` per mouse event, `finish()` on release (or
+    `cancel()` to put everything back). The solver's state is built once; a move that cannot be
+    made leaves everything where it was. The whole drag is one undo step."""
 
     def __init__(self, asm, part):
-        self.asm = asm
+        self.asm = _assembly(asm)
         self.adapter = Adapter(asm)
         self.part = part
-        self.name = self.adapter.names[part.Name]
-        first = self.adapter.model.assemble(tolerance=asm.Tolerance)
-        if not first.converged:
-            raise ValueError("the assembly does not hold yet: solve it first (%s)" % first.message)
-        self.dragger = self.adapter.model.dragger(self.name, tolerance=asm.Tolerance)
+        self.name = _movable(self.adapter, part)
+        _holding(asm, self.adapter)
+        with self.adapter.engine_errors():
+            self.dragger = self.adapter.model.dragger(self.name, tolerance=tolerance(asm))
         self.doc = asm.Document
-        self.doc.openTransaction("Drag %s" % part.Label)
+        self.transaction = Transaction(self.doc, "Drag %s" % part.Label)
         self.last = None
 
     def move(self, placement):
         rot = placement.Rotation.toMatrix()
         R = [[rot.A[4 * i + j] for j in range(3)] for i in range(3)]
-        r = self.dragger.move_to(position=_vec(placement.Base), rotation=R)
+        with self.adapter.engine_errors():
+            r = self.dragger.move_to(position=_vec(placement.Base), rotation=R)
         if r.converged:
             self.adapter.write_back()
         self.last = r
         return r
 
     def finish(self):
-        self.doc.commitTransaction()
+        self.transaction.commit()
+        self.doc.recompute()
+
+    def cancel(self):
+        self.transaction.abort()
         self.doc.recompute()
 
 
@@ -209,22 +357,22 @@ class PointDrag:
     exact, by continuity (no jump to another branch). One undo step for the whole drag."""
 
     def __init__(self, asm, part, grab_world):
-        self.asm = asm
+        self.asm = _assembly(asm)
         self.adapter = Adapter(asm)
         self.part = part
-        name = self.adapter.names[part.Name]
+        name = _movable(self.adapter, part)
         model = self.adapter.model
-        first = model.assemble(tolerance=asm.Tolerance)
-        if not first.converged:
-            raise ValueError("the assembly does not hold yet: solve it first (%s)" % first.message)
+        _holding(asm, self.adapter)
         grab_local = geometry.to_local(part.Placement, point=grab_world)
-        # The mouse joint is active at time 0 only: `pull` sees it, `settle` does not.
-        self.handle = model.add_joint(name, hinge=(_vec(grab_world), _vec(grab_local)),
-                                      time=(-1.0, 0.5), label="mouse")
-        self.pull = model.session(tolerance=asm.Tolerance, max_iterations=60, time=0.0)
-        self.settle = model.session(tolerance=asm.Tolerance, max_iterations=500, time=1.0)
+        tol = tolerance(asm)
+        with self.adapter.engine_errors():
+            # The mouse joint is active at time 0 only: `pull` sees it, `settle` does not.
+            self.handle = model.add_joint(name, hinge=(_vec(grab_world), _vec(grab_local)),
+                                          time=(-1.0, 0.5), label="mouse")
+            self.pull = model.session(tolerance=tol, max_iterations=60, time=0.0)
+            self.settle = model.session(tolerance=tol, max_iterations=500, time=1.0)
         self.doc = asm.Document
-        self.doc.openTransaction("Drag %s" % part.Label)
+        self.transaction = Transaction(self.doc, "Drag %s" % part.Label)
         self.frames = 0
         self.solver_seconds = 0.0
 
@@ -248,54 +396,90 @@ class PointDrag:
         return ok
 
     def finish(self):
-        self.doc.commitTransaction()
+        self.transaction.commit()
+        self.doc.recompute()
+
+    def cancel(self):
+        self.transaction.abort()
         self.doc.recompute()
 
 
-def drag(asm, part, placement, steps=20):
-    """Moves `part` to `placement` in `steps` steps, the rest following; one undo step. Returns
-    the last step's result; stops at the first step that cannot be made."""
+def drag(asm, part, placement, steps=None):
+    """Moves `part` to `placement` in `steps` steps (the preferences' drag steps when None), the
+    rest following; one undo step. Returns the last step's result; stops at the first step that
+    cannot be made."""
+    steps = steps or objects.preferences()["DragSteps"]
     d = Drag(asm, part)
     start = part.Placement
     r = None
-    for k in range(1, steps + 1):
-        t = k / steps
-        pl = App.Placement(start.Base + (placement.Base - start.Base) * t,
-                           start.Rotation.slerp(placement.Rotation, t))
-        r = d.move(pl)
-        if not r.converged:
-            break
+    try:
+        for k in range(1, steps + 1):
+            t = k / steps
+            pl = App.Placement(start.Base + (placement.Base - start.Base) * t,
+                               start.Rotation.slerp(placement.Rotation, t))
+            r = d.move(pl)
+            if not r.converged:
+                break
+    except BaseException:
+        d.cancel()
+        raise
     d.finish()
     return r
 
 
+def driven_side(joint):
+    """The part a joint turns, with the joint's point and axis in that part's frame: the second
+    part, or the first when the second is grounded (whichever order the references were picked)."""
+    if not (joint.Reference1 and joint.Reference1[0] and joint.Reference2 and joint.Reference2[0]):
+        raise ValueError("%s: one of its parts was deleted" % joint.Label)
+    for ref, point, axis in ((joint.Reference2, joint.Point2, joint.Axis2),
+                             (joint.Reference1, joint.Point1, joint.Axis1)):
+        if not getattr(ref[0], "Grounded", False):
+            return ref[0], point, axis
+    raise ValueError("%s joins two grounded parts (%s, %s): nothing to turn"
+                     % (joint.Label, joint.Reference1[0].Label, joint.Reference2[0].Label))
+
+
+def _turned(start, pivot, axis_world, degrees):
+    turn = App.Rotation(axis_world, degrees)
+    return App.Placement(pivot + turn.multVec(start.Base - pivot), turn.multiply(start.Rotation))
+
+
 def drive(asm, joint, angles_deg, callback=None):
     """Turns a revolute (or a part about a joint's axis) through the given angles, in degrees from
-    its current pose: the second part turns about the joint's axis while the rest follows. Returns
-    the angle reached before a lock, or the last one."""
-    part = joint.Reference2[0]
-    axis_world = part.Placement.Rotation.multVec(joint.Axis2)
-    pivot = part.Placement.multVec(joint.Point2)
+    its current pose: the joint's part that can move turns about the joint's axis while the rest
+    follows. Returns the angle reached before a lock, or the last one."""
+    part, point, axis = driven_side(joint)
+    axis_world = part.Placement.Rotation.multVec(axis)
+    pivot = part.Placement.multVec(point)
     start = part.Placement
     d = Drag(asm, part)
     reached = 0.0
-    for a in angles_deg:
-        turn = App.Rotation(axis_world, a)
-        pl = App.Placement(pivot + turn.multVec(start.Base - pivot), turn.multiply(start.Rotation))
-        r = d.move(pl)
-        if not r.converged:
-            break
-        reached = a
-        if callback:
-            callback(a)
+    try:
+        for a in angles_deg:
+            r = d.move(_turned(start, pivot, axis_world, a))
+            if not r.converged:
+                break
+            reached = a
+            if callback:
+                callback(a)
+    except BaseException:
+        d.cancel()
+        raise
     d.finish()
     return reached
 
 
 def check(asm):
-    """Degrees of freedom, redundant and conflicting joints (as joint objects), limits in contact."""
+    """Degrees of freedom, redundant and conflicting joints (as joint objects), limits in contact;
+    joints that lost a part are listed under "skipped" and left out."""
+    _assembly(asm)
     adapter = Adapter(asm)
-    c = adapter.model.check(tolerance=asm.Tolerance)
+    with adapter.engine_errors():
+        c = adapter.model.check(tolerance=tolerance(asm))
+    message = adapter.labelled(c.message)
+    if adapter.skipped:
+        message += "; " + adapter.skipped_message()
     return {
         "converged": c.converged,
         "dof": c.dof,
@@ -303,8 +487,9 @@ def check(asm):
         "redundant": [adapter.joints[i] for i in c.redundant],
         "conflicting": [adapter.joints[i] for i in c.conflicting],
         "limits_active": [adapter.joints[i] for i in c.limits_active],
-        "advice": list(c.advice),
-        "message": c.message,
+        "skipped": [j for j, _ in adapter.skipped],
+        "advice": [adapter.labelled(a) for a in c.advice],
+        "message": message,
     }
 
 
@@ -327,9 +512,9 @@ def interference_along(asm, joint, angles_deg, ignore=()):
     """Drives `joint` (as `drive` does) through the angles and checks for collisions at each:
     returns [(angle, part_a, part_b, overlap_volume)], then puts every part back where it was.
     Pairs listed in `ignore` (such as parts that touch at their joint by design) are skipped."""
-    part = joint.Reference2[0]
-    axis_world = part.Placement.Rotation.multVec(joint.Axis2)
-    pivot = part.Placement.multVec(joint.Point2)
+    part, point, axis = driven_side(joint)
+    axis_world = part.Placement.Rotation.multVec(axis)
+    pivot = part.Placement.multVec(point)
     start = part.Placement
     before = {p.Name: p.Placement for p in parts(asm)}
     skip = {frozenset((a.Name, b.Name)) for a, b in ignore}
@@ -337,8 +522,7 @@ def interference_along(asm, joint, angles_deg, ignore=()):
     d = Drag(asm, part)
     try:
         for a in angles_deg:
-            turn = App.Rotation(axis_world, a)
-            r = d.move(App.Placement(pivot + turn.multVec(start.Base - pivot), turn.multiply(start.Rotation)))
+            r = d.move(_turned(start, pivot, axis_world, a))
             if not r.converged:
                 break
             for pa, pb, volume in interference(asm):
@@ -353,22 +537,24 @@ def interference_along(asm, joint, angles_deg, ignore=()):
 
 def export_dcl(asm, path):
     """Writes the assembly as a .dcl file for the command line."""
+    _assembly(asm)
     adapter = Adapter(asm)
-    adapter.model.save(path)
+    with adapter.engine_errors():
+        adapter.model.save(path)
 
 
 def import_dcl(asm, path):
     """Places the assembly's parts as a .dcl file says (the file's objects named as export_dcl
     names them): the way back from the command line."""
+    _assembly(asm)
     adapter = Adapter(asm)
-    m = engine.load().load(path)
-    doc = asm.Document
-    doc.openTransaction("Import .dcl placements")
-    for p in adapter.parts:
-        name = adapter.names[p.Name]
-        if name in m.body_names():
-            b = m.body(name)
-            q = b.quaternion
-            p.Placement = App.Placement(App.Vector(*b.position), App.Rotation(q[1], q[2], q[3], q[0]))
-    doc.commitTransaction()
-    doc.recompute()
+    with adapter.engine_errors():
+        m = engine.load().load(path)
+    with transaction(asm.Document, "Import .dcl placements"):
+        for p in adapter.parts:
+            name = adapter.names[p.Name]
+            if name in m.body_names():
+                b = m.body(name)
+                q = b.quaternion
+                p.Placement = App.Placement(App.Vector(*b.position), App.Rotation(q[1], q[2], q[3], q[0]))
+    asm.Document.recompute()

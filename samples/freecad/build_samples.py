@@ -124,3 +124,6 @@ def main():
 
 
 main()
+# freecadcmd opens every argument after the script as a document once the script returns ("File
+# format not supported: DIR" for --out's folder): leaving here ends the run before that.
+sys.exit(0)

@@ -2,9 +2,13 @@
 picked sub-elements, solve, drag, save, reopen, against analytic answers."""
 import math
 import os
+import re
+import shutil
+import subprocess
 import sys
 import tempfile
 import traceback
+import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
@@ -326,9 +330,412 @@ def test_slider_crank_from_picked_faces_and_edges():
     App.closeDocument(doc.Name)
 
 
+# ---------------------------------------------------------------------------------------------
+# Installed like an addon, and nothing lost where the workbench is missing. These run FreeCAD
+# sessions of their own (freecadcmd in a subprocess) with a temporary HOME, so neither the
+# workbench on this test's path nor one installed for the user can help them.
+
+FREECADCMD = "freecadcmd"
+BUILD = os.path.dirname(os.environ["DISPCON_PYTHONPATH"]) if os.environ.get("DISPCON_PYTHONPATH") else os.path.join(REPO, "build")
+
+
+def bare_env(home):
+    """The environment of a FreeCAD session that knows nothing of dispcon but what `home` holds."""
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPCON_PYTHONPATH", "PYTHONPATH")}
+    env["HOME"] = home
+    env.pop("XDG_DATA_HOME", None)
+    env.pop("XDG_CONFIG_HOME", None)
+    return env
+
+
+def freecad_session(script, home, *args):
+    """Runs `script` (text) in a fresh freecadcmd; returns its output; fails on a non-zero exit."""
+    path = os.path.join(home, "session.py")
+    with open(path, "w") as f:
+        f.write(script)
+    run = subprocess.run([FREECADCMD, path] + list(args), env=bare_env(home), cwd=home,
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=300)
+    if run.returncode != 0 or "SESSION OK" not in run.stdout:
+        raise AssertionError("the FreeCAD session failed (exit %d):\n%s" % (run.returncode, run.stdout[-3000:]))
+    return run.stdout
+
+
+def rounded(value):
+    """Floats to 9 decimals (a saved document keeps a fixed number of decimals), inside tuples too."""
+    if isinstance(value, float):
+        return round(value, 9) + 0.0
+    if isinstance(value, tuple):
+        return tuple(rounded(v) for v in value)
+    return value
+
+
+def settings_of(doc):
+    """Every value a person set in an assembly, by object label: parts, joints, limits, settings."""
+    out = {}
+    asm = next(o for o in doc.Objects if o.TypeId == "App::DocumentObjectGroupPython")
+    out["assembly"] = (asm.Label, float(asm.Tolerance), asm.MaxIterations, sorted(o.Label for o in asm.Group))
+    for o in asm.Group:
+        if "JointType" in o.PropertiesList:
+            out[o.Label] = (o.JointType, o.Reference1[0].Label, tuple(o.Reference1[1]), o.Reference2[0].Label,
+                            tuple(o.Reference2[1]), tuple(o.Point1), tuple(o.Axis1), tuple(o.Point2), tuple(o.Axis2),
+                            tuple(o.Perp1), tuple(o.Perp2), o.HasRotationLimits, o.RotationMin.Value,
+                            o.RotationMax.Value, o.HasTravelLimits, o.TravelMin.Value, o.TravelMax.Value,
+                            o.ConeAngle.Value, o.AngleMin.Value, o.AngleMax.Value, o.Move)
+        else:
+            out[o.Label] = (o.Grounded, o.Density, o.AbilityToRotate, tuple(o.Placement.Base),
+                            tuple(o.Placement.Rotation.Q))
+    return {k: rounded(v) for k, v in out.items()}
+
+
+def saved_fourbar(tmp):
+    """A four-bar with limits and settings changed from their defaults, saved: its path and values."""
+    doc = App.newDocument("settings")
+    asm, g, crank, coupler, rocker = fourbar(doc, tmp)
+    js = da.joints(asm)
+    da.set_limits(js[0], rotation=(-170, 170), move=0.25)
+    da.set_limits(js[1], travel=(-1, 2), cone=30)
+    js[2].Label = "Coupler to rocker"
+    asm.Tolerance = 1e-8
+    asm.MaxIterations = 777
+    coupler.Density = 2.5
+    rocker.AbilityToRotate = 0.5
+    assert da.solve(asm).converged
+    path = os.path.join(tmp, "fourbar.FCStd")
+    doc.saveAs(path)
+    values = settings_of(doc)
+    App.closeDocument(doc.Name)
+    return path, values
+
+
+WITHOUT_WORKBENCH = """
+import sys
+import FreeCAD as App
+try:
+    import dispcon_fc
+    raise SystemExit("the workbench was importable: this session must not have it")
+except ImportError:
+    pass
+doc = App.openDocument(sys.argv[-1])
+joints = [o for o in doc.Objects if "JointType" in o.PropertiesList]
+assert len(joints) == 4, [o.Name for o in doc.Objects]
+assert all(j.Proxy is None for j in joints), [j.Proxy for j in joints]
+doc.save()
+print("SESSION OK")
+sys.exit(0)
+"""
+
+
+class NothingLostWithoutTheWorkbench(unittest.TestCase):
+    def test_saved_without_the_workbench_then_reopened_with_it(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path, values = saved_fourbar(tmp)
+            freecad_session(WITHOUT_WORKBENCH, tmp, path)
+            doc = App.openDocument(path)
+            try:
+                asm = doc.getObject("Assembly")
+                # The proxies did not survive that session; the stored properties did.
+                self.assertIsNone(da.joints(asm)[0].Proxy)
+                self.assertEqual(settings_of(doc), values)
+                self.assertEqual(len(da.joints(asm)), 4)
+                # Solve works, and really solves: the crank knocked off its pin comes back.
+                crank = doc.getObject("crank")
+                pin = crank.Placement
+                crank.Placement = App.Placement(pin.Base + App.Vector(0.2, 0.1, 0), pin.Rotation)
+                r = da.solve(asm)
+                self.assertTrue(r.converged, r.message)
+                self.assertGreater(r.iterations, 0)
+                self.assertNotIn("0 iterations", r.message)
+                self.assertLess((crank.Placement.Base - pin.Base).Length, 1e-7)
+                # ... and the joints have their proxies back (saved with them from now on).
+                self.assertTrue(all(isinstance(j.Proxy, da.JointProxy) for j in da.joints(asm)))
+                self.assertIsInstance(asm.Proxy, da.AssemblyProxy)
+                doc.save()
+            finally:
+                App.closeDocument(doc.Name)
+            doc = App.openDocument(path)
+            try:
+                self.assertTrue(all(isinstance(j.Proxy, da.JointProxy) for j in da.joints(doc.getObject("Assembly"))))
+            finally:
+                App.closeDocument(doc.Name)
+
+    def test_an_assembly_saved_before_dispcon_type_is_still_recognised(self):
+        # The layout of the first workbench: no DispconType, the tolerance a plain float.
+        doc = App.newDocument("legacy")
+        try:
+            asm = doc.addObject("App::DocumentObjectGroupPython", "Assembly")
+            asm.addProperty("App::PropertyFloat", "Tolerance", "Dispcon", "").Tolerance = 2e-7
+            asm.addProperty("App::PropertyInteger", "MaxIterations", "Dispcon", "").MaxIterations = 55
+            asm.addProperty("App::PropertyString", "LastSolve", "Dispcon", "")
+            self.assertTrue(da.is_assembly(asm))
+            self.assertTrue(da.adopt(asm))
+            self.assertEqual(asm.getTypeIdOfProperty("Tolerance"), "App::PropertyPrecision")
+            self.assertEqual((asm.Tolerance, asm.MaxIterations, asm.DispconType), (2e-7, 55, "Assembly"))
+        finally:
+            App.closeDocument(doc.Name)
+
+
+INSTALLED = """
+import os
+import sys
+import FreeCAD as App
+mod = os.path.join(App.getUserAppDataDir(), "Mod", "Dispcon")
+assert "dispcon_fc" not in sys.modules
+meta = App.Metadata(os.path.join(mod, "package.xml"))
+wb = meta.Content["workbench"][0]
+assert (meta.Name, wb.Classname) == ("Dispcon", "DispconWorkbench"), (meta.Name, wb.Classname)
+assert os.path.isfile(os.path.join(mod, meta.Icon)), meta.Icon
+# Restored with nothing imported first: the proxies came from the installed workbench, and
+# those that a session without the workbench lost (the second file) are given back on opening.
+for path in sys.argv[-2:]:
+    doc = App.openDocument(path)
+    joints = [o for o in doc.Objects if "JointType" in o.PropertiesList]
+    assert len(joints) == 4 and all(type(j.Proxy).__name__ == "JointProxy" for j in joints), (path, [j.Proxy for j in joints])
+    assert type(doc.getObject("Assembly").Proxy).__name__ == "AssemblyProxy", path
+assert sys.modules["dispcon_fc"].__file__.startswith(mod), sys.modules["dispcon_fc"].__file__
+import dispcon_fc.assembly as da
+assert da.engine.load().__file__.startswith(mod), da.engine.load().__file__
+asm = doc.getObject("Assembly")
+crank = doc.getObject("crank")
+pin = crank.Placement
+crank.Placement = App.Placement(pin.Base + App.Vector(0.2, 0.1, 0), pin.Rotation)
+r = da.solve(asm)
+assert r.converged and r.iterations > 0 and (crank.Placement.Base - pin.Base).Length < 1e-7, r.message
+print("SESSION OK")
+sys.exit(0)
+"""
+
+
+class InstalledLikeAnAddon(unittest.TestCase):
+    def test_install_restore_with_nothing_imported_then_uninstall(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path, _ = saved_fourbar(tmp)
+            lost = os.path.join(tmp, "lost.FCStd")
+            shutil.copy(path, lost)
+            freecad_session(WITHOUT_WORKBENCH, tmp, lost)
+            home = os.path.join(tmp, "home")
+            os.makedirs(home)
+            env = bare_env(home)
+            env.update(DISPCON_NO_BUILD="1", DISPCON_BUILD=BUILD)
+            script = os.path.join(REPO, "scripts", "install-freecad")
+            out = subprocess.run([script], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+            self.assertEqual(out.returncode, 0, out.stdout)
+            mod = os.path.join(home, ".local", "share", "FreeCAD", "Mod", "Dispcon")
+            self.assertIn(mod, out.stdout)
+            self.assertTrue(os.path.isfile(os.path.join(mod, "package.xml")))
+            freecad_session(INSTALLED, home, lost, path)
+            out = subprocess.run([script, "--uninstall"], env=env, stdout=subprocess.PIPE,
+                                 stderr=subprocess.STDOUT, text=True)
+            self.assertEqual(out.returncode, 0, out.stdout)
+            self.assertFalse(os.path.exists(mod))
+
+
+# ---------------------------------------------------------------------------------------------
+# Robust commands: each bug a designer met, as a regression test.
+
+
+def arm_on_base(doc, base_label="Base plate"):
+    asm = da.create_assembly(doc)
+    base = doc.addObject("Part::Feature", "Base")
+    base.Label = base_label
+    base.Shape = parts.ground([(0, 0)])
+    da.add_part(asm, base, grounded=True)
+    arm = doc.addObject("Part::Feature", "Arm")
+    arm.Shape = parts.link(1.5)
+    da.add_part(asm, arm)
+    return asm, base, arm
+
+
+def pin(obj, local):
+    return (obj, parts.circle_edge(da.shape_of(obj), App.Vector(*local)))
+
+
+class RobustOperations(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("robust")
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def test_drive_turns_the_free_part_when_the_grounded_one_was_picked_second(self):
+        asm, base, arm = arm_on_base(self.doc)
+        j = da.add_joint(asm, "Revolute", pin(arm, (0, 0, 0)), pin(base, (0, 0, 0)))
+        self.assertTrue(da.solve(asm).converged)
+        start = angle_of(arm)
+        reached = da.drive(asm, j, [10, 20, 30])
+        self.assertEqual(reached, 30)
+        self.assertAlmostEqual(math.degrees(math.remainder(angle_of(arm) - start, 2 * math.pi)), 30, places=6)
+        self.assertEqual(base.Placement, App.Placement())
+
+    def test_a_joint_whose_part_was_deleted_is_named_and_skipped(self):
+        asm, base, arm = arm_on_base(self.doc)
+        da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)))
+        tip = self.doc.addObject("Part::Feature", "Tip")
+        tip.Label = "Tip link"
+        tip.Shape = parts.link(0.5)
+        da.add_part(asm, tip)
+        lost = da.add_joint(asm, "Revolute", pin(arm, (1.5, 0, 0)), pin(tip, (0, 0, 0)))
+        lost.Label = "Elbow"
+        self.doc.removeObject(tip.Name)
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        self.assertIn("skipped Elbow (one of its parts was deleted)", r.message)
+        self.assertEqual(r.skipped, [lost])
+        c = da.check(asm)
+        self.assertEqual(c["skipped"], [lost])
+        self.assertIn("Elbow", c["message"])
+        with self.assertRaisesRegex(ValueError, "Elbow: one of its parts was deleted"):
+            da.drive(asm, lost, [10])
+
+    def test_point_on_curve_reads_the_live_curve(self):
+        # A revolute between the base's boss and the arm's tip boss, turned into a PointOnCurve:
+        # the arm's tip pin must then run on the base's boss edge (radius 0.15) ...
+        asm, base, arm = arm_on_base(self.doc)
+        arm.Placement = App.Placement(App.Vector(-1.4, 0.1, 0), App.Rotation())
+        j = da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (1.5, 0, 0)))
+        da.edit_joint(j, joint_type="PointOnCurve")
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        tip = arm.Placement.multVec(App.Vector(1.5, 0, 0))
+        self.assertAlmostEqual(math.hypot(tip.x, tip.y), 0.15, delta=0.15 * (1 - math.cos(math.pi / 64)) + 1e-7)
+        self.assertAlmostEqual(tip.z, 0, places=7)
+        # ... and on the boss as it is now, when the base's shape grows to twice its size.
+        bigger = base.Shape.copy()
+        bigger.scale(2.0)
+        base.Shape = bigger
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        tip = arm.Placement.multVec(App.Vector(1.5, 0, 0))
+        self.assertAlmostEqual(math.hypot(tip.x, tip.y), 0.3, delta=0.3 * (1 - math.cos(math.pi / 64)) + 1e-7)
+
+    def test_point_on_curve_needs_an_edge_and_says_so(self):
+        asm, base, arm = arm_on_base(self.doc)
+        face = next("Face%d" % (i + 1) for i, f in enumerate(base.Shape.Faces) if f.Surface.TypeId == "Part::GeomPlane")
+        j = da.add_joint(asm, "Ball", (base, face), pin(arm, (0, 0, 0)))
+        with self.assertRaisesRegex(ValueError, "needs an edge of Base plate"):
+            da.edit_joint(j, joint_type="PointOnCurve")
+        self.assertEqual(j.JointType, "Ball")
+
+    def test_errors_name_parts_by_their_labels(self):
+        asm, base, arm = arm_on_base(self.doc)
+        da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)))
+        self.assertTrue(da.solve(asm).converged)
+        with self.assertRaisesRegex(ValueError, "^Base plate is grounded"):
+            da.drag(asm, base, App.Placement(App.Vector(1, 0, 0), App.Rotation()))
+        # The engine's own messages come back with labels, not the model's names.
+        far = self.doc.addObject("Part::Feature", "Far")
+        far.Label = "Far post"
+        far.Shape = parts.ground([(9, 0)])
+        da.add_part(asm, far, grounded=True)
+        da.add_joint(asm, "Ball", pin(far, (9, 0, 0)), pin(arm, (1.5, 0, 0)))
+        asm.MaxIterations = 300
+        c = da.check(asm)
+        text = " ".join([c["message"]] + c["advice"])
+        self.assertIsNone(re.search(r"\bp\d+_", text), text)
+
+    def test_a_refused_operation_changes_nothing(self):
+        asm, base, arm = arm_on_base(self.doc)
+        before = sorted(o.Name for o in self.doc.Objects)
+        for call, pattern in (
+                (lambda: da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)), rotation=(40, 30)),
+                 "rotation min 40 deg is above max 30 deg"),
+                (lambda: da.add_joint(asm, "Revolute", (base, "Edge999"), pin(arm, (0, 0, 0))), "Edge999"),
+                (lambda: da.add_joint(asm, "Hinge", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0))), "unknown joint type")):
+            with self.assertRaisesRegex(Exception, pattern):
+                call()
+            self.assertEqual(sorted(o.Name for o in self.doc.Objects), before)
+        j = da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)), rotation=(-10, 10))
+        with self.assertRaisesRegex(ValueError, "rotation min 50 deg is above max 20 deg"):
+            da.edit_joint(j, joint_type="Slider", rotation=(50, 20))
+        self.assertEqual((j.JointType, j.RotationMin.Value, j.RotationMax.Value), ("Revolute", -10, 10))
+
+    def test_a_failed_step_inside_an_operation_is_rolled_back(self):
+        asm, base, arm = arm_on_base(self.doc)
+        self.assertEqual(self.doc.UndoMode, 0)  # freecadcmd's default: no undo of its own
+        before = sorted(o.Name for o in self.doc.Objects)
+        with self.assertRaises(RuntimeError):
+            with da.transaction(self.doc, "Half done"):
+                self.doc.addObject("Part::Feature", "Stray")
+                arm.Placement = App.Placement(App.Vector(5, 5, 5), App.Rotation())
+                raise RuntimeError("stop")
+        self.assertEqual(sorted(o.Name for o in self.doc.Objects), before)
+        self.assertEqual(arm.Placement, App.Placement())
+        self.assertEqual(self.doc.UndoMode, 0)
+
+    def test_new_assemblies_take_the_preferences(self):
+        p = App.ParamGet("User parameter:BaseApp/Preferences/Mod/Dispcon")
+        saved = (p.GetString("Tolerance", ""), p.GetInt("MaxIterations", 0), p.GetInt("DragSteps", 0))
+        try:
+            p.SetString("Tolerance", "1e-7")
+            p.SetInt("MaxIterations", 321)
+            p.SetInt("DragSteps", 7)
+            asm = da.create_assembly(self.doc)
+            self.assertEqual((asm.Tolerance, asm.MaxIterations), (1e-7, 321))
+            self.assertEqual(asm.getTypeIdOfProperty("Tolerance"), "App::PropertyPrecision")
+            self.assertEqual(da.preferences()["DragSteps"], 7)
+            p.SetString("Tolerance", "tight")
+            self.assertEqual(da.preferences()["Tolerance"], 1e-9)
+        finally:
+            for name, value in zip(("Tolerance", "MaxIterations", "DragSteps"), saved):
+                if not value:
+                    p.RemString(name) if name == "Tolerance" else p.RemInt(name)
+                elif name == "Tolerance":
+                    p.SetString(name, value)
+                else:
+                    p.SetInt(name, value)
+
+    def test_insert_a_part_from_another_file(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            library = App.newDocument("library")
+            bar = library.addObject("Part::Feature", "Bar")
+            bar.Label = "Long bar"
+            bar.Shape = parts.link(2.0)
+            library_path = os.path.join(tmp, "library.FCStd")
+            library.saveAs(library_path)
+            try:
+                asm, base, arm = arm_on_base(self.doc)
+                self.doc.saveAs(os.path.join(tmp, "robust.FCStd"))
+                self.assertEqual([o.Label for o in da.linkable_objects(library_path)], ["Long bar"])
+                linked = da.link_part(asm, library_path)
+                self.assertEqual((linked.TypeId, linked.LinkedObject, linked.Label), ("App::Link", bar, "Long bar"))
+                self.assertIn(linked, da.parts(asm))
+                before = sorted(o.Name for o in self.doc.Objects)
+                with self.assertRaisesRegex(ValueError, "has no object Nothing"):
+                    da.link_part(asm, library_path, "Nothing")
+                self.assertEqual(sorted(o.Name for o in self.doc.Objects), before)
+            finally:
+                App.closeDocument(library.Name)
+
+
+class Samples(unittest.TestCase):
+    def test_build_samples_writes_into_the_out_folder(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "samples")
+            env = dict(os.environ)
+            run = subprocess.run([FREECADCMD, os.path.join(REPO, "samples", "freecad", "build_samples.py"), "--out", out],
+                                 env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
+            self.assertEqual(run.returncode, 0, run.stdout[-2000:])
+            self.assertNotIn("not supported", run.stdout)
+            self.assertEqual(sorted(os.listdir(out)), ["fourbar.FCStd", "rssr.FCStd", "slider-crank.FCStd"])
+
+
+UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples)
+
+
+def run_unit_tests():
+    """The unittest classes, counted with the tests above; returns (passed, failed)."""
+    suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c) for c in UNIT_TESTS)
+    result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
+    failed = len(result.failures) + len(result.errors)
+    return result.testsRun - failed, failed
+
+
 if not os.environ.get("DISPCON_IMPORT_ONLY"):
     for fn in TESTS:
         run(fn)
-    print("%d passed, %d failed" % (len(TESTS) - len(FAILED), len(FAILED)))
-    if FAILED:
+    unit_passed, unit_failed = run_unit_tests()
+    passed = len(TESTS) - len(FAILED) + unit_passed
+    print("%d passed, %d failed" % (passed, len(FAILED) + unit_failed))
+    if FAILED or unit_failed:
         sys.exit(1)
+    # freecadcmd would open the arguments after this script as documents.
+    sys.exit(0)

@@ -25,10 +25,31 @@ def _import():
         operations.import_part(active_assembly(), path)
 
 
+def _insert_link():
+    """A part from another .FCStd file, linked (App::Link): the file's solid, or the one chosen."""
+    from PySide2 import QtWidgets
+
+    asm = active_assembly()
+    path, _ = QtWidgets.QFileDialog.getOpenFileName(None, "Insert a part from a FreeCAD file", "", "FreeCAD (*.FCStd)")
+    if not path:
+        return
+    choices = operations.linkable_objects(path)
+    if not choices:
+        raise ValueError("%s has no solid to insert" % path)
+    name = choices[0].Name
+    if len(choices) > 1:
+        labels = [o.Label for o in choices]
+        label, ok = QtWidgets.QInputDialog.getItem(None, "Insert a part", "Part of %s:" % path, labels, 0, False)
+        if not ok:
+            return
+        name = choices[labels.index(label)].Name
+    operations.link_part(asm, path, name)
+
+
 def _ground():
     for o in Gui.Selection.getSelection():
         if hasattr(o, "Grounded"):
-            o.Grounded = not o.Grounded
+            operations.set_grounded(o, not o.Grounded)
 
 
 def commands():
@@ -36,5 +57,6 @@ def commands():
         ("Dispcon_CreateAssembly", Command("New assembly", "An empty assembly in the document", _create, False)),
         ("Dispcon_AddParts", Command("Add parts", "Add the selected objects as parts", _add_parts)),
         ("Dispcon_ImportPart", Command("Import part", "Import a STEP, IGES or BREP file as a part", _import)),
+        ("Dispcon_InsertLink", Command("Insert part from file", "Link a part of another FreeCAD document (.FCStd) into the assembly; save this document first", _insert_link)),
         ("Dispcon_Ground", Command("Ground", "Toggle: the selected parts never move", _ground)),
     ]

@@ -1,6 +1,8 @@
 """The joint panel: edits a joint's type and limits (Resources/ui/joint.ui)."""
 import FreeCADGui as Gui
 
+from .. import operations
+from ..feedback import report
 from ..objects import JOINT_TYPES
 from . import load_ui
 
@@ -23,16 +25,15 @@ class JointPanel:
         f.cone.setValue(joint.ConeAngle.Value)
 
     def accept(self):
-        f, j = self.form, self.joint
-        doc = j.Document
-        doc.openTransaction("Edit joint")
-        j.JointType = f.jointType.currentText()
-        j.HasRotationLimits = f.hasRotation.isChecked()
-        j.RotationMin, j.RotationMax = f.rotationMin.value(), f.rotationMax.value()
-        j.HasTravelLimits = f.hasTravel.isChecked()
-        j.TravelMin, j.TravelMax = f.travelMin.value(), f.travelMax.value()
-        j.ConeAngle = f.cone.value()
-        doc.commitTransaction()
+        f = self.form
+        rotation = (f.rotationMin.value(), f.rotationMax.value()) if f.hasRotation.isChecked() else False
+        travel = (f.travelMin.value(), f.travelMax.value()) if f.hasTravel.isChecked() else False
+        try:
+            operations.edit_joint(self.joint, joint_type=f.jointType.currentText(), rotation=rotation,
+                                  travel=travel, cone=f.cone.value())
+        except ValueError as e:  # limits that cannot hold: said, and the panel stays open
+            report(str(e), error=True)
+            return False
         Gui.Control.closeDialog()
         return True
 
