@@ -9,12 +9,10 @@ JOINT_TYPES = ["Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "
                "PointOnPlane", "PointOnCurve", "Angle"]
 
 
-class _Proxy:
-    """What FreeCAD saves of a proxy: nothing, every value lives in the object's properties
-    (__getstate__ and __setstate__ for FreeCAD 0.20, dumps and loads for 1.x)."""
-
-    def execute(self, obj):
-        pass
+class Stateless:
+    """What FreeCAD saves of a proxy (an object's or a view provider's): nothing, every value lives
+    in the object's properties (__getstate__ and __setstate__ for FreeCAD 0.20, dumps and loads
+    for 1.x)."""
 
     def __getstate__(self):
         return None
@@ -24,6 +22,13 @@ class _Proxy:
 
     dumps = __getstate__
     loads = __setstate__
+
+
+class _Proxy(Stateless):
+    """A document object's proxy: the objects compute nothing on recompute."""
+
+    def execute(self, obj):
+        pass
 
 
 PARAMETERS = "User parameter:BaseApp/Preferences/Mod/Dispcon"

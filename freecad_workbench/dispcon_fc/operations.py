@@ -312,7 +312,24 @@ def _movable(adapter, part):
     return adapter.names[part.Name]
 
 
-class Drag:
+class _Motion:
+    """What the drags share: one undo step from the start to finish(), or cancel() to put every
+    part back where it was."""
+
+    def _begin(self, asm, part):
+        self.doc = asm.Document
+        self.transaction = Transaction(self.doc, "Drag %s" % part.Label)
+
+    def finish(self):
+        self.transaction.commit()
+        self.doc.recompute()
+
+    def cancel(self):
+        self.transaction.abort()
+        self.doc.recompute()
+
+
+class Drag(_Motion):
     """A live drag of one part: `move(placement)` per mouse event, `finish()` on release (or
     `cancel()` to put everything back). The solver's state is built once; a move that cannot be
     made leaves everything where it was. The whole drag is one undo step."""
@@ -325,8 +342,7 @@ class Drag:
         _holding(asm, self.adapter)
         with self.adapter.engine_errors():
             self.dragger = self.adapter.model.dragger(self.name, tolerance=tolerance(asm))
-        self.doc = asm.Document
-        self.transaction = Transaction(self.doc, "Drag %s" % part.Label)
+        self._begin(asm, part)
         self.last = None
 
     def move(self, placement):
@@ -339,16 +355,9 @@ class Drag:
         self.last = r
         return r
 
-    def finish(self):
-        self.transaction.commit()
-        self.doc.recompute()
-
-    def cancel(self):
-        self.transaction.abort()
-        self.doc.recompute()
 
 
-class PointDrag:
+class PointDrag(_Motion):
     """A mouse drag: the grabbed point of `part` is pulled towards a moving world point (the
     cursor on the plane through the grab point), the part free to turn as the linkage needs.
     Each event: first solve with a joint from the cursor to the grabbed point; when the linkage
@@ -371,8 +380,7 @@ class PointDrag:
                                           time=(-1.0, 0.5), label="mouse")
             self.pull = model.session(tolerance=tol, max_iterations=60, time=0.0)
             self.settle = model.session(tolerance=tol, max_iterations=500, time=1.0)
-        self.doc = asm.Document
-        self.transaction = Transaction(self.doc, "Drag %s" % part.Label)
+        self._begin(asm, part)
         self.frames = 0
         self.solver_seconds = 0.0
 
@@ -395,13 +403,6 @@ class PointDrag:
         self.solver_seconds += time.perf_counter() - t0
         return ok
 
-    def finish(self):
-        self.transaction.commit()
-        self.doc.recompute()
-
-    def cancel(self):
-        self.transaction.abort()
-        self.doc.recompute()
 
 
 def drag(asm, part, placement, steps=None):

@@ -1,12 +1,13 @@
 """How assemblies and joints show in the tree and the 3D view (GUI only): the hooks the GUI side
 builds on (icons, joint markers, double-click to edit). Like the objects' proxies they save
-nothing; objects.adopt() gives them back to objects whose view proxy a restore lost."""
+nothing (Stateless); objects.adopt() gives them back to objects whose view proxy a restore lost."""
 import os
 
+from .objects import Stateless
 from .resources import icon_path
 
 
-class _ViewProvider:
+class _ViewProvider(Stateless):
     icon = "dispcon.svg"
 
     def __init__(self, vobj):
@@ -20,14 +21,6 @@ class _ViewProvider:
         path = icon_path(self.icon)
         return path if os.path.isfile(path) else icon_path("dispcon.svg")
 
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    dumps = __getstate__
-    loads = __setstate__
 
 
 class ViewProviderAssembly(_ViewProvider):
