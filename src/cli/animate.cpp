@@ -41,10 +41,7 @@ int run_animate(const AnimateArgs& a) {
       std::snprintf(t, sizeof t, "%.9g", f.time);
       csv_rows(out, t, *m, f.poses);
     }
-    if (!out) {
-      std::cerr << a.csv << ": error: cannot write the file\n";
-      return kBadInput;
-    }
+    if (!written(out, a.csv)) return kBadInput;
   }
   if (!a.svg.empty() && !write_text(a.svg, write_animation_svg(*m, r))) return kBadInput;
   const std::vector<ConstraintReport> now = measure(*m, m->poses(), o.solve);
@@ -83,8 +80,9 @@ Subcommand add_animate(CLI::App& app) {
   CLI::App* sub =
       app.add_subcommand("animate", "the physics variant: integrate, constrain, correct speeds");
   add_common(sub, args->common);
-  sub->add_option("--duration", args->duration, "seconds")->required()->check(CLI::PositiveNumber);
-  sub->add_option("--dt", args->dt, "time step")->required()->check(CLI::PositiveNumber);
+  // Checked by the engine (validate(AnimateOptions)), as every number is.
+  sub->add_option("--duration", args->duration, "seconds")->required();
+  sub->add_option("--dt", args->dt, "time step")->required();
   sub->add_option("--gravity", args->gravity, "GX GY GZ")->expected(3);
   sub->add_option("--csv", args->csv, "write every frame's poses");
   sub->add_option("--svg", args->svg, "write an animated SVG");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -49,6 +50,8 @@ BodyId body_named(const Model& model, const std::string& name);
 Vec3 vec(const std::vector<double>& v);
 // Writes `text` to `path`; false, with a message on standard error, when it cannot.
 bool write_text(const std::string& path, const std::string& text);
+// Flushes and closes a file written in pieces; false, with a message, when any write failed.
+bool written(std::ofstream& out, const std::string& path);
 nlohmann::json joint_list(const std::vector<JointId>& ids);
 
 }  // namespace dispcon::cli

@@ -10,10 +10,9 @@ namespace dispcon::cli {
 void add_common(CLI::App* sub, Common& common, bool solves) {
   sub->add_option("FILE", common.file, "the .dcl file")->required();
   if (solves) {
-    sub->add_option("--tolerance", common.tolerance, "largest violation accepted (default 1e-9)")
-        ->check(CLI::PositiveNumber);
-    sub->add_option("--max-iterations", common.max_iterations, "iteration cap (default 10000)")
-        ->check(CLI::PositiveNumber);
+    // Their values are checked by the engine (validate(SolveOptions)), not here.
+    sub->add_option("--tolerance", common.tolerance, "largest violation accepted (default 1e-9)");
+    sub->add_option("--max-iterations", common.max_iterations, "iteration cap (default 10000)");
   }
   sub->add_flag("--json", common.json, "print one JSON document on standard output");
 }
@@ -45,8 +44,14 @@ Vec3 vec(const std::vector<double>& v) {
 bool write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
+  return written(out, path);
+}
+
+bool written(std::ofstream& out, const std::string& path) {
+  out.flush();  // a full disk shows only when the buffer goes out
+  if (out) out.close();
   if (!out) std::cerr << path << ": error: cannot write the file\n";
-  return static_cast<bool>(out);
+  return !out.fail();
 }
 
 nlohmann::json joint_list(const std::vector<JointId>& ids) {

@@ -27,8 +27,8 @@ int run_drag(const DragArgs& a) {
   const SolveOptions o = options(a.common);
   const SolveResult first = assemble(*m, o);
   Pose target = m->body(body).pose;
-  target.x = vec(a.to);
-  if (!a.rotation.empty()) target.q = quat_from_rotation_vector(vec(a.rotation));
+  target.x = vec(a.to);  // checked by the engine's drag, as the rotation vector is here
+  if (!a.rotation.empty()) target.q = rotation_from_vector(vec(a.rotation), "--rotation");
   std::vector<std::vector<Pose>> poses;
   DragResult d;
   if (first.converged) {
@@ -42,10 +42,7 @@ int run_drag(const DragArgs& a) {
     std::ofstream out(a.csv);
     out << "step,body,px,py,pz,qw,qx,qy,qz\n";
     for (size_t k = 0; k < poses.size(); ++k) csv_rows(out, std::to_string(k + 1), *m, poses[k]);
-    if (!out) {
-      std::cerr << a.csv << ": error: cannot write the file\n";
-      return kBadInput;
-    }
+    if (!written(out, a.csv)) return kBadInput;
   }
   const bool converged = d.converged && first.converged;
   const std::vector<ConstraintReport> now =
@@ -88,8 +85,7 @@ Subcommand add_drag(CLI::App& app) {
   sub->add_option("--body", args->body, "the body to move")->required();
   sub->add_option("--to", args->to, "target position X Y Z")->required()->expected(3);
   sub->add_option("--rotation", args->rotation, "target rotation vector RX RY RZ")->expected(3);
-  sub->add_option("--steps", args->steps, "number of equal steps (default 50)")
-      ->check(CLI::PositiveNumber);
+  sub->add_option("--steps", args->steps, "number of equal steps (default 50)");
   sub->add_option("--csv", args->csv, "write every step's poses");
   return {sub, [args] { return run_drag(*args); }};
 }

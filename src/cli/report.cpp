@@ -69,11 +69,16 @@ void print_poses(std::ostream& out, const Model& model, const std::vector<Pose>&
   out << "  " << std::left << std::setw(16) << "body" << std::setw(40) << "position"
       << "rotation vector\n";
   char buf[160];
+  // Fixed point for the sizes of mechanisms; beyond a million, exponent form (1e+150 is not
+  // written with 150 digits).
+  auto fixed = [](const Vec3& v) { return (v.cwiseAbs().maxCoeff() < 1e6); };
   for (int i = 1; i < model.body_count(); ++i) {
     const Pose& p = poses[static_cast<size_t>(i)];
     const Vec3 r = p.rotation_vector();
-    std::snprintf(buf, sizeof buf, "%11.6f %11.6f %11.6f       %10.6f %10.6f %10.6f", p.x.x(),
-                  p.x.y(), p.x.z(), r.x(), r.y(), r.z());
+    std::snprintf(buf, sizeof buf,
+                  fixed(p.x) ? "%11.6f %11.6f %11.6f       %10.6f %10.6f %10.6f"
+                             : "%11.5g %11.5g %11.5g       %10.6f %10.6f %10.6f",
+                  p.x.x(), p.x.y(), p.x.z(), r.x(), r.y(), r.z());
     out << "  " << std::left << std::setw(16) << model.body(BodyId{i}).name << buf << "\n";
   }
 }

@@ -41,10 +41,7 @@ int run_sweep(const SweepArgs& a) {
       for (double v : x.joint_values) out << "," << v;
       out << "\n";
     }
-    if (!out) {
-      std::cerr << a.csv << ": error: cannot write the file\n";
-      return kBadInput;
-    }
+    if (!written(out, a.csv)) return kBadInput;
   }
   if (!a.plot.empty() && !write_text(a.plot, write_sweep_svg(*m, r))) return kBadInput;
   if (a.common.json) {
@@ -80,8 +77,7 @@ Subcommand add_sweep(CLI::App& app) {
       ->expected(3);
   sub->add_option("--from", args->from, "start angle, radians (default 0)");
   sub->add_option("--to", args->to, "end angle, radians (default 2 pi)");
-  sub->add_option("--steps", args->steps, "number of steps (default 360)")
-      ->check(CLI::PositiveNumber);
+  sub->add_option("--steps", args->steps, "number of steps (default 360)");
   sub->add_option("--csv", args->csv, "write every sample");
   sub->add_option("--plot", args->plot, "write an SVG plot of every joint's value");
   return {sub, [args] { return run_sweep(*args); }};

@@ -20,24 +20,19 @@ struct JointInfo {
   std::string object1, object2, label;
 };
 
-// A live view of one body of a model.
+// A live view of one body of a model: read only, changed through the model's checked setters.
 struct BodyView {
   Model* model;
   BodyId id;
-  Body& get() const { return model->body(id); }
+  const Body& get() const { return model->body(id); }
 };
 
-Vec3 vec3(const pyb::handle& h, const char* what) {
-  try {
-    return h.cast<Vec3>();
-  } catch (const pyb::cast_error&) {
-    throw std::invalid_argument(std::string(what) + " must be three numbers");
-  }
-}
-
 double number(const pyb::handle& h, const char* what) {
-  if (h.is_none()) throw std::invalid_argument(std::string(what) + " must be a number");
-  return h.cast<double>();
+  try {
+    if (!h.is_none()) return h.cast<double>();
+  } catch (const pyb::cast_error&) {
+  }
+  throw std::invalid_argument(std::string(what) + " must be a number");
 }
 
 // (a, b, ...) as a sequence of at least `need` items.
@@ -52,21 +47,7 @@ pyb::sequence items(const pyb::object& o, size_t need, const char* what) {
 // Optional item k of a sequence, or the default when absent or None.
 double bound(const pyb::sequence& s, size_t k, double fallback) {
   if (pyb::len(s) <= k || s[k].is_none()) return fallback;
-  return s[k].cast<double>();
-}
-
-Mat3 rotation_from(const pyb::object& rotation) {
-  const pyb::array_t<double> a = pyb::array_t<double>::ensure(rotation);
-  if (a && a.ndim() == 2 && a.shape(0) == 3 && a.shape(1) == 3) {
-    const Mat3 r = rotation.cast<Mat3>();
-    // Quat(Mat3) silently returns a meaningless quaternion for a matrix that is no rotation.
-    if (!(r.transpose() * r).isIdentity(1e-6) || r.determinant() < 0) {
-      throw std::invalid_argument(
-          "rotation: the 3x3 matrix is not a rotation (orthonormal, det +1)");
-    }
-    return r;
-  }
-  return quat_from_rotation_vector(vec3(rotation, "rotation")).toRotationMatrix();
+  return number(s[k], "a bound");
 }
 
 }  // namespace
@@ -112,19 +93,13 @@ ModelClass bind_model(pyb::module_& m) {
       .def_property_readonly("center", [](const BodyView& b) { return b.get().center; })
       .def_property(
           "fixed", [](const BodyView& b) { return b.get().fixed; },
-          [](BodyView& b, bool v) { b.get().fixed = v; })
+          [](BodyView& b, bool v) { b.model->set_fixed(b.id, v); })
       .def_property(
           "mass", [](const BodyView& b) { return b.get().mass; },
-          [](BodyView& b, std::optional<double> v) {
-            if (v && !(*v > 0)) throw std::invalid_argument("mass must be positive");
-            b.get().mass = v;
-          })
+          [](BodyView& b, std::optional<double> v) { b.model->set_mass(b.id, v); })
       .def_property(
           "rotate", [](const BodyView& b) { return b.get().rotate; },
-          [](BodyView& b, std::optional<double> v) {
-            if (v && !(*v > 0)) throw std::invalid_argument("rotate must be positive");
-            b.get().rotate = v;
-          },
+          [](BodyView& b, std::optional<double> v) { b.model->set_rotate(b.id, v); },
           "the no-physics ability to rotate (None: derived from the constrained points)")
       .def("__repr__", [](const BodyView& b) { return "<dispcon.Body '" + b.get().name + "'>"; });
 
@@ -138,7 +113,7 @@ ModelClass bind_model(pyb::module_& m) {
             Body b;
             b.name = name;
             b.pose.x = vec3(position, "position");
-            b.pose.q = Quat(rotation_from(rotation));
+            b.pose.q = rotation_from(rotation);
             b.center = vec3(center, "center");
             b.fixed = fixed;
             b.rotate = rotate;
@@ -146,6 +121,8 @@ ModelClass bind_model(pyb::module_& m) {
             if (!inertia.is_none()) {
               const pyb::array_t<double> a = pyb::array_t<double>::ensure(inertia);
               if (a && a.ndim() == 2) {
+                if (a.shape(0) != 3 || a.shape(1) != 3)
+                  throw std::invalid_argument("inertia: a matrix must be 3x3");
                 b.inertia = inertia.cast<Mat3>();
               } else {
                 const pyb::sequence s = items(inertia, 3, "inertia");
@@ -284,9 +261,11 @@ ModelClass bind_model(pyb::module_& m) {
           "set_pose",
           [](Model& model, const std::string& name, const pyb::object& position,
              const pyb::object& rotation) {
-            Body& b = model.body(body_id(model, name));
-            if (!position.is_none()) b.pose.x = vec3(position, "position");
-            if (!rotation.is_none()) b.pose.q = Quat(rotation_from(rotation));
+            const BodyId id = body_id(model, name);
+            Pose p = model.body(id).pose;
+            if (!position.is_none()) p.x = vec3(position, "position");
+            if (!rotation.is_none()) p.q = rotation_from(rotation);
+            model.set_pose(id, p);
           },
           pyb::arg("name"), pyb::arg("position") = pyb::none(), pyb::arg("rotation") = pyb::none(),
           "Places a body: position, and rotation as a rotation vector or a 3x3 matrix.")
@@ -308,6 +287,8 @@ ModelClass bind_model(pyb::module_& m) {
           [](const Model& model, const std::string& path) {
             std::ofstream out(path, std::ios::binary);
             out << write_dcl(model);
+            out.flush();  // a full disk shows only when the buffer goes out
+            if (out) out.close();
             if (!out) throw std::invalid_argument(path + ": cannot write the file");
           },
           pyb::arg("path"));

@@ -17,14 +17,6 @@ struct PyDragResult {
 struct PyDragger {
   Model* model;
   Dragger dragger;
-  PySolveResult move_to(const Vec3& position, const std::optional<Vec3>& rotation,
-                        const std::optional<Mat3>& matrix, BodyId body) {
-    Pose target = model->body(body).pose;
-    target.x = position;
-    if (rotation) target.q = quat_from_rotation_vector(*rotation);
-    if (matrix) target.q = Quat(*matrix).normalized();
-    return convert(*model, dragger.move_to(target));
-  }
   BodyId body;
 };
 
@@ -44,18 +36,12 @@ struct PySession {
   }
 };
 
+// The target of a drag: the body's pose with what is given replaced (checked by the engine).
 Pose target_pose(const Model& model, BodyId body, const pyb::object& position,
                  const pyb::object& rotation) {
   Pose p = model.body(body).pose;
-  if (!position.is_none()) p.x = position.cast<Vec3>();
-  if (!rotation.is_none()) {
-    const pyb::array_t<double> a = pyb::array_t<double>::ensure(rotation);
-    if (a && a.ndim() == 2) {
-      p.q = Quat(rotation.cast<Mat3>()).normalized();
-    } else {
-      p.q = quat_from_rotation_vector(rotation.cast<Vec3>());
-    }
-  }
+  if (!position.is_none()) p.x = vec3(position, "position");
+  if (!rotation.is_none()) p.q = rotation_from(rotation);
   return p;
 }
 
@@ -95,18 +81,11 @@ void bind_solve(pyb::module_& m, ModelClass& model) {
             return new PySession{&self, Session(self, solve_options(kw))};
           },
           pyb::keep_alive<0, 1>(),
-          "A solver state kept between solves; add no joint while it is in use.")
+          "A solver state kept between solves; it rebuilds itself when the model changed.")
       .def(
           "set_hinge",
           [](Model& self, int index, const std::optional<Vec3>& p1, const std::optional<Vec3>& p2) {
-            if (index < 0 || index >= self.joint_count()) {
-              throw std::invalid_argument("no joint " + std::to_string(index));
-            }
-            Joint& j = self.joint(JointId{index});
-            if (!j.has_hinge)
-              throw std::invalid_argument("joint " + std::to_string(index) + " has no hinge");
-            if (p1) j.p1 = *p1;
-            if (p2) j.p2 = *p2;
+            self.set_hinge(JointId{index}, p1, p2);
           },
           pyb::arg("index"), pyb::arg("p1") = pyb::none(), pyb::arg("p2") = pyb::none(),
           "Moves a joint's hinge points (a mouse drag's target).")
@@ -141,22 +120,12 @@ void bind_solve(pyb::module_& m, ModelClass& model) {
           [](Model& self, const std::string& name, const pyb::object& position,
              const pyb::object& rotation, int steps, const pyb::kwargs& kw) {
             const BodyId body = body_id(self, name);
-            const SolveOptions o = solve_options(kw);
-            const SolveResult first = assemble(self, o);
+            const DragResult d = drag(self, body, target_pose(self, body, position, rotation),
+                                      steps, solve_options(kw));
             PyDragResult out;
-            if (!first.converged) {
-              out.converged = false;
-              out.failed_step = 0;
-              out.iterations = first.iterations;
-              out.max_residual = first.max_residual;
-              out.message = "the model does not assemble: " + first.message;
-              return out;
-            }
-            const DragResult d =
-                drag(self, body, target_pose(self, body, position, rotation), steps, o);
             out.converged = d.converged;
-            out.iterations = first.iterations + d.iterations;
-            out.max_residual = std::max(first.max_residual, d.max_residual);
+            out.iterations = d.iterations;
+            out.max_residual = d.max_residual;
             out.failed_step = d.failed_step;
             out.message = d.message;
             for (const SolveResult& s : d.steps) out.steps.push_back(convert(self, s));

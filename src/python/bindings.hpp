@@ -31,6 +31,12 @@ SolveOptions solve_options(const pyb::kwargs& kw,
 
 BodyId body_id(const Model& model, const std::string& name);
 
+// Python values to the engine's types, ValueError naming `what` when the type or shape is wrong;
+// the values themselves are checked by the engine.
+Vec3 vec3(const pyb::handle& h, const char* what);
+// A rotation vector (three numbers) or a 3x3 rotation matrix, as a unit quaternion.
+Quat rotation_from(const pyb::handle& rotation, const char* what = "rotation");
+
 struct Report {
   int index = 0, line = 0;
   std::string object1, object2;

@@ -41,19 +41,59 @@ BodyId body_id(const Model& model, const std::string& name) {
   return *id;
 }
 
+Vec3 vec3(const pyb::handle& h, const char* what) {
+  try {
+    return h.cast<Vec3>();
+  } catch (const pyb::cast_error&) {
+    throw std::invalid_argument(std::string(what) + " must be three numbers");
+  }
+}
+
+Quat rotation_from(const pyb::handle& rotation, const char* what) {
+  const pyb::array_t<double> a = pyb::array_t<double>::ensure(rotation);
+  if (a && a.ndim() == 2) {
+    if (a.shape(0) != 3 || a.shape(1) != 3)
+      throw std::invalid_argument(std::string(what) + ": a matrix must be 3x3");
+    return rotation_from_matrix(rotation.cast<Mat3>(), what);
+  }
+  try {
+    return rotation_from_vector(rotation.cast<Vec3>(), what);
+  } catch (const pyb::cast_error&) {
+    throw std::invalid_argument(std::string(what) +
+                                " must be a rotation vector (three numbers) or a 3x3 matrix");
+  }
+}
+
+namespace {
+
+// A keyword argument as T; ValueError naming it when it is not one (2**40 is no int).
+template <typename T>
+T argument(const pyb::handle& v, const std::string& key, const char* expected) {
+  try {
+    return v.cast<T>();
+  } catch (const pyb::cast_error&) {
+    throw std::invalid_argument(key + " must be " + expected + ", not " +
+                                std::string(pyb::str(pyb::repr(v))));
+  }
+}
+
+}  // namespace
+
 SolveOptions solve_options(const pyb::kwargs& kw, const std::vector<std::string>& also_allowed) {
   SolveOptions o;
   for (const auto& item : kw) {
     const std::string key = pyb::str(item.first);
     const pyb::handle v = item.second;
+    auto number = [&] { return argument<double>(v, key, "a number"); };
+    auto flag = [&] { return argument<bool>(v, key, "True or False"); };
     if (key == "tolerance") {
-      o.tolerance = v.cast<double>();
+      o.tolerance = number();
     } else if (key == "max_iterations") {
-      o.max_iterations = v.cast<int>();
+      o.max_iterations = argument<int>(v, key, "an int of at most 2**31 - 1");
     } else if (key == "time") {
-      o.time = v.cast<double>();
+      o.time = number();
     } else if (key == "scheme") {
-      const std::string s = v.cast<std::string>();
+      const std::string s = argument<std::string>(v, key, "a string");
       if (s == "jacobi") {
         o.scheme = Scheme::Jacobi;
       } else if (s == "gauss-seidel") {
@@ -62,25 +102,24 @@ SolveOptions solve_options(const pyb::kwargs& kw, const std::vector<std::string>
         throw std::invalid_argument("scheme must be 'jacobi' or 'gauss-seidel', not '" + s + "'");
       }
     } else if (key == "relaxation") {
-      o.relaxation = v.cast<double>();
+      o.relaxation = number();
     } else if (key == "seed_weights") {
-      o.seed_weights = v.cast<bool>();
+      o.seed_weights = flag();
     } else if (key == "max_rotation_step") {
-      o.max_rotation_step = v.cast<double>();
+      o.max_rotation_step = number();
     } else if (key == "translate_after_rotate") {
-      o.translate_after_rotate = v.cast<bool>();
+      o.translate_after_rotate = flag();
     } else if (key == "use_physics") {
-      o.use_physics = v.cast<bool>();
+      o.use_physics = flag();
     } else if (key == "newton_polish") {
-      o.newton_polish = v.cast<bool>();
+      o.newton_polish = flag();
     } else if (key == "polish_below") {
-      o.polish_below = v.cast<double>();
+      o.polish_below = number();
     } else if (std::find(also_allowed.begin(), also_allowed.end(), key) == also_allowed.end()) {
       throw std::invalid_argument("unknown option '" + key + "'");
     }
   }
-  if (!(o.tolerance > 0)) throw std::invalid_argument("tolerance must be positive");
-  if (o.max_iterations < 1) throw std::invalid_argument("max_iterations must be at least 1");
+  validate(o);  // the engine's check, early: before anything runs
   return o;
 }
 

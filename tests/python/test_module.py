@@ -278,5 +278,77 @@ class Files(unittest.TestCase):
                                        m.body("rocker").position, atol=1e-15)
 
 
+def same_bits(m):
+    """Every body's pose as raw bytes, to compare bit for bit."""
+    return {n: (m.body(n).position.tobytes(), m.body(n).quaternion.tobytes()) for n in m.body_names()}
+
+
+class Door(unittest.TestCase):
+    """Every number enters through the engine's door: ValueError naming it (issue 13)."""
+
+    def assert_refused(self, f, *words):
+        with self.assertRaises(ValueError) as c:
+            f()
+        for w in words:
+            self.assertIn(w, str(c.exception))
+
+    def test_drag_targets(self):
+        nan = float("nan")
+        m = fourbar()
+        before = same_bits(m)
+        self.assert_refused(lambda: m.drag("crank", position=(nan, 0, 0)), "target")
+        self.assert_refused(lambda: m.drag("crank", rotation=(nan, 0, 0)), "rotation")
+        self.assert_refused(lambda: m.drag("crank", rotation=(0, 0, 0, 1)), "rotation")
+        for bad in (np.eye(3) * 2, np.diag([1.0, 1.0, -1.0]), np.ones((3, 3))):
+            self.assert_refused(lambda: m.drag("crank", rotation=bad), "not a rotation")
+        d = m.dragger("crank")
+        self.assert_refused(lambda: d.move_to(position=(nan, 0, 0)), "target")
+        self.assert_refused(lambda: d.move_to(rotation=np.eye(3) * 2), "not a rotation")
+        self.assertEqual(before, same_bits(m))
+
+    def test_poses_and_options(self):
+        nan = float("nan")
+        m = fourbar()
+        self.assert_refused(lambda: m.set_pose("crank", position=(nan, 0, 0)), "nan")
+        self.assert_refused(lambda: m.set_pose("crank", rotation=(1e300, 0, 0)), "1e+300")
+        self.assert_refused(lambda: m.assemble(relaxation=nan), "relaxation")
+        self.assert_refused(lambda: m.assemble(time=nan), "time")
+        self.assert_refused(lambda: m.assemble(tolerance=nan), "tolerance")
+        self.assert_refused(lambda: m.assemble(max_iterations=2**40), "max_iterations")
+        self.assert_refused(lambda: m.animate(1.0, 0.1, (nan, 0, 0)), "gravity")
+        self.assert_refused(lambda: m.add_body("x", mass=1e-150), "mass")
+        self.assert_refused(lambda: m.add_joint("crank", hinge=((1e155, 0, 0), (0, 0, 0))), "hinge")
+        self.assertNotIn("x", m.body_names())
+
+    def test_bodies_change_only_through_checked_setters(self):
+        m = fourbar()
+        with self.assertRaises((ValueError, AttributeError)):
+            m.body("world").fixed = False
+        self.assert_refused(lambda: setattr(m.body("crank"), "mass", float("nan")), "mass")
+        self.assertIsNone(m.body("crank").mass)
+
+    def test_load_a_directory_or_a_missing_file(self):
+        self.assert_refused(lambda: dispcon.load(SRC), "directory")
+        self.assert_refused(lambda: dispcon.load("/nonexistent/x.dcl"), "/nonexistent/x.dcl: error")
+
+    def test_failed_drag_changes_nothing(self):
+        m = dispcon.load(os.path.join(SRC, "samples", "bricard.dcl"))
+        before = same_bits(m)
+        r = m.drag("link2", position=(50, 50, 50), steps=1)
+        self.assertFalse(r.converged)
+        self.assertEqual(before, same_bits(m))
+
+    def test_session_follows_the_model(self):
+        m = fourbar()
+        s = m.session()
+        self.assertTrue(s.solve().converged)
+        for _ in range(40):  # enough to move the joints' storage
+            m.add_joint("rocker", hinge=((3, 0, 0), (0, 0, 0)), angle=(Z, Z, 0, 0))
+        m.add_joint("crank", hinge=((5, 0, 0), (0, 0, 0)))  # cannot hold with the others
+        r = s.solve()
+        self.assertFalse(r.converged)
+        self.assertEqual(len(r.constraints), m.joint_count())
+
+
 if __name__ == "__main__":
     unittest.main()

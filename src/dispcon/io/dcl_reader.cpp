@@ -5,7 +5,10 @@
 #include "dispcon/io/dcl_reader.hpp"
 
 #include <Eigen/Cholesky>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -17,8 +20,9 @@ namespace dispcon {
 
 std::string Diagnostic::format() const {
   std::ostringstream out;
-  out << file << ":" << line << ":" << column << ": " << (error ? "error" : "warning") << ": "
-      << message;
+  out << file;
+  if (line > 0) out << ":" << line << ":" << column;  // line 0: the file as a whole
+  out << ": " << (error ? "error" : "warning") << ": " << message;
   return out.str();
 }
 
@@ -34,9 +38,14 @@ struct Place {
   int line = 0, column = 0;
 };
 
+// Where each statement of a block was, by keyword: a value the model refuses (a ValueError
+// naming its statement) is reported there.
+using Statements = std::map<std::string, Place>;
+
 struct ObjectBlock {
   Place at;
   Body body;
+  Statements seen;
 };
 
 struct ConstraintBlock {
@@ -46,6 +55,7 @@ struct ConstraintBlock {
   bool has_object2 = false;
   Joint joint;
   Place guide_at;
+  Statements seen;
 };
 
 // Thrown inside the parser to abandon one statement; caught at statement level.
@@ -94,6 +104,11 @@ class Parser {
     }
   }
   bool too_many() const { return errors_ >= 100; }
+  // The place of a block's statement `keyword`, or the block's own.
+  static Place place(const Statements& seen, const std::string& keyword, Place block) {
+    const auto it = seen.find(keyword);
+    return it == seen.end() ? block : it->second;
+  }
 
   void error(Place p, const std::string& message) {
     diagnostics_.push_back({file_, p.line, p.column, true, message});
@@ -154,11 +169,11 @@ class Parser {
   Vec3 direction(const std::string& what) {
     const Token& first = peek();
     const Vec3 v = vec3(what);
-    if (v.norm() == 0) {
+    if (v.isZero(0)) {
       error(at(first), what + " is a zero vector");
       throw StatementError{};
     }
-    return v.normalized();
+    return v;  // the model makes it a unit vector (without overflow for large components)
   }
 
   std::string name(const std::string& what) {
@@ -274,7 +289,7 @@ class Parser {
     } catch (const StatementError&) {
       recover();
     }
-    std::map<std::string, Place> seen;
+    Statements& seen = ob.seen;
     Vec3 rotation = Vec3::Zero();
     while (!block_end("object '" + ob.body.name + "'", ob.at) && !too_many()) {
       const Token& t = next();
@@ -289,11 +304,11 @@ class Parser {
           b.fixed = true;
         } else if (k == "rotate") {
           const double v = number("rotate");
-          if (!(v > 0)) error(at(t), "rotate must be positive, found " + std::to_string(v));
+          if (!(v > 0)) error(at(t), "rotate must be positive, found " + format_number(v));
           b.rotate = v;
         } else if (k == "mass") {
           const double v = number("mass");
-          if (!(v > 0)) error(at(t), "mass must be positive, found " + std::to_string(v));
+          if (!(v > 0)) error(at(t), "mass must be positive, found " + format_number(v));
           b.mass = v;
         } else if (k == "inertia") {
           double v[6] = {0, 0, 0, 0, 0, 0};
@@ -329,7 +344,11 @@ class Parser {
         recover();
       }
     }
-    ob.body.pose.q = quat_from_rotation_vector(rotation);
+    try {
+      ob.body.pose.q = rotation_from_vector(rotation, "rotation");
+    } catch (const ValueError& e) {
+      error(place(ob.seen, e.field(), ob.at), "object '" + ob.body.name + "': " + e.what());
+    }
     objects_.push_back(ob);
   }
 
@@ -338,7 +357,7 @@ class Parser {
     ConstraintBlock cb;
     cb.at = at(kw);
     cb.joint.line = kw.line;
-    std::map<std::string, Place> seen;
+    Statements& seen = cb.seen;
     Joint& j = cb.joint;
     while (!block_end("constraint", cb.at) && !too_many()) {
       const Token& t = next();
@@ -487,6 +506,8 @@ class Parser {
       if (errors_ > 0) continue;
       try {
         model.add_body(ob.body);
+      } catch (const ValueError& e) {
+        error(place(ob.seen, e.field(), ob.at), e.what());
       } catch (const std::invalid_argument& e) {
         error(ob.at, e.what());
       }
@@ -529,6 +550,8 @@ class Parser {
       if (!ok || errors_ > 0) continue;
       try {
         model.add_joint(j);
+      } catch (const ValueError& e) {
+        error(place(cb.seen, e.field(), cb.at), e.what());
       } catch (const std::invalid_argument& e) {
         error(cb.at, e.what());
       }
@@ -560,10 +583,16 @@ ParseResult parse_dcl(std::string_view text, const std::string& filename) {
 }
 
 ParseResult load_dcl(const std::string& path) {
+  ParseResult r;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    r.diagnostics.push_back({path, 0, 0, true, "is a directory, not a .dcl file"});
+    return r;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    ParseResult r;
-    r.diagnostics.push_back({path, 0, 0, true, "cannot open the file"});
+    r.diagnostics.push_back({path, 0, 0, true,
+                             std::string("cannot open the file (") + std::strerror(errno) + ")"});
     return r;
   }
   std::ostringstream text;

@@ -1,6 +1,6 @@
 #include "dispcon/model/model.hpp"
 
-#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -9,27 +9,38 @@ namespace dispcon {
 
 namespace {
 
-bool finite(const Vec3& v) {
-  return v.allFinite();
-}
-
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-Vec3 unit(const Vec3& v, const std::string& what) {
-  require(finite(v), what + " is not finite");
-  const double n = v.norm();
-  require(n > 1e-300, what + " is a zero vector");
-  return v / n;
-}
-
+// A bound pair: each bound a number within range or an infinity (no bound); min not above max;
+// then clamped into the natural range of the quantity.
 void check_bounds(double& lo, double& hi, double natural_lo, double natural_hi,
-                  const std::string& what) {
-  require(!std::isnan(lo) && !std::isnan(hi), what + " bound is not a number");
-  require(lo <= hi, what + ": min " + std::to_string(lo) + " is above max " + std::to_string(hi));
+                  const std::string& field, const std::string& what) {
+  auto one = [&](double v, const char* which) {
+    if (!std::isinf(v)) check_number(v, field, what + " " + which);
+  };
+  one(lo, "min");
+  one(hi, "max");
+  if (lo > hi) {
+    throw ValueError(field, what + ": min " + format_number(lo) + " is above max " +
+                                format_number(hi));
+  }
   lo = std::clamp(lo, natural_lo, natural_hi);
   hi = std::clamp(hi, natural_lo, natural_hi);
+}
+
+void check_inertia(const Mat3& J, const std::string& who) {
+  for (int i = 0; i < 9; ++i) check_number(J.data()[i], "inertia", who + ": inertia");
+  if ((J - J.transpose()).norm() > 1e-12 * std::max(1.0, J.norm()))
+    throw ValueError("inertia", who + ": inertia is not symmetric");
+  // Its principal moments: positive (positive definite) and within range, since the solver
+  // inverts it.
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(J, Eigen::EigenvaluesOnly);
+  const Vec3 moments = eig.eigenvalues();
+  if (!(moments.minCoeff() > 0)) throw ValueError("inertia", who + ": inertia is not positive definite");
+  check_positive(moments.minCoeff(), "inertia", who + ": smallest principal inertia");
+  check_positive(moments.maxCoeff(), "inertia", who + ": largest principal inertia");
 }
 
 }  // namespace
@@ -67,28 +78,19 @@ BodyId Model::add_body(Body body) {
   require(!body.name.empty(), "an object needs a name");
   require(body.name != "world", "'world' is reserved for the fixed world frame");
   require(by_name_.count(body.name) == 0, "duplicate object '" + body.name + "'");
-  require(finite(body.pose.x) && body.pose.q.coeffs().allFinite(), who + ": pose is not finite");
-  require(body.pose.q.norm() > 1e-300, who + ": zero quaternion");
-  body.pose.q.normalize();
-  require(finite(body.center), who + ": center is not finite");
-  if (body.rotate)
-    require(std::isfinite(*body.rotate) && *body.rotate > 0,
-            who + ": rotate must be a positive number");
-  if (body.mass)
-    require(std::isfinite(*body.mass) && *body.mass > 0, who + ": mass must be a positive number");
-  if (body.inertia) {
-    const Mat3& J = *body.inertia;
-    require(J.allFinite(), who + ": inertia is not finite");
-    require((J - J.transpose()).norm() <= 1e-12 * std::max(1.0, J.norm()),
-            who + ": inertia is not symmetric");
-    Eigen::LLT<Mat3> llt(J);
-    require(llt.info() == Eigen::Success, who + ": inertia is not positive definite");
-  }
-  require(finite(body.velocity) && finite(body.spin) && finite(body.force) && finite(body.torque),
-          who + ": velocity, spin, force or torque is not finite");
+  body.pose = check_pose(body.pose, "position", who);
+  check_vector(body.center, "center", who + ": center");
+  if (body.rotate) check_positive(*body.rotate, "rotate", who + ": rotate");
+  if (body.mass) check_positive(*body.mass, "mass", who + ": mass");
+  if (body.inertia) check_inertia(*body.inertia, who);
+  check_vector(body.velocity, "velocity", who + ": velocity");
+  check_vector(body.spin, "spin", who + ": spin");
+  check_vector(body.force, "force", who + ": force");
+  check_vector(body.torque, "torque", who + ": torque");
   const BodyId id{static_cast<int>(bodies_.size())};
   by_name_.emplace(body.name, id.value);
   bodies_.push_back(std::move(body));
+  ++revision_;
   return id;
 }
 
@@ -102,52 +104,58 @@ JointId Model::add_joint(Joint j) {
   require(j.has_translation() || j.angle.has_value(),
           who + ": a constraint needs a hinge, a translation guide or an angle");
   require(!j.twist || j.angle, who + ": twist needs an angle (it uses the angle's axes)");
-  require(finite(j.p1) && finite(j.p2), who + ": hinge point is not finite");
+  check_vector(j.p1, "hinge", who + ": hinge P1");
+  check_vector(j.p2, "hinge", who + ": hinge P2");
   if (j.guide) {
     Guide& g = *j.guide;
-    const std::string gw = who + ": " + to_string(g.kind);
+    const std::string field = to_string(g.kind);
+    const std::string gw = who + ": " + field;
     switch (g.kind) {
       case GuideKind::Point:
         break;
       case GuideKind::Axial:
-        g.dir = unit(g.dir, gw + " direction");
-        check_bounds(g.min, g.max, -kInf, kInf, gw);
+        g.dir = check_direction(g.dir, field, gw + " direction");
+        check_bounds(g.min, g.max, -kInf, kInf, field, gw);
         break;
       case GuideKind::Planar:
       case GuideKind::Sphere:
-        if (g.kind == GuideKind::Planar) g.dir = unit(g.dir, gw + " normal");
-        check_bounds(g.min, g.max, 0, kInf, gw);
+        if (g.kind == GuideKind::Planar) g.dir = check_direction(g.dir, field, gw + " normal");
+        check_bounds(g.min, g.max, 0, kInf, field, gw);
         break;
       case GuideKind::Circle:
-        g.dir = unit(g.dir, gw + " normal");
-        require(std::isfinite(g.radius) && g.radius > 0, gw + " radius must be positive");
+        g.dir = check_direction(g.dir, field, gw + " normal");
+        check_number(g.radius, field, gw + " radius");
+        if (!(g.radius > 0)) throw ValueError(field, gw + " radius must be positive");
         break;
       case GuideKind::Cylinder:
-        g.dir = unit(g.dir, gw + " axis");
-        require(std::isfinite(g.radius) && g.radius >= 0, gw + " radius must not be negative");
-        check_bounds(g.min, g.max, -kInf, kInf, gw);
+        g.dir = check_direction(g.dir, field, gw + " axis");
+        check_number(g.radius, field, gw + " radius");
+        if (!(g.radius >= 0)) throw ValueError(field, gw + " radius must not be negative");
+        check_bounds(g.min, g.max, -kInf, kInf, field, gw);
         break;
       case GuideKind::Polyline:
-        require(g.points.size() >= 2, gw + " needs at least two points");
-        for (const Vec3& p : g.points) require(finite(p), gw + " point is not finite");
+        if (g.points.size() < 2) throw ValueError(field, gw + " needs at least two points");
+        for (const Vec3& p : g.points) check_vector(p, field, gw + " point");
         break;
     }
   }
   if (j.angle) {
-    j.angle->a1 = unit(j.angle->a1, who + ": angle vector a1");
-    j.angle->a2 = unit(j.angle->a2, who + ": angle vector a2");
-    check_bounds(j.angle->min, j.angle->max, 0, kPi, who + ": angle");
+    j.angle->a1 = check_direction(j.angle->a1, "angle", who + ": angle vector a1");
+    j.angle->a2 = check_direction(j.angle->a2, "angle", who + ": angle vector a2");
+    check_bounds(j.angle->min, j.angle->max, 0, kPi, "angle", who + ": angle");
   }
   if (j.twist) {
-    j.twist->b1 = unit(j.twist->b1, who + ": twist vector b1");
-    j.twist->b2 = unit(j.twist->b2, who + ": twist vector b2");
-    check_bounds(j.twist->min, j.twist->max, -kPi, kPi, who + ": twist");
+    j.twist->b1 = check_direction(j.twist->b1, "twist", who + ": twist vector b1");
+    j.twist->b2 = check_direction(j.twist->b2, "twist", who + ": twist vector b2");
+    check_bounds(j.twist->min, j.twist->max, -kPi, kPi, "twist", who + ": twist");
   }
-  if (j.move) require(*j.move >= 0 && *j.move <= 1, who + ": move must be in [0, 1]");
-  require(!std::isnan(j.t0) && !std::isnan(j.t1) && j.t0 <= j.t1,
-          who + ": time interval must have t0 <= t1");
+  if (j.move && !(*j.move >= 0 && *j.move <= 1))
+    throw ValueError("move", who + ": move " + format_number(*j.move) + " is not in [0, 1]");
+  if (std::isnan(j.t0) || std::isnan(j.t1) || !(j.t0 <= j.t1))
+    throw ValueError("time", who + ": time interval must have t0 <= t1");
   const JointId id{static_cast<int>(joints_.size())};
   joints_.push_back(std::move(j));
+  ++revision_;
   return id;
 }
 
@@ -166,7 +174,73 @@ std::vector<Pose> Model::poses() const {
 
 void Model::set_poses(const std::vector<Pose>& poses) {
   require(poses.size() == bodies_.size(), "set_poses: one pose per body expected");
-  for (size_t i = 1; i < bodies_.size(); ++i) bodies_[i].pose = poses[i];
+  std::vector<Pose> checked(poses.size());
+  for (size_t i = 1; i < bodies_.size(); ++i)
+    checked[i] = check_pose(poses[i], "position", "object '" + bodies_[i].name + "'");
+  for (size_t i = 1; i < bodies_.size(); ++i) bodies_[i].pose = checked[i];
+}
+
+Body& Model::movable_body(BodyId id, const char* what) {
+  if (id.value <= 0 || id.value >= body_count()) {
+    throw std::invalid_argument(std::string(what) + ": " +
+                                (id == kWorld ? "the world cannot change" : "no such body"));
+  }
+  return bodies_[static_cast<size_t>(id.value)];
+}
+
+void Model::set_pose(BodyId id, const Pose& pose) {
+  Body& b = movable_body(id, "set_pose");
+  b.pose = check_pose(pose, "position", "object '" + b.name + "'");
+}
+
+void Model::set_speeds(BodyId id, const Vec3& velocity, const Vec3& spin) {
+  Body& b = movable_body(id, "set_speeds");
+  check_vector(velocity, "velocity", "object '" + b.name + "': velocity");
+  check_vector(spin, "spin", "object '" + b.name + "': spin");
+  b.velocity = velocity;
+  b.spin = spin;
+}
+
+void Model::set_fixed(BodyId id, bool fixed) {
+  movable_body(id, "set_fixed").fixed = fixed;
+  ++revision_;
+}
+
+void Model::set_mass(BodyId id, std::optional<double> mass) {
+  Body& b = movable_body(id, "set_mass");
+  if (mass) check_positive(*mass, "mass", "object '" + b.name + "': mass");
+  b.mass = mass;
+  ++revision_;
+}
+
+void Model::set_rotate(BodyId id, std::optional<double> rotate) {
+  Body& b = movable_body(id, "set_rotate");
+  if (rotate) check_positive(*rotate, "rotate", "object '" + b.name + "': rotate");
+  b.rotate = rotate;
+  ++revision_;
+}
+
+void Model::set_hinge(JointId id, const std::optional<Vec3>& p1, const std::optional<Vec3>& p2) {
+  if (id.value < 0 || id.value >= joint_count())
+    throw std::invalid_argument("no joint " + std::to_string(id.value));
+  Joint& j = joints_[static_cast<size_t>(id.value)];
+  const std::string who = "joint " + std::to_string(id.value);
+  if (!j.has_hinge) throw std::invalid_argument(who + " has no hinge");
+  if (p1) check_vector(*p1, "hinge", who + ": hinge P1");
+  if (p2) check_vector(*p2, "hinge", who + ": hinge P2");
+  if (p1) j.p1 = *p1;
+  if (p2) j.p2 = *p2;
+}
+
+void Model::set_twist_range(JointId id, double min, double max) {
+  if (id.value < 0 || id.value >= joint_count())
+    throw std::invalid_argument("no joint " + std::to_string(id.value));
+  Joint& j = joints_[static_cast<size_t>(id.value)];
+  const std::string who = "joint " + std::to_string(id.value);
+  if (!j.twist) throw std::invalid_argument(who + " has no twist");
+  check_bounds(min, max, -kPi, kPi, "twist", who + ": twist");
+  j.twist->min = min;
+  j.twist->max = max;
 }
 
 double Model::ability_to_rotate(BodyId id) const {

@@ -1,6 +1,7 @@
 // A model: bodies and joints with typed ids. Body 0 is the fixed world.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -10,9 +11,13 @@
 #include "dispcon/model/body.hpp"
 #include "dispcon/model/ids.hpp"
 #include "dispcon/model/joint.hpp"
+#include "dispcon/model/numbers.hpp"
 
 namespace dispcon {
 
+// The model is the engine's door: every value reaches it through add_body, add_joint or a
+// setter below, each of which checks it (numbers.hpp) and throws std::invalid_argument (a
+// ValueError naming the statement) before anything changes. Bodies and joints are read only.
 class Model {
  public:
   static constexpr BodyId kWorld{0};
@@ -28,16 +33,31 @@ class Model {
   std::optional<BodyId> find(std::string_view name) const;
 
   const Body& body(BodyId id) const { return bodies_.at(static_cast<size_t>(id.value)); }
-  Body& body(BodyId id) { return bodies_.at(static_cast<size_t>(id.value)); }
   const Joint& joint(JointId id) const { return joints_.at(static_cast<size_t>(id.value)); }
-  Joint& joint(JointId id) { return joints_.at(static_cast<size_t>(id.value)); }
+
+  // Counts the changes of what a solver session builds on (bodies, joints, fixed, mass, ability
+  // to rotate); poses, speeds and hinge points are read afresh by every solve and do not count.
+  // A Session made at an older revision rebuilds itself before it solves.
+  std::uint64_t revision() const { return revision_; }
+
+  // Validated setters (world: refused). Each throws before changing anything.
+  void set_pose(BodyId id, const Pose& pose);
+  void set_speeds(BodyId id, const Vec3& velocity, const Vec3& spin);
+  void set_fixed(BodyId id, bool fixed);
+  void set_mass(BodyId id, std::optional<double> mass);
+  void set_rotate(BodyId id, std::optional<double> rotate);
+  // Moves a joint's hinge points (a mouse drag's target); the joint must have a hinge.
+  void set_hinge(JointId id, const std::optional<Vec3>& p1, const std::optional<Vec3>& p2);
+  // Sets a joint's twist range (a sweep's driver); the joint must have a twist.
+  void set_twist_range(JointId id, double min, double max);
 
   const std::vector<Body>& bodies() const { return bodies_; }
   const std::vector<Joint>& joints() const { return joints_; }
   int body_count() const { return static_cast<int>(bodies_.size()); }
   int joint_count() const { return static_cast<int>(joints_.size()); }
 
-  // Current poses of every body (index = BodyId::value), and setting them back.
+  // Current poses of every body (index = BodyId::value), and setting them back (the world's
+  // is ignored; every other one is checked first: nothing changes when one is refused).
   std::vector<Pose> poses() const;
   void set_poses(const std::vector<Pose>& poses);
 
@@ -52,9 +72,12 @@ class Model {
   double move_share(JointId id) const;
 
  private:
+  Body& movable_body(BodyId id, const char* what);
+
   std::vector<Body> bodies_;
   std::vector<Joint> joints_;
   std::unordered_map<std::string, int> by_name_;
+  std::uint64_t revision_ = 0;
 };
 
 }  // namespace dispcon

@@ -50,6 +50,7 @@ int rank_of(const Eigen::MatrixXd& A) {
 // Row-equilibrated copy: every row scaled to unit norm (a row in radians and a row in lengths
 // weigh the same), then every column.
 Eigen::MatrixXd equilibrate(Eigen::MatrixXd A) {
+  if (A.rows() == 0 || A.cols() == 0) return A;  // no body can move: an empty row has no data
   for (Eigen::Index r = 0; r < A.rows(); ++r) {
     const double n = A.row(r).norm();
     if (n > 0) A.row(r) /= n;
@@ -251,14 +252,24 @@ struct JointGauge {
 
 }  // namespace
 
+void validate(const SweepOptions& o) {
+  check_direction(o.axis, "axis", "sweep: axis");
+  check_number(o.from, "from", "sweep: from");
+  check_number(o.to, "to", "sweep: to");
+  if (o.steps < 1 || o.steps > kMaxSweepSteps) {
+    throw ValueError("steps", "sweep: steps " + std::to_string(o.steps) + " is not in [1, " +
+                                  std::to_string(kMaxSweepSteps) + "]");
+  }
+  validate(o.solve);
+}
+
 SweepResult sweep(const Model& input, const SweepOptions& o) {
+  validate(o);
   SweepResult out;
   Model model = input;
   if (o.body.value <= 0 || o.body.value >= model.body_count()) {
     throw std::invalid_argument("sweep: unknown body");
   }
-  if (o.axis.norm() == 0) throw std::invalid_argument("sweep: the axis is a zero vector");
-  if (o.steps < 1) throw std::invalid_argument("sweep: steps must be at least 1");
   const SolveResult first = assemble(model, o.solve);
   if (!first.converged) {
     out.locked = true;
@@ -269,7 +280,7 @@ SweepResult sweep(const Model& input, const SweepOptions& o) {
   // The driver: a joint from the world to the body whose twist about the axis is set to each
   // value in turn (its angle part is left free), so the body is driven about the axis while
   // everything else about it stays free: an axis given to a few digits cannot over-constrain it.
-  const Vec3 axis = o.axis.normalized();
+  const Vec3 axis = check_direction(o.axis, "axis", "sweep: axis");
   const Mat3 R0 = model.body(o.body).pose.rotation();
   Joint driver;
   driver.body1 = Model::kWorld;
@@ -284,8 +295,8 @@ SweepResult sweep(const Model& input, const SweepOptions& o) {
   const JointId driver_id = model.add_joint(driver);
   Session session(model, o.solve);
   auto drive = [&](double value) {
-    TwistSpec& t = *model.joint(driver_id).twist;
-    t.min = t.max = std::remainder(value, 2 * kPi);
+    const double turn = std::remainder(value, 2 * kPi);
+    model.set_twist_range(driver_id, turn, turn);
     std::vector<Pose> poses = model.poses();
     SolveResult r = session.solve(poses);
     if (r.converged) model.set_poses(poses);

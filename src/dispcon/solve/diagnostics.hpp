@@ -52,6 +52,12 @@ struct SweepResult {
   std::string message;
 };
 
+constexpr int kMaxSweepSteps = 1000000;
+
+// Throws std::invalid_argument (a ValueError naming the option) for a zero or non-finite axis,
+// a non-finite or out of range angle, steps outside [1, kMaxSweepSteps], or bad solve options.
+void validate(const SweepOptions& options);
+
 SweepResult sweep(const Model& model, const SweepOptions& options);
 
 }  // namespace dispcon

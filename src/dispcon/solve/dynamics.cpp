@@ -41,6 +41,20 @@ double free_motion(const Model& model, const AnimateOptions& o, double h, std::v
   return largest;
 }
 
+// Within what the model accepts (numbers.hpp): beyond, the next solve would refuse it.
+bool usable(const Vec3& v) {
+  return v.allFinite() && v.cwiseAbs().maxCoeff() <= kLargest;
+}
+
+bool usable(const std::vector<Pose>& poses, const std::vector<Speed>& speed) {
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (!usable(poses[i].x) || !poses[i].q.coeffs().allFinite() || !usable(speed[i].v) ||
+        !usable(speed[i].w))
+      return false;
+  }
+  return true;
+}
+
 std::vector<bool> active_set(const Model& model, double t) {
   std::vector<bool> a;
   for (const Joint& j : model.joints()) a.push_back(j.active_at(t));
@@ -49,13 +63,27 @@ std::vector<bool> active_set(const Model& model, double t) {
 
 }  // namespace
 
-AnimateResult animate(Model& model, const AnimateOptions& o) {
-  AnimateResult out;
-  if (!(o.dt > 0) || !(o.duration >= 0)) {
-    out.converged = false;
-    out.message = "animate: dt must be positive and the duration not negative";
-    return out;
+void validate(const AnimateOptions& o) {
+  check_number(o.duration, "duration", "duration");
+  if (o.duration < 0) throw ValueError("duration", "duration must not be negative");
+  check_number(o.dt, "dt", "dt");
+  if (!(o.dt > 0)) throw ValueError("dt", "dt " + format_number(o.dt) + " must be positive");
+  const double frames = std::ceil(o.duration / o.dt - 1e-9);
+  if (!(frames <= kMaxFrames)) {
+    throw ValueError("duration", "duration " + format_number(o.duration) + " / dt " +
+                                     format_number(o.dt) + " makes " + format_number(frames) +
+                                     " frames (at most " + format_number(kMaxFrames) + ")");
   }
+  check_vector(o.gravity, "gravity", "gravity");
+  check_number(o.max_step_rotation, "max_step_rotation", "max_step_rotation");
+  if (!(o.max_step_rotation > 0))
+    throw ValueError("max_step_rotation", "max_step_rotation must be positive");
+  validate(o.solve);
+}
+
+AnimateResult animate(Model& model, const AnimateOptions& o) {
+  validate(o);
+  AnimateResult out;
   SolveOptions so = o.solve;
   so.time = 0;
   so.use_physics = true;
@@ -75,7 +103,7 @@ AnimateResult animate(Model& model, const AnimateOptions& o) {
     speed[static_cast<size_t>(i)].v = b.velocity;
     speed[static_cast<size_t>(i)].w = b.spin;
   }
-  out.frames.push_back({0.0, start.iterations, start.max_residual, true, {}, poses});
+  out.frames.push_back({0.0, start.iterations, start.max_residual, true, false, {}, poses});
 
   const int frames = static_cast<int>(std::ceil(o.duration / o.dt - 1e-9));
   std::vector<bool> active = active_set(model, 0);
@@ -106,7 +134,16 @@ AnimateResult animate(Model& model, const AnimateOptions& o) {
         active = now;
       }
       const std::vector<Pose> before = poses;
+      if (!usable(trial, trial_speed)) {
+        frame.diverged = true;
+        break;
+      }
       SolveResult r = session.solve(trial);
+      if (r.status == SolveStatus::Diverged) {
+        frame.diverged = true;
+        frame.violated = r.violated();
+        break;
+      }
       if (!r.converged) trial = r.poses;  // the seed goes on with what it reached
       frame.iterations += r.iterations;
       frame.max_residual = std::max(frame.max_residual, r.max_residual);
@@ -118,17 +155,33 @@ AnimateResult animate(Model& model, const AnimateOptions& o) {
         }
       }
       // Step 3: the speeds of the positions actually reached.
+      std::vector<Speed> reached = speed;
       for (int i = 1; i < model.body_count(); ++i) {
         const Body& b = model.body(BodyId{i});
         if (b.fixed || !b.mass) continue;
         const Pose& p0 = before[static_cast<size_t>(i)];
         const Pose& p1 = trial[static_cast<size_t>(i)];
-        Speed& s = speed[static_cast<size_t>(i)];
+        Speed& s = reached[static_cast<size_t>(i)];
         s.v = (p1.apply(b.center) - p0.apply(b.center)) / h;
         s.w = rotation_vector_from_quat(p1.q * p0.q.conjugate()) / h;
       }
+      if (!usable(trial, reached)) {
+        frame.diverged = true;
+        break;
+      }
+      speed = reached;
       poses = trial;
       t += h;
+    }
+    if (frame.diverged) {
+      // Not kept: the model stays at the last good frame.
+      out.converged = false;
+      out.stopped = true;
+      std::ostringstream w;
+      w << "t = " << frame.time << ": diverged (a non-finite or out of range value); stopped at t = "
+        << out.frames.back().time;
+      out.warnings.push_back(w.str());
+      break;
     }
     out.iterations += frame.iterations;
     out.max_residual = std::max(out.max_residual, frame.max_residual);
@@ -153,10 +206,8 @@ AnimateResult animate(Model& model, const AnimateOptions& o) {
   }
   model.set_poses(poses);
   for (int i = 1; i < model.body_count(); ++i) {
-    Body& b = model.body(BodyId{i});
-    if (b.fixed) continue;
-    b.velocity = speed[static_cast<size_t>(i)].v;
-    b.spin = speed[static_cast<size_t>(i)].w;
+    if (model.body(BodyId{i}).fixed) continue;
+    model.set_speeds(BodyId{i}, speed[static_cast<size_t>(i)].v, speed[static_cast<size_t>(i)].w);
   }
   std::ostringstream msg;
   msg << "animated " << out.frames.back().time << " s in " << out.frames.size() - 1 << " frames, "

@@ -20,18 +20,26 @@ struct AnimateOptions {
   SolveOptions solve;              // step 2; its time is set to each frame's time
 };
 
+// The most frames an animation makes (duration / dt): each keeps every body's pose.
+constexpr double kMaxFrames = 1e6;
+
+// Throws std::invalid_argument (a ValueError naming the option) for a non-finite or out of range
+// option, too many frames, or bad solve options.
+void validate(const AnimateOptions& options);
+
 struct Frame {
   double time = 0;
   int iterations = 0;
   double max_residual = 0;
   bool converged = true;
+  bool diverged = false;          // a non-finite or out of range value: such a frame is not kept
   std::vector<JointId> violated;  // when not converged: the warning names these
   std::vector<Pose> poses;        // one per body
 };
 
 struct AnimateResult {
   bool converged = true;  // every frame converged
-  bool stopped = false;   // stopped early (stop_on_violation)
+  bool stopped = false;   // stopped early (stop_on_violation, or a frame diverged)
   int iterations = 0;     // total
   double max_residual = 0;
   std::vector<Frame> frames;  // frame 0 is the start (after assembly)
@@ -40,7 +48,9 @@ struct AnimateResult {
 };
 
 // Animates from the model's poses and speeds (assembles first when the constraints do not hold),
-// and leaves the model at the last frame with its speeds updated.
+// and leaves the model at the last frame with its speeds updated. A frame whose solve diverged
+// (a non-finite or out of range value) stops the animation: it is not kept, and the model is left
+// at the last good frame. Throws std::invalid_argument for bad options (validate()).
 AnimateResult animate(Model& model, const AnimateOptions& options);
 
 }  // namespace dispcon

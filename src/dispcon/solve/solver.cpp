@@ -19,6 +19,21 @@ namespace dispcon {
 
 namespace {
 
+// The poses handed to a solve: one per body, each finite and within range (the door for poses
+// that do not come from the model). Cheap when they are: nothing is allocated.
+void check_poses(const Model& model, const std::vector<Pose>& poses) {
+  if (static_cast<int>(poses.size()) != model.body_count()) {
+    throw std::invalid_argument("solve: one pose per body expected");
+  }
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const Pose& p = poses[i];
+    if (!p.x.allFinite() || !(p.x.cwiseAbs().maxCoeff() <= kLargest) ||
+        !p.q.coeffs().allFinite() || !(p.q.coeffs().cwiseAbs().maxCoeff() > 0)) {
+      check_pose(p, "position", "solve: object '" + model.body(BodyId{static_cast<int>(i)}).name + "'");
+    }
+  }
+}
+
 Vec3 clamp_norm(const Vec3& v, double limit) {
   const double n = v.norm();
   return n > limit ? Vec3(v * (limit / n)) : v;
@@ -70,13 +85,14 @@ std::vector<Component> components(const SolverState& s) {
 
 // The largest violation of some joints; each joint's own goes to `store` (indexed by joint), so
 // the final report need not measure again.
+// A non-finite residual makes the result infinite (std::max would drop a NaN).
 double max_residual(const SolverState& s, const std::vector<int>& joints,
                     std::vector<double>& store) {
   double r = 0;
   for (int c : joints) {
     const double rc = s.residual(s.joints[static_cast<size_t>(c)]);
     store[static_cast<size_t>(c)] = rc;
-    r = std::max(r, rc);
+    if (!(rc <= r)) r = std::isnan(rc) ? std::numeric_limits<double>::infinity() : rc;
   }
   return r;
 }
@@ -572,6 +588,24 @@ const char* to_string(SolveStatus status) {
   return "?";
 }
 
+void validate(const SolveOptions& o) {
+  auto positive = [](double v, const char* name) {
+    check_number(v, name, name);
+    if (!(v > 0)) throw ValueError(name, std::string(name) + " " + format_number(v) + " must be positive");
+  };
+  positive(o.tolerance, "tolerance");
+  if (o.max_iterations < 1) {
+    throw ValueError("max_iterations",
+                     "max_iterations " + std::to_string(o.max_iterations) + " must be at least 1");
+  }
+  check_number(o.time, "time", "time");
+  positive(o.relaxation, "relaxation");
+  positive(o.max_rotation_step, "max_rotation_step");
+  check_number(o.polish_below, "polish_below", "polish_below");
+  if (o.polish_below < 0) throw ValueError("polish_below", "polish_below must not be negative");
+  if (o.threads < 0) throw ValueError("threads", "threads must not be negative");
+}
+
 std::vector<JointId> SolveResult::violated() const {
   std::vector<JointId> out;
   for (const ConstraintReport& c : constraints) {
@@ -582,6 +616,8 @@ std::vector<JointId> SolveResult::violated() const {
 
 std::vector<ConstraintReport> measure(const Model& model, const std::vector<Pose>& poses,
                                       const SolveOptions& options) {
+  validate(options);
+  check_poses(model, poses);
   const SolverState s(model, poses, options, {});
   return report(s, options.tolerance);
 }
@@ -725,8 +761,13 @@ int thread_count(const SolveOptions& o, const std::vector<Component>& comps) {
 }
 
 struct Session::Impl {
-  Impl(const Model& m, const SolveOptions& opt, const std::vector<bool>& held)
-      : model(m), o(opt), s(m, m.poses(), opt, held), comps(components(s)) {
+  Impl(const Model& m, const SolveOptions& opt, const std::vector<bool>& held_bodies)
+      : model((validate(opt), m)),
+        revision(m.revision()),
+        held(held_bodies),
+        o(opt),
+        s(m, m.poses(), opt, held_bodies),
+        comps(components(s)) {
     for (const Component& c : comps) progress.emplace_back(c);
     band.assign(s.joints.size(), -0.5 * opt.tolerance);
     for (Progress& p : progress) p.size = size(s, *p.comp);
@@ -741,6 +782,8 @@ struct Session::Impl {
     }
   }
   const Model& model;
+  std::uint64_t revision;  // the model's when this was built
+  std::vector<bool> held;
   SolveOptions o;
   SolverState s;
   std::vector<Component> comps;
@@ -765,22 +808,76 @@ SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptio
   return Session(model, o, held).solve(poses);
 }
 
+namespace {
+
+// The one line for people: what happened and the joints at fault (the worst five).
+std::string solve_message(const Model& model, const SolveResult& result) {
+  std::ostringstream msg;
+  if (result.converged) {
+    msg << "converged in " << result.iterations << " iterations (max residual "
+        << result.max_residual << ")";
+    return msg.str();
+  }
+  if (result.status == SolveStatus::Diverged) {
+    msg << "diverged after " << result.iterations
+        << " iterations (a residual or a pose became infinite or not a number; the poses were "
+           "not changed); at fault: ";
+  } else {
+    msg << "did not converge after " << result.iterations << " iterations"
+        << (result.status == SolveStatus::Stalled
+                ? " (no progress: over-constrained or unreachable)"
+                : "")
+        << "; still violated: ";
+  }
+  std::vector<ConstraintReport> bad;
+  for (const ConstraintReport& c : result.constraints) {
+    if (!c.satisfied) bad.push_back(c);
+  }
+  // Non-finite first (a NaN compares false, so it is ranked as infinite).
+  auto key = [](double r) { return std::isnan(r) ? std::numeric_limits<double>::infinity() : r; };
+  std::stable_sort(bad.begin(), bad.end(),
+                   [&](const ConstraintReport& a, const ConstraintReport& b) {
+                     return key(a.residual) > key(b.residual);
+                   });
+  for (size_t k = 0; k < bad.size() && k < 5; ++k) {
+    msg << (k ? "; " : "") << describe(model, bad[k]);
+  }
+  if (bad.empty()) msg << "no joint (a body's pose)";
+  if (bad.size() > 5) msg << "; and " << bad.size() - 5 << " more";
+  return msg.str();
+}
+
+bool all_finite(const std::vector<Pose>& poses) {
+  for (const Pose& p : poses) {
+    if (!p.x.allFinite() || !p.q.coeffs().allFinite()) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 SolveResult Session::solve(std::vector<Pose>& poses) {
+  if (impl_->model.revision() != impl_->revision) {
+    // The model changed since this session was built: its joints may have moved in memory.
+    std::vector<bool> held = impl_->held;
+    if (!held.empty()) held.resize(static_cast<size_t>(impl_->model.body_count()), false);
+    impl_ = std::make_unique<Impl>(impl_->model, impl_->o, held);
+  }
   const Model& model = impl_->model;
   const SolveOptions& o = impl_->o;
-  if (static_cast<int>(poses.size()) != model.body_count()) {
-    throw std::invalid_argument("solve: one pose per body expected");
-  }
+  check_poses(model, poses);
   SolverState& s = impl_->s;
   s.read_poses(poses);
   std::vector<double>& joint_r = impl_->joint_r;
   joint_r.assign(s.joints.size(), 0.0);
   SolveResult result;
   std::deque<Progress>& progress = impl_->progress;
+  std::atomic<bool> finite{true};
   for (Progress& p : progress) {
     p.reset();
     p.r = p.best_r = p.progress_mark = max_residual(s, p.comp->joints, joint_r);
     p.done = p.r <= o.tolerance;
+    if (!std::isfinite(p.r)) finite = false;
   }
   std::vector<Pose>& best = impl_->best;
   std::vector<Pose>& before = impl_->before;
@@ -791,7 +888,6 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   // Each group runs to the end before the next starts, so its working set stays in cache; with
   // many groups, several threads take the next unsolved group in turn (each group touches only
   // its own bodies and joints, so the answer does not depend on the threads).
-  std::atomic<bool> finite{true};
   auto run = [&](Progress& p, PolishWork& work) {
     for (int k = 0; !p.done && k < o.max_iterations; ++k) {
       iterate(s, p, work, o, band, before, joint_r);
@@ -852,6 +948,8 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
       }
     }
   }
+  // The poses reached: a group that did not have to move keeps the bits it was given.
+  result.poses = poses;
   double r = 0;
   bool any_stalled = false;
   for (Progress& p : progress) {
@@ -860,6 +958,7 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
       p.r = p.best_r;
       max_residual(s, p.comp->joints, joint_r);
     }
+    if (p.iterations > 0) save_poses(s, *p.comp, result.poses);
     any_stalled = any_stalled || p.stalled;
     r = std::max(r, p.r);
     if (p.iterations == result.iterations) {
@@ -869,44 +968,25 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   }
   // Joints between bodies that cannot move are measured too: nothing can fix them.
   r = std::max(r, max_residual(s, impl_->immovable, joint_r));
-  if (!finite) r = std::numeric_limits<double>::infinity();
+  if (!std::isfinite(r) || !all_finite(result.poses)) finite = false;
   if (!finite) {
+    // Named by their residuals where it happened; the poses go back to those given, bit for bit.
     result.status = SolveStatus::Diverged;
     result.converged = false;
-  } else if (r > o.tolerance) {
-    result.status = any_stalled ? SolveStatus::Stalled : SolveStatus::IterationLimit;
-    result.converged = false;
-  }
-  if (!finite) s.read_poses(poses);
-  result.max_residual = r;
-  result.constraints = report(s, o.tolerance, finite ? &joint_r : nullptr);
-  s.write_poses(result.poses);
-  if (result.converged) poses = result.poses;
-
-  std::ostringstream msg;
-  if (result.converged) {
-    msg << "converged in " << result.iterations << " iterations (max residual "
-        << result.max_residual << ")";
+    result.max_residual = std::numeric_limits<double>::infinity();
+    result.constraints = report(s, o.tolerance, &joint_r);
+    result.poses = poses;
+    s.read_poses(poses);
   } else {
-    msg << (result.status == SolveStatus::Diverged ? "diverged" : "did not converge") << " after "
-        << result.iterations << " iterations"
-        << (result.status == SolveStatus::Stalled
-                ? " (no progress: over-constrained or unreachable)"
-                : "")
-        << "; still violated: ";
-    std::vector<ConstraintReport> bad;
-    for (const ConstraintReport& c : result.constraints) {
-      if (!c.satisfied) bad.push_back(c);
+    if (r > o.tolerance) {
+      result.status = any_stalled ? SolveStatus::Stalled : SolveStatus::IterationLimit;
+      result.converged = false;
     }
-    std::sort(bad.begin(), bad.end(), [](const ConstraintReport& a, const ConstraintReport& b) {
-      return a.residual > b.residual;
-    });
-    for (size_t k = 0; k < bad.size() && k < 5; ++k) {
-      msg << (k ? "; " : "") << describe(model, bad[k]);
-    }
-    if (bad.size() > 5) msg << "; and " << bad.size() - 5 << " more";
+    result.max_residual = r;
+    result.constraints = report(s, o.tolerance, &joint_r);
   }
-  result.message = msg.str();
+  if (result.converged) poses = result.poses;
+  result.message = solve_message(model, result);
   return result;
 }
 
@@ -938,7 +1018,8 @@ Dragger::Dragger(Model& model, BodyId body, const SolveOptions& options)
 
 SolveResult Dragger::move_to(const Pose& target) {
   poses_ = model_.poses();
-  poses_[static_cast<size_t>(body_.value)] = target;
+  poses_[static_cast<size_t>(body_.value)] =
+      check_pose(target, "target", "drag: target of '" + model_.body(body_).name + "'");
   SolveResult r = session_.solve(poses_);
   if (r.converged) model_.set_poses(poses_);
   return r;
@@ -946,8 +1027,10 @@ SolveResult Dragger::move_to(const Pose& target) {
 
 DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
                 const SolveOptions& options, std::vector<std::vector<Pose>>* step_poses) {
-  if (steps < 1) throw std::invalid_argument("drag: steps must be at least 1");
+  if (steps < 1) throw ValueError("steps", "drag: steps must be at least 1");
   Dragger dragger(model, body, options);
+  const Pose goal = check_pose(target, "target", "drag: target of '" + model.body(body).name + "'");
+  const std::vector<Pose> given = model.poses();
   DragResult out;
   const SolveResult first = assemble(model, options);
   out.iterations = first.iterations;
@@ -962,8 +1045,8 @@ DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
   for (int k = 1; k <= steps; ++k) {
     const double t = static_cast<double>(k) / steps;
     Pose p;
-    p.x = (1 - t) * start.x + t * target.x;
-    p.q = start.q.slerp(t, target.q).normalized();
+    p.x = (1 - t) * start.x + t * goal.x;
+    p.q = start.q.slerp(t, goal.q).normalized();
     SolveResult r = dragger.move_to(p);
     out.iterations += r.iterations;
     out.max_residual = std::max(out.max_residual, r.max_residual);
@@ -972,6 +1055,8 @@ DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
     if (!ok) {
       out.converged = false;
       out.failed_step = k - 1;
+      // No step was made: the assembly alone is not a drag, so nothing changes.
+      if (k == 1) model.set_poses(given);
       break;
     }
     if (step_poses) step_poses->push_back(model.poses());
@@ -982,8 +1067,10 @@ DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
         << " iterations";
   } else {
     msg << "step " << out.failed_step + 1 << " of " << steps << " failed, '"
-        << model.body(body).name << "' left at step " << out.failed_step << ": "
-        << out.steps.back().message;
+        << model.body(body).name << "' left "
+        << (out.failed_step == 0 ? std::string("where it was")
+                                 : "at step " + std::to_string(out.failed_step))
+        << ": " << out.steps.back().message;
   }
   out.message = msg.str();
   return out;

@@ -40,6 +40,10 @@ struct SolveOptions {
                               // the size of the group of bodies it moves (radians: below this)
 };
 
+// Throws std::invalid_argument (a ValueError naming the option) for a non-finite or out of
+// range option: the options' door, called by every solve, session and analysis.
+void validate(const SolveOptions& options);
+
 // One joint as the solve left it.
 struct ConstraintReport {
   JointId joint;
@@ -54,7 +58,7 @@ enum class SolveStatus {
   Converged,       // every active joint within tolerance
   IterationLimit,  // the cap was hit: over-constrained, unreachable, or too slow; see constraints
   Stalled,         // no progress for many iterations: over-constrained or unreachable
-  Diverged,        // a non-finite value appeared; the poses were not changed
+  Diverged,        // a non-finite residual or pose appeared; the poses were not changed
 };
 
 const char* to_string(SolveStatus status);
@@ -75,13 +79,15 @@ struct SolveResult {
 };
 
 // Solves from `poses` (one per body) in place; bodies with held[id] true do not move (as fixed).
-// Never touches the model. `held` may be empty.
+// Never touches the model. `held` may be empty. `poses` change only when the solve converged,
+// and then only the bodies of groups that had to move: the rest keep their bits.
 SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptions& options,
                   const std::vector<bool>& held = {});
 
 // A model solved again and again with the same structure (dragging, animation, a workbench's
 // live drag): the working state, the groups of bodies and the Newton polish's symbolic
-// factorisation are built once. The model must outlive the session and keep its joints.
+// factorisation are built once. The model must outlive the session; when it changed since (its
+// revision: a body or joint added, a body fixed, ...), the session rebuilds before it solves.
 class Session {
  public:
   Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held = {});
@@ -111,8 +117,9 @@ class Dragger {
  public:
   // Throws std::invalid_argument for the world, an unknown or a fixed body.
   Dragger(Model& model, BodyId body, const SolveOptions& options = {});
-  // Holds the body at `target` and solves from the model's poses. On success the model takes the
-  // new poses; otherwise it is left as it was and the result names what is violated.
+  // Holds the body at `target` (checked: a finite pose within range) and solves from the model's
+  // poses. On success the model takes the new poses; otherwise it is left as it was, bit for bit,
+  // and the result names what is violated.
   SolveResult move_to(const Pose& target);
 
  private:
@@ -134,7 +141,9 @@ struct DragResult {
 // Dragging: assembles if needed, then moves `body` in `steps` equal steps (position linearly,
 // rotation along the shortest arc) from its current pose to `target`, holding it at each step's
 // pose while the rest follows. Each step starts from the last (continuity: no jump to another
-// branch). Stops at the first step that fails and leaves the model at the last good step.
+// branch). Stops at the first step that fails and leaves the model at the last good step; when no
+// step succeeded (the first fails, or the model does not assemble), the model is left bit for bit
+// as it was before the call.
 // When `step_poses` is given it receives every step's poses.
 DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
                 const SolveOptions& options = {},

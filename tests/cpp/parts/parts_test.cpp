@@ -249,7 +249,7 @@ TEST(Parts, FixedBodyNeverMoves) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
     Model m = two_bodies(c, false);
-    m.body(BodyId{1}).fixed = true;
+    m.set_fixed(BodyId{1}, true);
     const Pose fixed_pose = m.body(BodyId{1}).pose;
     SolveOptions o;
     const SolveResult r = assemble(m, o);

@@ -342,7 +342,7 @@ TEST(Drag, DraggerRefusesFixedAndUnknownBodies) {
   FourBar fb;
   EXPECT_THROW(Dragger(fb.m, Model::kWorld), std::invalid_argument);
   EXPECT_THROW(Dragger(fb.m, BodyId{42}), std::invalid_argument);
-  fb.m.body(fb.coupler).fixed = true;
+  fb.m.set_fixed(fb.coupler, true);
   EXPECT_THROW(Dragger(fb.m, fb.coupler), std::invalid_argument);
 }
 

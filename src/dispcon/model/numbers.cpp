@@ -1,0 +1,90 @@
+#include "dispcon/model/numbers.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace dispcon {
+
+std::string format_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string format_vector(const Vec3& v) {
+  return format_number(v.x()) + " " + format_number(v.y()) + " " + format_number(v.z());
+}
+
+double check_number(double v, const std::string& field, const std::string& what) {
+  if (std::isnan(v)) throw ValueError(field, what + " is not a number (nan)");
+  if (!(std::abs(v) <= kLargest)) {
+    throw ValueError(field, what + " " + format_number(v) + " is out of range (at most " +
+                                format_number(kLargest) + " in magnitude)");
+  }
+  return v;
+}
+
+double check_positive(double v, const std::string& field, const std::string& what) {
+  if (std::isnan(v)) throw ValueError(field, what + " is not a number (nan)");
+  if (!(v >= kSmallest && v <= kLargest)) {
+    throw ValueError(field, what + " " + format_number(v) + " is out of range [" +
+                                format_number(kSmallest) + ", " + format_number(kLargest) + "]");
+  }
+  return v;
+}
+
+Vec3 check_vector(const Vec3& v, const std::string& field, const std::string& what) {
+  for (int k = 0; k < 3; ++k) {
+    if (std::isnan(v[k]) || !(std::abs(v[k]) <= kLargest)) {
+      throw ValueError(field, what + " (" + format_vector(v) + ") is " +
+                                  (std::isnan(v[k]) ? std::string("not a number (nan)")
+                                                    : "out of range (at most " +
+                                                          format_number(kLargest) +
+                                                          " in magnitude)"));
+    }
+  }
+  return v;
+}
+
+Vec3 check_direction(const Vec3& v, const std::string& field, const std::string& what) {
+  if (!v.allFinite())
+    throw ValueError(field, what + " (" + format_vector(v) + ") is not finite");
+  // Scaled first, so a direction such as (1e200, 1e200, 0) does not overflow to a zero vector.
+  const double largest = v.cwiseAbs().maxCoeff();
+  if (!(largest > 0)) throw ValueError(field, what + " is a zero vector");
+  const Vec3 u = v / largest;
+  return u / u.norm();
+}
+
+Quat rotation_from_vector(const Vec3& v, const std::string& field) {
+  if (!v.allFinite() || !(v.norm() <= kLargestAngle)) {
+    throw ValueError(field, "rotation vector (" + format_vector(v) + ") is " +
+                                (v.allFinite() ? "out of range (at most " +
+                                                     format_number(kLargestAngle) + " radians)"
+                                               : std::string("not finite")));
+  }
+  return quat_from_rotation_vector(v);
+}
+
+Quat rotation_from_matrix(const Mat3& R, const std::string& field) {
+  if (!R.allFinite() || !(R.transpose() * R).isIdentity(1e-6) || !(R.determinant() > 0)) {
+    throw ValueError(field, "the 3x3 matrix is not a rotation (orthonormal, determinant +1)");
+  }
+  return Quat(R).normalized();
+}
+
+Pose check_pose(const Pose& p, const std::string& field, const std::string& what) {
+  Pose out;
+  out.x = check_vector(p.x, field, what + " position");
+  if (!p.q.coeffs().allFinite()) throw ValueError(field, what + " rotation is not finite");
+  const double largest = p.q.coeffs().cwiseAbs().maxCoeff();
+  if (!(largest > 0)) throw ValueError(field, what + " rotation is a zero quaternion");
+  out.q = p.q;
+  if (std::abs(p.q.norm() - 1) > 1e-15) {
+    out.q.coeffs() /= largest;  // scaled first: (1e200, 0, 0, 0) must not overflow
+    out.q.normalize();
+  }
+  return out;
+}
+
+}  // namespace dispcon

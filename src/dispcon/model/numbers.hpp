@@ -1,0 +1,56 @@
+// The engine's door for numbers. Every number that enters the engine (a .dcl file, the command
+// line, Python, the FreeCAD adapter) is checked once, here, by the Model and by the options'
+// validate(), never again in a shell: a non-finite value, or one so large that its squares and
+// products would overflow inside the solver, is refused with a message naming it and its place.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "dispcon/math/rotation.hpp"
+
+namespace dispcon {
+
+// A value refused at the door. `field` is the .dcl statement or the option it came in
+// ("hinge", "rotate", "tolerance", ...), so the reader can point at its line and column.
+class ValueError : public std::invalid_argument {
+ public:
+  ValueError(std::string field, const std::string& message)
+      : std::invalid_argument(message), field_(std::move(field)) {}
+  const std::string& field() const { return field_; }
+
+ private:
+  std::string field_;
+};
+
+// Largest magnitude of a length, speed, force or time accepted: its square and the products the
+// Newton polish forms (about the fourth power) stay far below overflow, and 1e15 still leaves a
+// tolerance of 1e-9 meaningful relative to a mechanism's size.
+constexpr double kLargest = 1e15;
+// Positive physical quantities (mass, inertia, the ability to rotate) lie in [kSmallest,
+// kLargest]: their inverses are taken too.
+constexpr double kSmallest = 1e-15;
+// Largest angle of a rotation vector, radians: beyond, sin and cos keep no correct digit.
+constexpr double kLargestAngle = 1e6;
+
+// A number as people read it: at most 6 significant digits ("1e+300", "0.25", "-3.14159").
+std::string format_number(double v);
+std::string format_vector(const Vec3& v);
+
+// Each returns its (checked) value or throws ValueError "WHAT VALUE is ...".
+// Finite with |v| <= kLargest.
+double check_number(double v, const std::string& field, const std::string& what);
+// In [kSmallest, kLargest].
+double check_positive(double v, const std::string& field, const std::string& what);
+Vec3 check_vector(const Vec3& v, const std::string& field, const std::string& what);
+// A direction of any finite length but zero; returns it as a unit vector.
+Vec3 check_direction(const Vec3& v, const std::string& field, const std::string& what);
+// A rotation vector (axis times angle, |v| <= kLargestAngle) as a unit quaternion.
+Quat rotation_from_vector(const Vec3& v, const std::string& field);
+// A 3x3 matrix that is a rotation (orthonormal within 1e-6, determinant +1) as a quaternion.
+Quat rotation_from_matrix(const Mat3& R, const std::string& field);
+// A placement: position by check_vector, a finite non-zero quaternion, returned normalised
+// (unchanged, bit for bit, when it is already of unit length).
+Pose check_pose(const Pose& p, const std::string& field, const std::string& what);
+
+}  // namespace dispcon
