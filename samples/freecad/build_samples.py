@@ -4,7 +4,9 @@ snapped into place. Run with freecadcmd:
 
     freecadcmd samples/freecad/build_samples.py --out build/samples
 
-Writes fourbar.FCStd, slider-crank.FCStd and rssr.FCStd, and prints the time of each snap."""
+Writes fourbar.FCStd, slider-crank.FCStd, rssr.FCStd, fourbar-clash.FCStd (a post in the
+crank's way: a design that collides) and side-rods.FCStd (twenty parts), and prints the time of
+each snap."""
 import math
 import os
 import sys
@@ -34,8 +36,11 @@ def step(name, shape_fn):
     return path
 
 
-def pin(obj, local):
-    return (obj, parts.circle_edge(obj.Shape, App.Vector(*local)))
+def pin(obj, local, top=False):
+    """The pin at `local`: its boss's bottom circle, or its top one (the part above sits there:
+    parts stack in layers and touch without overlapping)."""
+    x, y, z = local
+    return (obj, parts.circle_edge(obj.Shape, App.Vector(x, y, z + (0.1 if top else 0.0))))
 
 
 def place(obj, x, y, z, deg=0.0, axis=(0, 0, 1)):
@@ -48,41 +53,55 @@ def fourbar(doc):
     crank = da.import_part(asm, step("link-1", lambda: parts.link(1)), "Crank")
     coupler = da.import_part(asm, step("link-3", lambda: parts.link(3)), "Coupler")
     rocker = da.import_part(asm, step("link-2.5", lambda: parts.link(2.5)), "Rocker")
-    place(crank, 0.1, -0.1, 0.05, 23)
-    place(coupler, 1.2, 0.6, -0.1, 11)
+    # Layers: the crank and the rocker on the ground's bosses, the coupler on top of them.
+    place(crank, 0.1, -0.1, 0.15, 23)
+    place(coupler, 1.2, 0.6, 0.2, 11)
     place(rocker, 2.9, 0.2, 0.1, 109)
-    da.add_joint(asm, "Revolute", pin(g, (0, 0, 0)), pin(crank, (0, 0, 0)))
-    da.add_joint(asm, "Revolute", pin(crank, (1, 0, 0)), pin(coupler, (0, 0, 0)))
-    da.add_joint(asm, "Revolute", pin(coupler, (3, 0, 0)), pin(rocker, (2.5, 0, 0)))
-    da.add_joint(asm, "Revolute", pin(g, (3, 0, 0)), pin(rocker, (0, 0, 0)))
+    da.add_joint(asm, "Revolute", pin(g, (0, 0, 0), top=True), pin(crank, (0, 0, 0)))
+    da.add_joint(asm, "Revolute", pin(crank, (1, 0, 0), top=True), pin(coupler, (0, 0, 0)))
+    da.add_joint(asm, "Revolute", pin(coupler, (3, 0, 0)), pin(rocker, (2.5, 0, 0), top=True))
+    da.add_joint(asm, "Revolute", pin(g, (3, 0, 0), top=True), pin(rocker, (0, 0, 0)))
+    return asm
+
+
+def fourbar_clash(doc):
+    """The four-bar with a post standing where the crank passes (pointing down, -y): a design
+    that collides, for the CI example's failure."""
+    asm = fourbar(doc)
+    asm.Label = "FourBarClash"
+    post = da.import_part(asm, step("stop-post", lambda: parts.block(0.2, 0.2, 0.3)), "Stop", grounded=True)
+    place(post, -0.1, -1.0, 0.0)
     return asm
 
 
 def slider_crank(doc):
     asm = da.create_assembly(doc, "SliderCrank")
-    g = da.import_part(asm, step("ground-1", lambda: parts.ground([(0, 0)])), "Ground", grounded=True)
+    g = da.import_part(asm, step("ground-rail", lambda: parts.ground_with_rail([(0, 0)], (1.5, 5.0))),
+                       "Ground", grounded=True)
     crank = da.import_part(asm, step("link-1", lambda: parts.link(1)), "Crank")
     rod = da.import_part(asm, step("link-3", lambda: parts.link(3)), "Rod")
     piston = da.import_part(asm, step("piston", parts.piston), "Piston")
-    place(crank, 0, 0, 0.05, 30)
-    place(rod, 0.8, 0.5, 0, -10)
-    place(piston, 3.5, 0.1, 0)
-    da.add_joint(asm, "Revolute", pin(g, (0, 0, 0)), pin(crank, (0, 0, 0)))
-    da.add_joint(asm, "Revolute", pin(crank, (1, 0, 0)), pin(rod, (0, 0, 0)))
-    bottom = next("Face%d" % (i + 1) for i, f in enumerate(piston.Shape.Faces)
-                  if abs(piston.Placement.inverse().multVec(f.CenterOfMass).z) < 1e-9)
-    da.add_joint(asm, "Ball", pin(rod, (3, 0, 0)), (piston, bottom))
+    # Layers: the crank on the ground's boss, the rod on the crank, the piston under the rod's
+    # end, sliding on the rail.
+    place(crank, 0, 0, 0.15, 30)
+    place(rod, 0.8, 0.5, 0.2, -10)
+    place(piston, 3.5, 0.1, 0.1)
+    da.add_joint(asm, "Revolute", pin(g, (0, 0, 0), top=True), pin(crank, (0, 0, 0)))
+    da.add_joint(asm, "Revolute", pin(crank, (1, 0, 0), top=True), pin(rod, (0, 0, 0)))
+    top = next("Face%d" % (i + 1) for i, f in enumerate(piston.Shape.Faces)
+               if abs(piston.Placement.inverse().multVec(f.CenterOfMass).z - 0.1) < 1e-9)
+    da.add_joint(asm, "Ball", pin(rod, (3, 0, 0)), (piston, top))
 
-    def along_x(obj, y):
+    def along_x(obj, y, z):
         inv = obj.Placement.inverse()
         for i, e in enumerate(obj.Shape.Edges):
             a, b = inv.multVec(e.Vertexes[0].Point), inv.multVec(e.Vertexes[-1].Point)
-            if (e.Curve.TypeId == "Part::GeomLine" and abs(a.z) < 1e-9 and abs(b.z) < 1e-9
+            if (e.Curve.TypeId == "Part::GeomLine" and abs(a.z - z) < 1e-9 and abs(b.z - z) < 1e-9
                     and abs(a.y - y) < 1e-9 and abs(b.y - y) < 1e-9 and abs(b.x - a.x) > 0.1):
                 return "Edge%d" % (i + 1)
-        raise ValueError("no edge along x at y = %g" % y)
+        raise ValueError("no edge along x at y = %g, z = %g" % (y, z))
 
-    da.add_joint(asm, "Slider", (g, along_x(g, -0.3)), (piston, along_x(piston, -0.2)))
+    da.add_joint(asm, "Slider", (g, along_x(g, -0.3, 0.1)), (piston, along_x(piston, -0.2, 0)))
     return asm
 
 
@@ -96,21 +115,43 @@ def rssr(doc):
     crank = da.import_part(asm, step("link-1", lambda: parts.link(1)), "Crank")
     rod = da.import_part(asm, step("link-2.5", lambda: parts.link(2.5)), "Rod")
     rocker = da.import_part(asm, step("link-1.5", lambda: parts.link(1.5)), "Rocker")
-    place(crank, 0, 0, 0.02, 20)
-    place(rod, 0.9, 0.4, 0.3, 25)
-    rocker.Placement = App.Placement(App.Vector(2.1, 1.0, 0.8),
+    place(crank, 0, 0, 0.12, 20)
+    place(rod, 0.9, 0.4, 0.4, 25)
+    rocker.Placement = App.Placement(App.Vector(2.2, 1.0, 0.8),
                                      App.Rotation(App.Vector(0, 1, 0), 90).multiply(App.Rotation(App.Vector(0, 0, 1), -60)))
-    da.add_joint(asm, "Revolute", pin(g, (0, 0, 0)), pin(crank, (0, 0, 0)))
-    da.add_joint(asm, "Ball", pin(crank, (1, 0, 0)), pin(rod, (0, 0, 0)))
+    da.add_joint(asm, "Revolute", pin(g, (0, 0, 0), top=True), pin(crank, (0, 0, 0)))
+    da.add_joint(asm, "Ball", pin(crank, (1, 0, 0), top=True), pin(rod, (0, 0, 0)))
     da.add_joint(asm, "Ball", pin(rod, (2.5, 0, 0)), pin(rocker, (1.5, 0, 0)))
-    da.add_joint(asm, "Revolute", pin(post, (0, 0, 0)), pin(rocker, (0, 0, 0)))
+    # The rocker beside the post's boss (its far end circle), not through it.
+    da.add_joint(asm, "Revolute", pin(post, (0.1, 0, 0)), pin(rocker, (0, 0, 0)))
     return asm
+
+
+def side_rods(doc, cranks=18, pitch=3.0):
+    """Twenty parts: `cranks` cranks on a ground's bosses, all pinned to one side rod on top (a
+    locomotive's wheels): one degree of freedom, many redundant joints. The speed sample."""
+    asm = da.create_assembly(doc, "SideRods")
+    xs = [pitch * k for k in range(cranks)]
+    g = da.import_part(asm, step("ground-%d" % cranks, lambda: parts.ground([(x, 0) for x in xs])),
+                       "Ground", grounded=True)
+    rod = da.import_part(asm, step("side-rod-%d" % cranks, lambda: parts.bar(xs)), "SideRod")
+    place(rod, 0.9, 0.2, 0.2, 2)
+    for k, x in enumerate(xs):
+        crank = da.import_part(asm, step("link-1", lambda: parts.link(1)), "Crank%d" % (k + 1))
+        place(crank, x, 0, 0.1, 10)
+        da.add_joint(asm, "Revolute", pin(g, (x, 0, 0), top=True), pin(crank, (0, 0, 0)))
+        da.add_joint(asm, "Revolute", pin(crank, (1, 0, 0), top=True), pin(rod, (x, 0, 0)))
+    return asm
+
+
+SAMPLES = (("fourbar", fourbar), ("slider-crank", slider_crank), ("rssr", rssr),
+           ("fourbar-clash", fourbar_clash), ("side-rods", side_rods))
 
 
 def main():
     out = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else os.path.join(REPO, "build", "samples")
     os.makedirs(out, exist_ok=True)
-    for name, build in (("fourbar", fourbar), ("slider-crank", slider_crank), ("rssr", rssr)):
+    for name, build in SAMPLES:
         doc = App.newDocument(name.replace("-", "_"))
         asm = build(doc)
         t0 = time.perf_counter()

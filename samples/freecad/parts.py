@@ -24,6 +24,27 @@ def ground(pins, thickness=0.1, boss=0.15):
     return plate.fuse(bosses).removeSplitter()
 
 
+def ground_with_rail(pins, rail, thickness=0.1, boss=0.15):
+    """A base plate under pins, and a rail beside x in [rail[0], rail[1]], y in [-0.6, -0.3],
+    as high as the bosses: its top inner edge (y = -0.3, z = 0.1) is a slider's guide."""
+    plate = ground(pins, thickness, boss)
+    x0, x1 = rail
+    bar = Part.makeBox(x1 - x0, 0.3, thickness, App.Vector(x0, -0.6, 0))
+    base = Part.makeBox(x1 - x0, 0.6, thickness, App.Vector(x0, -0.6, -thickness))
+    return plate.fuse([bar, base]).removeSplitter()
+
+
+def bar(pins, width=0.2, thickness=0.1, boss=0.15):
+    """A flat bar along x with a boss at each x in `pins` (bottom circles at z = 0): a side rod."""
+    body = Part.makeBox(max(pins) - min(pins), width, thickness, App.Vector(min(pins), -width / 2, 0))
+    return body.fuse([Part.makeCylinder(boss, thickness, App.Vector(x, 0, 0)) for x in pins]).removeSplitter()
+
+
+def block(dx, dy, dz):
+    """A block standing on z = 0 with a corner at the origin: an obstacle."""
+    return Part.makeBox(dx, dy, dz)
+
+
 def piston(size=0.4):
     """A block whose bottom face's centre is the wrist pin; its straight bottom edges along x give
     the slider's direction."""

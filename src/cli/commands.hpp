@@ -40,6 +40,11 @@ Subcommand add_animate(CLI::App& app);
 Subcommand add_check(CLI::App& app);
 Subcommand add_sweep(CLI::App& app);
 
+// check, sweep, drag and assemble on a FreeCAD document (an argument ending in .FCStd and none in
+// .dcl): handed to freecadcmd running the workbench.
+bool is_fcstd_call(int argc, char** argv);
+int run_fcstd(int argc, char** argv);
+
 // FILE, --json and, for subcommands that solve, --tolerance and --max-iterations.
 void add_common(CLI::App* sub, Common& common, bool solves = true);
 SolveOptions options(const Common& common);

@@ -1,4 +1,4 @@
-// `dispcon`: the command line over .dcl files (cli.md). Parsing arguments and printing only; all
+// `dispcon`: the command line over .dcl files (cli.md) and FreeCAD documents (fcstd.cpp). Parsing arguments and printing only; all
 // the work is the engine's. Each subcommand lives in its own file (commands.hpp).
 #include <iostream>
 #include <stdexcept>
@@ -8,6 +8,8 @@
 
 int main(int argc, char** argv) {
   using namespace dispcon::cli;
+  // FreeCAD documents go to FreeCAD (fcstd.cpp).
+  if (is_fcstd_call(argc, argv)) return run_fcstd(argc, argv);
   CLI::App app{
       "dispcon: mechanism assembly with displacement constraints (Gascuel & Gascuel 1994)"};
   app.require_subcommand(1);
