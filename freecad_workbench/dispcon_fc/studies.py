@@ -30,10 +30,6 @@ class StudyError(ValueError):
 # Opening a document
 
 
-def _is_assembly(obj):
-    return type(getattr(obj, "Proxy", None)).__name__ == "AssemblyProxy"
-
-
 def open_assembly(path, label=None):
     """Opens `path` and returns (document, assembly). Refuses, with StudyError naming the file and
     the object, a missing file, a file that is not a FreeCAD document (or a damaged one), a
@@ -56,12 +52,12 @@ def open_assembly(path, label=None):
         doc = App.openDocument(os.path.abspath(path))
     except Exception as e:  # FreeCAD raises plain exceptions for unreadable documents
         raise StudyError("%s: error: FreeCAD cannot open it (%s)" % (path, e))
-    found = [o for o in doc.Objects if _is_assembly(o)]
+    found = [o for o in doc.Objects if da.is_assembly(o)]
     if label is not None:
         found = [o for o in found if o.Label == label]
         if not found:
             raise StudyError("%s: error: no assembly labelled '%s' (assemblies: %s)"
-                             % (path, label, _labels(o for o in doc.Objects if _is_assembly(o))))
+                             % (path, label, _labels(o for o in doc.Objects if da.is_assembly(o))))
     if not found:
         raise StudyError("%s: error: not a dispcon assembly: no Dispcon assembly object in the "
                          "document (objects: %s)" % (path, _labels(doc.Objects[:8]) or "none"))
