@@ -71,8 +71,18 @@ class _Frame:
         return self.x0 + self.k * u, self.y0 + self.k * v
 
 
-def _path(polylines, frame):
-    return " ".join("M" + " L".join("%s %s" % tuple(map(_fmt, frame(*uv))) for uv in pl) for pl in polylines)
+def _paths(series, frame):
+    """One path's "d" per frame, from the part's projected polylines in each frame; a polyline
+    drawn over another in every frame (a disc's top and bottom circles seen from above) once."""
+    lines = [["M" + " L".join("%s %s" % tuple(map(_fmt, frame(*uv))) for uv in pl) for pl in uv_lines]
+             for uv_lines in series]
+    seen, keep = set(), []
+    for k in range(len(lines[0]) if lines else 0):
+        key = tuple(frame_lines[k] for frame_lines in lines)
+        if key not in seen:
+            seen.add(key)
+            keep.append(k)
+    return [" ".join(frame_lines[k] for k in keep) for frame_lines in lines]
 
 
 def plot_svg(values, series, xlabel, width=520, height=380, x=0, y=0, bands=(), cursor=None,
@@ -168,21 +178,22 @@ def animation_svg(shapes, labels, frames, view="iso", title="", plot=None, secon
            '<text x="8" y="16" font-family="sans-serif" font-size="13">%s (view %s)</text>' % (_esc(title), view)]
     for n, series in enumerate(per_part):
         colour = COLOURS[n % len(COLOURS)]
-        ds = [_path(uv, frame) for uv in series]
+        ds = _paths(series, frame)
         hit = [n in coll for _, coll in frames]
         attrs = 'fill="none" stroke="%s" stroke-width="%s" stroke-linejoin="round"' % (
             RED if hit[0] else colour, 2.5 if hit[0] else 1.2)
         out.append('<path id="part%d" data-label="%s" d="%s" %s>' % (n, _esc(labels[n]), ds[0], attrs))
-        if count > 1:
+        if count > 1 and any(d != ds[0] for d in ds):
             out.append('<animate attributeName="d" dur="%ss" repeatCount="indefinite" keyTimes="%s" values="%s"/>'
                        % (_fmt3(dur), key_times, ";".join(ds)))
-            if any(hit):
-                out.append('<animate attributeName="stroke" dur="%ss" repeatCount="indefinite" calcMode="discrete" '
-                           'keyTimes="%s" values="%s"/>' % (_fmt3(dur), key_times,
-                                                           ";".join(RED if h else colour for h in hit)))
-                out.append('<animate attributeName="stroke-width" dur="%ss" repeatCount="indefinite" calcMode="discrete" '
-                           'keyTimes="%s" values="%s"/>' % (_fmt3(dur), key_times,
-                                                           ";".join("2.5" if h else "1.2" for h in hit)))
+        if count > 1 and any(hit):
+            # A static part too (an obstacle) turns red while something runs into it.
+            out.append('<animate attributeName="stroke" dur="%ss" repeatCount="indefinite" calcMode="discrete" '
+                       'keyTimes="%s" values="%s"/>' % (_fmt3(dur), key_times,
+                                                       ";".join(RED if h else colour for h in hit)))
+            out.append('<animate attributeName="stroke-width" dur="%ss" repeatCount="indefinite" calcMode="discrete" '
+                       'keyTimes="%s" values="%s"/>' % (_fmt3(dur), key_times,
+                                                       ";".join("2.5" if h else "1.2" for h in hit)))
         out.append("</path>")
     for n, label in enumerate(labels):
         out.append('<text x="%d" y="%d" font-family="sans-serif" font-size="11" fill="%s">%s</text>'

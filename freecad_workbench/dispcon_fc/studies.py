@@ -552,13 +552,13 @@ def sweep(asm, joint_label, start=None, stop=None, steps=360, interference=True,
         if out.clearance:
             sample.colliding = out.clearance.at(sample.placements)
         out.samples.append(sample)
-    unit = "rad" if kind == "angle" else ""
+    unit = " rad" if kind == "angle" else ""
     if out.locked:
         deg = " (%.6g deg)" % math.degrees(out.lock_value) if kind == "angle" else ""
-        out.message = "'%s' locks at %.9g %s%s: no position reachable by continuity beyond it" % (
+        out.message = "'%s' locks at %.9g%s%s: no position reachable by continuity beyond it" % (
             j.Label, out.lock_value, unit, deg)
     else:
-        out.message = "'%s' moves freely from %.9g to %.9g %s" % (j.Label, start, stop, unit)
+        out.message = "'%s' moves freely from %.9g to %.9g%s" % (j.Label, start, stop, unit)
     hits = out.interference() if out.clearance else []
     if hits:
         out.message += "; %d pair(s) of parts collide: %s" % (len(hits), ", ".join(
