@@ -122,7 +122,6 @@ class Study:
         self.joints = self.adapter.joints
         self.tolerance = tolerance or asm.Tolerance
         self.max_iterations = max_iterations or asm.MaxIterations
-        self.label_of = {self.adapter.names[p.Name]: p.Label for p in self.parts}
         self._local = None
 
     def options(self):
@@ -165,9 +164,7 @@ class Study:
             return "joint '%s'" % self.joints[int(m.group(1))].Label
 
         text = re.sub(r"joint #?(\d+)(?: \(line \d+\))?(?: [^\s:]+ / [^\s:]+)?", joint, text)
-        for name, label in self.label_of.items():
-            text = text.replace(name, "'%s'" % label)
-        return text
+        return self.adapter.labelled(text)
 
     def bodies_json(self, dof=None):
         out = {}
@@ -460,6 +457,8 @@ class SweepStudy:
                        for j in js],
             "limits_reached": self.limits_reached(),
             "interference": self.interference() if self.clearance else [],
+            # How much the interference test cost: OpenCascade booleans run, of the pairs tested.
+            "boolean_tests": self.clearance.common_calls if self.clearance else 0,
             "samples": [{"value": s.value, "converged": s.converged, "max_residual": s.max_residual,
                          "limits_active": [js[i].Label for i in s.limits_active],
                          "joint_values": s.joint_values,
