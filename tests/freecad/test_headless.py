@@ -715,7 +715,8 @@ class Samples(unittest.TestCase):
                                  env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
             self.assertEqual(run.returncode, 0, run.stdout[-2000:])
             self.assertNotIn("not supported", run.stdout)
-            self.assertEqual(sorted(os.listdir(out)), ["fourbar.FCStd", "rssr.FCStd", "slider-crank.FCStd"])
+            self.assertEqual(sorted(os.listdir(out)), ["fourbar-clash.FCStd", "fourbar.FCStd", "rssr.FCStd",
+                                                  "side-rods.FCStd", "slider-crank.FCStd"])
 
 
 UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples)
