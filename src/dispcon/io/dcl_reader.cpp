@@ -591,8 +591,8 @@ ParseResult load_dcl(const std::string& path) {
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    r.diagnostics.push_back({path, 0, 0, true,
-                             std::string("cannot open the file (") + std::strerror(errno) + ")"});
+    r.diagnostics.push_back(
+        {path, 0, 0, true, std::string("cannot open the file (") + std::strerror(errno) + ")"});
     return r;
   }
   std::ostringstream text;

@@ -23,8 +23,8 @@ void check_bounds(double& lo, double& hi, double natural_lo, double natural_hi,
   one(lo, "min");
   one(hi, "max");
   if (lo > hi) {
-    throw ValueError(field, what + ": min " + format_number(lo) + " is above max " +
-                                format_number(hi));
+    throw ValueError(field,
+                     what + ": min " + format_number(lo) + " is above max " + format_number(hi));
   }
   lo = std::clamp(lo, natural_lo, natural_hi);
   hi = std::clamp(hi, natural_lo, natural_hi);
@@ -38,7 +38,8 @@ void check_inertia(const Mat3& J, const std::string& who) {
   // inverts it.
   const Eigen::SelfAdjointEigenSolver<Mat3> eig(J, Eigen::EigenvaluesOnly);
   const Vec3 moments = eig.eigenvalues();
-  if (!(moments.minCoeff() > 0)) throw ValueError("inertia", who + ": inertia is not positive definite");
+  if (!(moments.minCoeff() > 0))
+    throw ValueError("inertia", who + ": inertia is not positive definite");
   check_positive(moments.minCoeff(), "inertia", who + ": smallest principal inertia");
   check_positive(moments.maxCoeff(), "inertia", who + ": largest principal inertia");
 }

@@ -36,19 +36,18 @@ double check_positive(double v, const std::string& field, const std::string& wha
 Vec3 check_vector(const Vec3& v, const std::string& field, const std::string& what) {
   for (int k = 0; k < 3; ++k) {
     if (std::isnan(v[k]) || !(std::abs(v[k]) <= kLargest)) {
-      throw ValueError(field, what + " (" + format_vector(v) + ") is " +
-                                  (std::isnan(v[k]) ? std::string("not a number (nan)")
-                                                    : "out of range (at most " +
-                                                          format_number(kLargest) +
-                                                          " in magnitude)"));
+      throw ValueError(
+          field, what + " (" + format_vector(v) + ") is " +
+                     (std::isnan(v[k])
+                          ? std::string("not a number (nan)")
+                          : "out of range (at most " + format_number(kLargest) + " in magnitude)"));
     }
   }
   return v;
 }
 
 Vec3 check_direction(const Vec3& v, const std::string& field, const std::string& what) {
-  if (!v.allFinite())
-    throw ValueError(field, what + " (" + format_vector(v) + ") is not finite");
+  if (!v.allFinite()) throw ValueError(field, what + " (" + format_vector(v) + ") is not finite");
   // Scaled first, so a direction such as (1e200, 1e200, 0) does not overflow to a zero vector.
   const double largest = v.cwiseAbs().maxCoeff();
   if (!(largest > 0)) throw ValueError(field, what + " is a zero vector");

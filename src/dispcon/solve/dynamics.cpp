@@ -178,7 +178,8 @@ AnimateResult animate(Model& model, const AnimateOptions& o) {
       out.converged = false;
       out.stopped = true;
       std::ostringstream w;
-      w << "t = " << frame.time << ": diverged (a non-finite or out of range value); stopped at t = "
+      w << "t = " << frame.time
+        << ": diverged (a non-finite or out of range value); stopped at t = "
         << out.frames.back().time;
       out.warnings.push_back(w.str());
       break;

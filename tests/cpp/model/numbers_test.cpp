@@ -130,23 +130,26 @@ TEST(ModelDoor, SettersCheckAndChangeNothingOnRefusal) {
 }
 
 TEST(ModelDoor, FileValuesAreReportedAtTheirStatement) {
-  EXPECT_NE(parse_errors(std::string(kPendulum) +
-                         "constraint object2 a;\n  hinge 1e155 0 0  0 0 0; end\n")
-                .find("t.dcl:3:3: error: constraint at line 2: hinge P1 (1e+155 0 0) is out of range"),
-            std::string::npos);
+  EXPECT_NE(
+      parse_errors(std::string(kPendulum) +
+                   "constraint object2 a;\n  hinge 1e155 0 0  0 0 0; end\n")
+          .find("t.dcl:3:3: error: constraint at line 2: hinge P1 (1e+155 0 0) is out of range"),
+      std::string::npos);
   EXPECT_NE(parse_errors("object a;\n rotate 1e300; end\n").find("t.dcl:2:2: error:"),
             std::string::npos);
-  EXPECT_NE(parse_errors("object a;\n inertia 1e-150 1e-150 1e-150; end\n").find("t.dcl:2:2: error:"),
-            std::string::npos);
-  EXPECT_NE(parse_errors("object a;\n mass 1; inertia 1e300 1e300 1e300; end\n").find("t.dcl:2:10:"),
-            std::string::npos);
+  EXPECT_NE(
+      parse_errors("object a;\n inertia 1e-150 1e-150 1e-150; end\n").find("t.dcl:2:2: error:"),
+      std::string::npos);
+  EXPECT_NE(
+      parse_errors("object a;\n mass 1; inertia 1e300 1e300 1e300; end\n").find("t.dcl:2:10:"),
+      std::string::npos);
   EXPECT_NE(parse_errors("object a; velocity 1e300 0 0; end\n").find("t.dcl:1:11:"),
             std::string::npos);
   EXPECT_NE(parse_errors("object a; rotation 1e300 0 0; end\n").find("t.dcl:1:11:"),
             std::string::npos);
   // A direction with huge components is a direction, not a zero vector.
-  const ParseResult r = parse_dcl(std::string(kPendulum) +
-                                  "constraint object2 a;\n axial 1e200 1e200 0; end\n");
+  const ParseResult r =
+      parse_dcl(std::string(kPendulum) + "constraint object2 a;\n axial 1e200 1e200 0; end\n");
   EXPECT_TRUE(r.ok()) << r.messages();
 }
 
@@ -195,8 +198,7 @@ TEST(OptionsDoor, AnimateOptionsAreChecked) {
   };
   EXPECT_NE(bad([](AnimateOptions& o) { o.gravity = Vec3(kNaN, 0, 0); }).find("gravity"),
             std::string::npos);
-  EXPECT_NE(bad([](AnimateOptions& o) { o.duration = kNaN; }).find("duration"),
-            std::string::npos);
+  EXPECT_NE(bad([](AnimateOptions& o) { o.duration = kNaN; }).find("duration"), std::string::npos);
   EXPECT_NE(bad([](AnimateOptions& o) { o.dt = 1e-300; }).find("frames"), std::string::npos);
   EXPECT_NE(bad([](AnimateOptions& o) { o.duration = 1e12, o.dt = 1; }).find("1e+12 frames"),
             std::string::npos);

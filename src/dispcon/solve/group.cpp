@@ -1,0 +1,100 @@
+#include "dispcon/solve/group.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+namespace dispcon {
+
+std::vector<Group> find_groups(const SolverState& s) {
+  const int n = static_cast<int>(s.bodies.size());
+  std::vector<int> parent(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) parent[static_cast<size_t>(i)] = i;
+  auto find = [&](int i) {
+    while (parent[static_cast<size_t>(i)] != i) {
+      parent[static_cast<size_t>(i)] = parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
+      i = parent[static_cast<size_t>(i)];
+    }
+    return i;
+  };
+  for (const JointState& js : s.joints) {
+    if (js.active && s.bodies[static_cast<size_t>(js.b1)].movable &&
+        s.bodies[static_cast<size_t>(js.b2)].movable) {
+      parent[static_cast<size_t>(find(js.b1))] = find(js.b2);
+    }
+  }
+  std::vector<int> index(static_cast<size_t>(n), -1);
+  std::vector<Group> out;
+  for (int i = 0; i < n; ++i) {
+    if (!s.bodies[static_cast<size_t>(i)].movable) continue;
+    int& k = index[static_cast<size_t>(find(i))];
+    if (k < 0) k = static_cast<int>(out.size()), out.emplace_back();
+    out[static_cast<size_t>(k)].bodies.push_back(i);
+  }
+  for (size_t c = 0; c < s.joints.size(); ++c) {
+    const JointState& js = s.joints[c];
+    if (!js.active) continue;
+    const int b = s.bodies[static_cast<size_t>(js.b1)].movable ? js.b1 : js.b2;
+    if (!s.bodies[static_cast<size_t>(b)].movable) continue;
+    out[static_cast<size_t>(index[static_cast<size_t>(find(b))])].joints.push_back(
+        static_cast<int>(c));
+  }
+  return out;
+}
+
+double max_residual(const SolverState& s, const std::vector<int>& joints,
+                    std::vector<double>& store) {
+  double r = 0;
+  for (int c : joints) {
+    const double rc = s.residual(s.joints[static_cast<size_t>(c)]);
+    store[static_cast<size_t>(c)] = rc;
+    if (!(rc <= r)) r = std::isnan(rc) ? std::numeric_limits<double>::infinity() : rc;
+  }
+  return r;
+}
+
+double group_size(const SolverState& s, const Group& group) {
+  Eigen::AlignedBox3d box;
+  for (int b : group.bodies) {
+    box.extend(s.bodies[static_cast<size_t>(b)].x);
+    box.extend(s.bodies[static_cast<size_t>(b)].G);
+  }
+  for (int c : group.joints) {
+    const JointState& js = s.joints[static_cast<size_t>(c)];
+    const BodyState& b1 = s.bodies[static_cast<size_t>(js.b1)];
+    const BodyState& b2 = s.bodies[static_cast<size_t>(js.b2)];
+    box.extend(b1.R * js.joint->p1 + b1.x);
+    box.extend(b2.R * js.joint->p2 + b2.x);
+    if (js.joint->guide) {
+      for (const Vec3& q : js.joint->guide->points) box.extend(b1.R * q + b1.x);
+    }
+  }
+  return box.isEmpty() ? 1e-6 : std::max(1e-6, box.diagonal().norm());
+}
+
+void save_poses(const SolverState& s, const Group& group, std::vector<Pose>& out) {
+  for (int b : group.bodies) out[static_cast<size_t>(b)] = s.bodies[static_cast<size_t>(b)].pose();
+}
+
+void load_poses(SolverState& s, const Group& group, const std::vector<Pose>& in) {
+  for (int b : group.bodies) s.bodies[static_cast<size_t>(b)].set_pose(in[static_cast<size_t>(b)]);
+}
+
+// Threads for a solve: SolveOptions::threads when given; by default every core, but only when
+// there are several groups and about a millisecond of work between them (a thousand joints):
+// starting threads costs tens of microseconds, which a drag step of a hundred parts cannot pay
+// (a closed chain held at one link splits in two groups: two threads made its step 4 times
+// slower).
+int thread_count(const SolveOptions& o, const std::vector<Group>& groups) {
+  if (o.threads == 1 || groups.size() < 2) return 1;
+  size_t joints = 0;
+  for (const Group& c : groups) joints += c.joints.size();
+  if (o.threads <= 0 && joints < 1000) return 1;
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  const int wanted = o.threads > 1 ? o.threads : std::max(1, cores);
+  return std::min(wanted, static_cast<int>(groups.size()));
+}
+
+}  // namespace dispcon

@@ -1,0 +1,36 @@
+// Groups: the bodies that move together (joined by active joints through movable bodies) and
+// the joints that touch them. Each group is an independent problem that iterates until it
+// holds, so a converged part of a large assembly costs nothing while the rest works, and groups
+// can be solved on several threads. Internal to the solver.
+#pragma once
+
+#include <vector>
+
+#include "dispcon/solve/state.hpp"
+
+namespace dispcon {
+
+struct Group {
+  std::vector<int> bodies;  // movable bodies
+  std::vector<int> joints;  // active joints touching them
+};
+
+std::vector<Group> find_groups(const SolverState& s);
+
+// The largest violation of some joints; each joint's own goes to `store` (indexed by joint), so
+// the final report need not measure again. A non-finite residual makes the result infinite
+// (std::max would drop a NaN).
+double max_residual(const SolverState& s, const std::vector<int>& joints,
+                    std::vector<double>& store);
+
+// A group's size: the diagonal of the box around its bodies and its joints' points. The switch to
+// Newton steps is relative to it, so a group solves the same whatever else is in the model.
+double group_size(const SolverState& s, const Group& group);
+
+void save_poses(const SolverState& s, const Group& group, std::vector<Pose>& out);
+void load_poses(SolverState& s, const Group& group, const std::vector<Pose>& in);
+
+// Threads for a solve (SolveOptions::threads, or a default from the groups' work).
+int thread_count(const SolveOptions& o, const std::vector<Group>& groups);
+
+}  // namespace dispcon

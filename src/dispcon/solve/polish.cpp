@@ -1,0 +1,84 @@
+// The Newton polish's step: gather the rows of the group's joints, factor, apply (scaled so no
+// body turns more than the seed allows).
+#include "dispcon/solve/polish.hpp"
+
+#include <algorithm>
+
+namespace dispcon {
+
+bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>& band,
+                    double lambda, double max_rotation, bool reuse) {
+  w_ = &work;
+  reused_ = false;
+  w_->dq_.resize(static_cast<size_t>(nv_));
+  for (int v = 0; v < nv_; ++v)
+    s.bodies[static_cast<size_t>(group_->bodies[static_cast<size_t>(v)])].n_var = v;
+  gather(s, band);
+  const int m = static_cast<int>(w_->rows_.size());
+  if (m == 0 || nv_ == 0) return false;
+  if (reuse && factored_ && m > kDenseRows && kkt_ && same_pattern()) {
+    reused_ = true;
+    if (!solve_factored()) return false;
+  } else if (!factor(s, lambda)) {
+    return false;
+  }
+  if (m <= kDenseRows || !kkt_) {
+    // dq = M^-1 J^T y
+    for (Vec6& d : w_->dq_) d.setZero();
+    for (int a = 0; a < m; ++a) {
+      const Entry& e = w_->rows_[static_cast<size_t>(a)];
+      const double ya = w_->y_[static_cast<size_t>(a)];
+      if (e.v1 >= 0) w_->dq_[static_cast<size_t>(e.v1)] += ya * e.u1;
+      if (e.v2 >= 0) w_->dq_[static_cast<size_t>(e.v2)] += ya * e.u2;
+    }
+  }
+  // Keep each body's turn small (seed 2.3): scale the whole step, never bend it.
+  double largest = 0;
+  for (const Vec6& d : w_->dq_) {
+    if (!d.allFinite()) return false;
+    largest = std::max(largest, d.head<3>().norm());
+  }
+  const double scale = largest > max_rotation ? max_rotation / largest : 1.0;
+  for (int v = 0; v < nv_; ++v) {
+    const Vec6& d = w_->dq_[static_cast<size_t>(v)];
+    s.bodies[static_cast<size_t>(group_->bodies[static_cast<size_t>(v)])].displace(
+        scale * d.head<3>(), scale * d.tail<3>());
+  }
+  return true;
+}
+
+void Polisher::gather(const SolverState& s, const std::vector<double>& band) {
+  w_->rows_.clear();
+  w_->residual_.clear();
+  PartRows parts[3];
+  for (int c : group_->joints) {
+    const JointState& js = s.joints[static_cast<size_t>(c)];
+    const BodyState& s1 = s.bodies[static_cast<size_t>(js.b1)];
+    const BodyState& s2 = s.bodies[static_cast<size_t>(js.b2)];
+    const int v1 = s1.movable ? s1.n_var : -1;
+    const int v2 = s2.movable ? s2.n_var : -1;
+    s.rows(js, BoundTest{band[static_cast<size_t>(c)]}, parts);
+    for (const PartRows& p : parts) {
+      for (int k = 0; k < p.count; ++k) {
+        Entry e;
+        e.v1 = v1;
+        e.v2 = v2;
+        e.j1 = p.J[k].segment<6>(0).transpose();
+        e.j2 = p.J[k].segment<6>(6).transpose();
+        e.u1 = apply_inverse_mass(s.bodies[static_cast<size_t>(js.b1)], e.j1);
+        e.u2 = apply_inverse_mass(s.bodies[static_cast<size_t>(js.b2)], e.j2);
+        w_->rows_.push_back(e);
+        w_->residual_.push_back(p.residual[k]);
+      }
+    }
+  }
+}
+
+PolishWork::Vec6 Polisher::apply_inverse_mass(const BodyState& b, const Vec6& j) {
+  Vec6 u;
+  u.head<3>() = b.K * (b.inv_m * j.head<3>());
+  u.tail<3>() = b.inv_m * j.tail<3>();
+  return u;
+}
+
+}  // namespace dispcon

@@ -1,0 +1,132 @@
+// The Newton polish (a group's last iterations), internal to the solver; the step in
+// polish.cpp, its dense factorisation in polish_dense.cpp, its sparse one in polish_sparse.cpp.
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <utility>
+#include <vector>
+
+#include "dispcon/solve/group.hpp"
+
+namespace dispcon {
+
+// Scratch space of the Newton polish, shared by the groups of a session (they are solved one
+// after another): warm after the first, so the iterations allocate nothing.
+struct PolishWork {
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  struct Entry {
+    int v1 = -1, v2 = -1;  // unknowns of the two bodies, -1 when the body does not move
+    Vec6 j1, j2;           // the row's two 6-blocks
+    Vec6 u1, u2;           // M^-1 times them
+  };
+  std::vector<Entry> rows_;
+  std::vector<double> residual_;
+  std::vector<int> var_start_, fill_;          // rows of body v: var_rows_[var_start_[v] ...]
+  std::vector<std::pair<int, int>> var_rows_;  // (row, side 1 or 2)
+  std::vector<Vec6> dq_;
+  // Plain buffers under Eigen maps: groups of different sizes share them, and an Eigen matrix
+  // would reallocate at every change of size.
+  std::vector<double> y_;
+  std::vector<double> dense_;
+  Eigen::MatrixXd full_;  // the fallback LDLT's copy
+  Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  std::vector<int> pattern_;
+  std::vector<double> rows_per_body_;
+};
+
+// Newton polish. The step is dq = M^-1 J^T y with (J M^-1 J^T + lambda I) y = -r: the
+// displacement produced by constraint impulses J^T y, opposite on the two bodies of each joint,
+// so it conserves first-order momenta like the seed's corrections; lambda regularises redundant
+// rows (a planar linkage in 3D) and damps far from the solution (Levenberg-Marquardt).
+// J M^-1 J^T is assembled body by body (rows sharing a body couple); small systems are factored
+// dense, large ones sparse, reusing the sparse symbolic analysis while the rows keep their pattern.
+class Polisher {
+ public:
+  explicit Polisher(const Group& group)
+      : group_(&group), nv_(static_cast<int>(group.bodies.size())) {}
+
+  // `band[c]` widens what counts as a bound in contact for joint c (see Session::solve()).
+  // Returns false when no step could be computed.
+  // With `reuse`, a large group in the saddle-point form may solve with the factorisation of its
+  // last step instead of a new one (a chord step: the Jacobian moved little since); reused()
+  // tells whether it did.
+  bool step(SolverState& s, PolishWork& work, const std::vector<double>& band, double lambda,
+            double max_rotation, bool reuse);
+  bool reused() const { return reused_; }
+
+ private:
+  using Vec6 = PolishWork::Vec6;
+  using Entry = PolishWork::Entry;
+
+  void gather(const SolverState& s, const std::vector<double>& band);
+  static Vec6 apply_inverse_mass(const BodyState& b, const Vec6& j);
+  // Calls f(a, b, value) for every coupling a >= b of J M^-1 J^T, body by body. The rows of
+  // each body are listed flat (counted, then placed), so nothing is allocated once warm.
+  template <typename F>
+  void couplings(F&& f) {
+    w_->var_start_.assign(static_cast<size_t>(nv_) + 1, 0);
+    for (const Entry& e : w_->rows_) {
+      if (e.v1 >= 0) ++w_->var_start_[static_cast<size_t>(e.v1) + 1];
+      if (e.v2 >= 0) ++w_->var_start_[static_cast<size_t>(e.v2) + 1];
+    }
+    for (int v = 0; v < nv_; ++v)
+      w_->var_start_[static_cast<size_t>(v) + 1] += w_->var_start_[static_cast<size_t>(v)];
+    w_->var_rows_.resize(static_cast<size_t>(w_->var_start_.back()));
+    w_->fill_.assign(w_->var_start_.begin(), w_->var_start_.end() - 1);
+    for (int a = 0; a < static_cast<int>(w_->rows_.size()); ++a) {
+      const Entry& e = w_->rows_[static_cast<size_t>(a)];
+      if (e.v1 >= 0)
+        w_->var_rows_[static_cast<size_t>(w_->fill_[static_cast<size_t>(e.v1)]++)] = {a, 1};
+      if (e.v2 >= 0)
+        w_->var_rows_[static_cast<size_t>(w_->fill_[static_cast<size_t>(e.v2)]++)] = {a, 2};
+    }
+    for (int v = 0; v < nv_; ++v) {
+      const int begin = w_->var_start_[static_cast<size_t>(v)];
+      const int end = w_->var_start_[static_cast<size_t>(v) + 1];
+      for (int p = begin; p < end; ++p) {
+        const auto [ra, sa] = w_->var_rows_[static_cast<size_t>(p)];
+        const Entry& ea = w_->rows_[static_cast<size_t>(ra)];
+        const Vec6& ja = sa == 1 ? ea.j1 : ea.j2;
+        for (int q = begin; q <= p; ++q) {
+          const auto [rb, sb] = w_->var_rows_[static_cast<size_t>(q)];
+          const Entry& eb = w_->rows_[static_cast<size_t>(rb)];
+          f(ra, rb, ja.dot(sb == 1 ? eb.u1 : eb.u2));
+        }
+      }
+    }
+  }
+
+  // The step's factorisation and solution: dense for small groups (polish_dense.cpp), sparse
+  // above kDenseRows rows (polish_sparse.cpp).
+  bool factor(const SolverState& s, double lambda);
+  bool factor_dense(double lambda);
+  bool factor_sparse(const SolverState& s, double lambda);
+  template <typename F>
+  void kkt_entries(const SolverState& s, double mu, F&& f) const;
+  bool same_pattern();
+  bool solve_factored();
+  template <typename Form>
+  void analyze(int n, Form&& form);
+  Eigen::Triplet<double> reordered(int a, int b, double v = 0) const;
+  int slot(const Eigen::Triplet<double>& t) const;
+
+  static constexpr int kDenseRows = 120;
+  const Group* group_;
+  int nv_ = 0;
+  PolishWork* w_ = nullptr;  // the session's scratch space, during step()
+  Eigen::SparseMatrix<double> sparse_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>>
+      sparse_ldlt_;
+  bool kkt_ = false;       // the sparse system is the saddle-point form
+  bool factored_ = false;  // ... and its factorisation can serve a chord step
+  bool reused_ = false;    // the last step was a chord step
+  Eigen::VectorXi order_;  // fill-reducing order of the rows
+  Eigen::VectorXd rhs_, solution_;
+  std::vector<int> analyzed_pattern_;
+  std::vector<int> slots_;
+  bool analyzed_ = false;
+};
+
+}  // namespace dispcon
