@@ -1,5 +1,8 @@
-# dispcon workbench: lists the commands; the work is in dispcon_fc.
+# dispcon workbench: its toolbars and menu; the work is in dispcon_fc.
 import FreeCADGui as Gui
+
+# Toolbars are named so: the first of them starts a row of its own (see Activated).
+TOOLBAR = "Dispcon %s"
 
 
 class DispconWorkbench(Gui.Workbench):
@@ -7,16 +10,41 @@ class DispconWorkbench(Gui.Workbench):
     ToolTip = "Mechanism assembly with displacement constraints (Gascuel & Gascuel 1994)"
 
     def __init__(self):
-        from dispcon_fc.resources import icon_path
+        # The workbench's own icon, beside this file (here, or in the Mod folder it was installed in).
+        import dispcon_fc.resources as resources
 
-        self.__class__.Icon = icon_path("dispcon.svg")
+        self.__class__.Icon = resources.icon_path("dispcon.svg")
 
     def Initialize(self):
-        from dispcon_fc import commands
+        from dispcon_fc import commands, viewproviders
 
-        names = commands.register()
-        self.appendToolbar("Dispcon", names)
-        self.appendMenu("Dispcon", names)
+        groups = commands.register()
+        for title, names in groups:
+            self.appendToolbar(TOOLBAR % title, names)
+        # One menu: the build commands, the joints in a submenu, then motion and analysis, with
+        # separators between the groups.
+        for k, (title, names) in enumerate(groups):
+            if title == "Joints":
+                self.appendMenu(["Dispcon", "Joints"], names)
+            else:
+                self.appendMenu("Dispcon", (["Separator"] if k else []) + names)
+        # Markers that follow their parts and show the selection.
+        self.observer = viewproviders.install()
+
+    def Activated(self):
+        # FreeCAD's own toolbars fill the first row at 1280 px: ours start a row of their own, so
+        # Solve, Drag and Check never hide behind a toolbar's ">>".
+        from PySide2 import QtWidgets
+
+        window = Gui.getMainWindow()
+        bars = [tb for tb in window.findChildren(QtWidgets.QToolBar)
+                if tb.objectName().startswith(TOOLBAR % "")]
+        if bars:
+            first = min(bars, key=lambda tb: (tb.y(), tb.x()))
+            named = [tb for tb in bars if tb.objectName() == TOOLBAR % "Assembly"]
+            first = named[0] if named else first
+            if not window.toolBarBreak(first):
+                window.insertToolBarBreak(first)
 
     def GetClassName(self):
         return "Gui::PythonWorkbench"

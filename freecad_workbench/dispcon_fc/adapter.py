@@ -49,8 +49,12 @@ def missing_part(j, parts_by_name):
 def _joint_kwargs(j):
     """The joint as dispcon's constraint vocabulary (format.md)."""
     t = j.JointType
-    p1, p2 = _vec(j.Point1), _vec(j.Point2)
-    a1, a2 = _vec(j.Axis1), _vec(j.Axis2)
+    # Offset: part 2's point sits that far along part 1's axis; Reversed: part 2's axis flipped
+    # (part 2 turned over about the twist reference, which stays put).
+    offset = j.Offset.Value if "Offset" in j.PropertiesList else 0.0
+    p1, p2 = _vec(j.Point1 + j.Axis1 * offset), _vec(j.Point2)
+    flip = -1 if "Reversed" in j.PropertiesList and j.Reversed else 1
+    a1, a2 = _vec(j.Axis1), _vec(j.Axis2 * flip)
     b1, b2 = _vec(j.Perp1), _vec(j.Perp2)
     inf = float("inf")
     rad = math.radians

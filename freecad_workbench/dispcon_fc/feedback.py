@@ -1,5 +1,6 @@
-"""What the GUI tells the user about a command's outcome: messages in the Report view, and parts
-outlined in the 3D view."""
+"""What the GUI tells the user about a command's outcome: a message in the Report view and the
+status bar, and the joints to look at marked in the 3D view (their markers turn red). The marks
+are state of the view, never of the document: nothing a command shows is saved into the file."""
 import FreeCAD as App
 
 
@@ -7,11 +8,54 @@ def report(text, error=False):
     (App.Console.PrintError if error else App.Console.PrintMessage)("dispcon: %s\n" % text)
 
 
-def highlight(objects, colour=(1.0, 0.0, 0.0)):
-    """Colours the parts of the violated joints in the 3D view (cleared by the next solve)."""
-    for o in objects:
-        for ref in (o.Reference1, o.Reference2):
-            vo = ref[0].ViewObject if ref and ref[0] and ref[0].ViewObject else None
-            if vo is not None:
-                vo.LineColor = colour
-                vo.LineWidth = 4.0
+def status(text, msecs=0):
+    """The text in the main window's status bar (until the next message when msecs is 0)."""
+    if App.GuiUp:
+        import FreeCADGui as Gui
+
+        Gui.getMainWindow().statusBar().showMessage(text, msecs)
+
+
+def mark(asm, culprits):
+    """Marks the joints in `culprits` red in the 3D view and clears the mark of every other joint
+    of the assembly."""
+    if not App.GuiUp:
+        return
+    from .objects import joints
+    from .viewproviders import joint_view
+
+    names = {j.Name for j in culprits}
+    for j in joints(asm):
+        view = joint_view(j)
+        if view is not None:
+            view.set_error(j.Name in names)
+
+
+def labels(joints):
+    return ", ".join("'%s'" % j.Label for j in joints)
+
+
+def solve_outcome(asm, result):
+    """After a Solve: on success, clears the marks and says so; on failure, finds the joint to fix
+    as Check does (the conflicting one, else those still violated), marks it, and says so in the
+    status bar and in a task panel. Returns the panel shown, or None."""
+    if result.converged:
+        mark(asm, [])
+        status("%s: %s" % (asm.Label, result.message), 8000)
+        report(result.message)
+        return None
+    from . import operations, panels
+    from .panels.check import CheckPanel
+
+    c = operations.check(asm)
+    culprits = c["conflicting"] or result.violated
+    what = "conflicts with the other joints" if c["conflicting"] else "cannot hold"
+    if len(culprits) > 1:
+        what = what.replace("conflicts", "conflict")
+    text = "Solve failed: %s %s; nothing moved. Fix or delete %s." % (
+        labels(culprits), what, "it" if len(culprits) == 1 else "them")
+    report(text, error=True)
+    status(text)
+    panel = panels.show(CheckPanel(asm, headline=text, result=c))
+    mark(asm, culprits)
+    return panel

@@ -129,9 +129,17 @@ class JointProxy(_Proxy):
         _add(obj, "App::PropertyFloat", "Move", "Abilities", "part 1's share of a correction (-1: from the masses)", -1)
         _add(obj, "App::PropertyFloat", "Residual", "Solve", "violation after the last solve")
         _add(obj, "App::PropertyBool", "Violated", "Solve", "not satisfied after the last solve")
+        joint_extras(obj)
 
     def onDocumentRestored(self, obj):
         self.attach(obj)
+
+
+def joint_extras(obj):
+    """Reversed and Offset (the joint panel's), which joints made before them lack: a joint
+    without them reads as not reversed, offset 0."""
+    _add(obj, "App::PropertyBool", "Reversed", "Joint", "part 2's axis flipped")
+    _add(obj, "App::PropertyDistance", "Offset", "Joint", "part 2's point this far from part 1's, along part 1's axis")
 
 
 def part_properties(obj):
@@ -229,3 +237,4 @@ def new_joint(doc, name):
     JointProxy(obj)
     _view(obj, "Joint")
     return obj
+

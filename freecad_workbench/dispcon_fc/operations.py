@@ -1,6 +1,8 @@
 """The operations on an assembly: what a command or a script does to the document. Each is one
 undo step (one transaction); each checks its input before it changes anything, and one that fails
-half-way is rolled back, so a failed operation leaves the document as it was."""
+half-way is rolled back, so a failed operation leaves the document as it was. A task panel that holds its own transaction open (the joint panel's live
+preview) passes undo_step=False: the operation is then part of the panel's one undo step, which
+Cancel aborts."""
 import contextlib
 import os
 
@@ -172,16 +174,23 @@ def _new_part(asm, action, type_id, name, grounded, **values):
     return obj
 
 
+def _step(doc, name, undo_step):
+    """An undo step of its own, or (undo_step=False) part of the one the caller holds open:
+    FreeCAD would commit the caller's when another opens."""
+    return transaction(doc, name) if undo_step else contextlib.nullcontext()
+
+
 def _perpendicular(v):
     other = App.Vector(1, 0, 0) if abs(v.x) < 0.9 else App.Vector(0, 1, 0)
     return v.cross(other).normalize()
 
 
-def add_joint(asm, joint_type, ref1, ref2, **limits):
+def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
     """A joint between two parts from geometry references in FreeCAD's form, (obj, "Edge3").
     Part 1 carries the guide (the slider's line, the plane, the curve). Limits: rotation=(min, max)
     in degrees, travel=(min, max) in length units, cone=degrees, angle=(min, max) degrees, move=mu;
-    rotation=False and travel=False (edit_joint) take such limits off."""
+    reverse=True flips part 2's axis, offset=length puts part 2's point that far from part 1's
+    along part 1's axis; rotation=False and travel=False (edit_joint) take such limits off."""
     _assembly(asm)
     if joint_type not in objects.JOINT_TYPES:
         raise ValueError("unknown joint type %r (expected one of %s)" % (joint_type, ", ".join(objects.JOINT_TYPES)))
@@ -196,7 +205,7 @@ def add_joint(asm, joint_type, ref1, ref2, **limits):
                          % (o1.Label, s1 or "the whole part"))
     _check_limits(joint_type, **limits)
     f1, f2 = geometry.feature(o1, s1), geometry.feature(o2, s2)
-    with transaction(asm.Document, "Add joint"):
+    with _step(asm.Document, "Add joint", undo_step):
         j = objects.new_joint(asm.Document, joint_type)
         j.JointType = joint_type
         j.Reference1 = (o1, [s1])
@@ -218,7 +227,8 @@ def add_joint(asm, joint_type, ref1, ref2, **limits):
     return j
 
 
-def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move=None):
+def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None,
+                  offset=None):
     """Refuses limits that cannot hold, before anything changes; names the joint and the limit."""
     for what, pair, unit in (("rotation", rotation, "deg"), ("travel", travel, "mm"), ("angle", angle, "deg")):
         if pair not in (None, False):
@@ -233,7 +243,7 @@ def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move
         raise ValueError("%s: move %g is outside 0..1 (or -1: from the masses)" % (label, move))
 
 
-def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None):
+def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None, offset=None):
     # rotation=False, travel=False: no such limits any more.
     if rotation is not None:
         j.HasRotationLimits = rotation is not False
@@ -249,6 +259,12 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None)
         j.AngleMin, j.AngleMax = angle
     if move is not None:
         j.Move = move
+    if reverse is not None:
+        objects.joint_extras(j)
+        j.Reversed = bool(reverse)
+    if offset is not None:
+        objects.joint_extras(j)
+        j.Offset = offset
 
 
 def set_limits(joint, **limits):
@@ -256,7 +272,7 @@ def set_limits(joint, **limits):
     return edit_joint(joint, **limits)
 
 
-def edit_joint(joint, joint_type=None, **limits):
+def edit_joint(joint, joint_type=None, undo_step=True, **limits):
     """Changes a joint's type and limits (same keywords as add_joint) in one undo step; limits
     that cannot hold are refused before anything changes."""
     if not objects.is_joint(joint):
@@ -271,14 +287,14 @@ def edit_joint(joint, joint_type=None, **limits):
         raise ValueError("%s: a PointOnCurve joint needs an edge of %s as its first reference"
                          % (joint.Label, ref[0].Label))
     _check_limits(joint.Label, **limits)
-    with transaction(joint.Document, "Edit joint"):
+    with _step(joint.Document, "Edit joint", undo_step):
         if joint_type is not None:
             joint.JointType = joint_type
         _set_limits(joint, **limits)
     return joint
 
 
-def solve(asm):
+def solve(asm, undo_step=True):
     """Snap: moves the parts from wherever they are until every joint holds (the seed's automatic
     assembly), grounded parts still. One undo step; a failed solve moves nothing and marks the
     joints still violated. A joint that lost a part is skipped and named in the message."""
@@ -286,7 +302,7 @@ def solve(asm):
     adapter = Adapter(asm)
     with adapter.engine_errors():
         r = adapter.model.assemble(tolerance=tolerance(asm), max_iterations=asm.MaxIterations)
-    with transaction(asm.Document, "Solve assembly"):
+    with _step(asm.Document, "Solve assembly", undo_step):
         if r.converged:
             adapter.write_back()
         adapter.mark(r)

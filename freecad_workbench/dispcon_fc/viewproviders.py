@@ -1,44 +1,204 @@
-"""How assemblies and joints show in the tree and the 3D view (GUI only): the hooks the GUI side
-builds on (icons, joint markers, double-click to edit). Like the objects' proxies they save
-nothing (Stateless); objects.adopt() gives them back to objects whose view proxy a restore lost."""
-import os
+"""View providers: how the assembly, its joints and its parts look in the tree and the 3D view.
 
-from .objects import Stateless
+A joint is drawn as its marker (markers.py) at its point and axis; the marker follows the parts as
+they move (a document observer), turns green when the joint is selected (a selection observer) and
+red while it is the joint a failed Solve or Check points at. All of that is state of the view:
+the proxies save nothing (Stateless; no property of the document changes), so a saved file never
+carries a highlight; objects.adopt() gives them back to objects whose view proxy a restore lost.
+Double-clicking a joint opens its task panel."""
+import FreeCAD as App
+import FreeCADGui as Gui
+
+from . import markers
+from .objects import Stateless, is_joint
 from .resources import icon_path
 
 
-class _ViewProvider(Stateless):
-    icon = "dispcon.svg"
+def icon(name):
+    """The path of the workbench's icon `name` (Dispcon_<name>.svg)."""
+    return icon_path("Dispcon_%s.svg" % name)
 
+
+class _ViewProxy(Stateless):
     def __init__(self, vobj):
         vobj.Proxy = self
 
+
+class ViewProviderAssembly(_ViewProxy):
     def attach(self, vobj):
-        self.ViewObject = vobj
         self.Object = vobj.Object
 
     def getIcon(self):
-        path = icon_path(self.icon)
-        return path if os.path.isfile(path) else icon_path("dispcon.svg")
+        return icon("Assembly")
+
+    def updateData(self, obj, prop):
+        # Parts come and go: every marker of the assembly takes the size that suits its parts.
+        if prop == "Group":
+            size = markers.size_for([o for o in obj.Group if not is_joint(o)])
+            for o in obj.Group:
+                proxy = _joint_view(o)
+                if proxy is not None:
+                    proxy.marker.set_size(size)
+
+    def onChanged(self, vobj, prop):
+        # Hiding the assembly hides its joints' markers with it (and shows them again).
+        if prop == "Visibility":
+            for o in getattr(vobj.Object, "Group", []):
+                if is_joint(o) and o.ViewObject is not None:
+                    o.ViewObject.Visibility = vobj.Visibility
 
 
+class ViewProviderJoint(_ViewProxy):
+    """A joint's marker in the 3D view, its type's icon in the tree, its panel on double-click."""
 
-class ViewProviderAssembly(_ViewProvider):
-    icon = "assembly.svg"
+    def attach(self, vobj):
+        self.Object = vobj.Object
+        self.selected = False
+        self.error = False
+        obj = vobj.Object
+        self.marker = markers.Marker(obj.JointType, markers.size_for(_assembly_parts(obj)),
+                                     "dispcon_marker_" + obj.Name)
+        vobj.addDisplayMode(self.marker.root, "Marker")
+        self.follow(obj)
 
+    def getDisplayModes(self, vobj):
+        return ["Marker"]
 
-class ViewProviderJoint(_ViewProvider):
+    def getDefaultDisplayMode(self):
+        return "Marker"
+
+    def setDisplayMode(self, mode):
+        return mode
+
     def getIcon(self):
-        kind = getattr(getattr(self, "Object", None), "JointType", "")
-        path = icon_path("joint-%s.svg" % kind.lower()) if kind else ""
-        return path if path and os.path.isfile(path) else super().getIcon()
+        obj = getattr(self, "Object", None)
+        kind = obj.JointType if obj is not None and hasattr(obj, "JointType") else "Fixed"
+        return icon("Joint" + kind)
+
+    def updateData(self, obj, prop):
+        if not hasattr(self, "marker"):
+            return
+        if prop == "JointType":
+            self.marker.set_type(obj.JointType)
+            # The tree shows the new type's icon.
+            obj.ViewObject.signalChangeIcon() if hasattr(obj.ViewObject, "signalChangeIcon") else None
+        if prop in ("Reference1", "Reference2"):
+            self.marker.set_size(markers.size_for(_assembly_parts(obj)))
+        if prop in ("JointType", "Point1", "Axis1", "Reference1", "Reference2"):
+            self.follow(obj)
+
+    def follow(self, obj):
+        """Puts the marker at the joint's point and axis as the parts now stand."""
+        frame = markers.joint_frame(obj)
+        if frame is not None:
+            self.marker.place(*frame)
+
+    def set_error(self, on):
+        self.error = bool(on)
+        self._relook()
+
+    def set_selected(self, on):
+        self.selected = bool(on)
+        self._relook()
+
+    def _relook(self):
+        self.marker.set_look("selected" if self.selected else "error" if self.error else "normal")
+
+    def doubleClicked(self, vobj):
+        Gui.ActiveDocument.setEdit(vobj.Object, 0)
+        return True
+
+    def setEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None
+        from .panels.joint import open_panel
+
+        open_panel(vobj.Object)
+        return True
+
+    def unsetEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None
+        return True
 
 
-def attach(obj, kind):
-    """Gives `obj` (an "Assembly" or a "Joint") its view provider when the GUI is up and it has none."""
+class Observer:
+    """One per workbench: moves markers with their parts and shows which joints are selected."""
+
+    # Document observer -------------------------------------------------------------------
+    def slotChangedObject(self, obj, prop):
+        if prop != "Placement":
+            return
+        for o in obj.InList:
+            proxy = _joint_view(o)
+            if proxy is not None:
+                proxy.follow(o)
+
+    # Selection observer ------------------------------------------------------------------
+    def addSelection(self, doc, name, sub, pos):
+        self._refresh(doc)
+
+    def removeSelection(self, doc, name, sub):
+        self._refresh(doc)
+
+    def setSelection(self, doc):
+        self._refresh(doc)
+
+    def clearSelection(self, doc):
+        self._refresh(doc)
+
+    def _refresh(self, doc_name):
+        doc = App.getDocument(doc_name) if doc_name and doc_name in App.listDocuments() else App.ActiveDocument
+        if doc is None:
+            return
+        selected = {o.Name for o in Gui.Selection.getSelection(doc.Name)}
+        for o in doc.Objects:
+            proxy = _joint_view(o)
+            if proxy is not None:
+                proxy.set_selected(o.Name in selected)
+
+
+def _assembly_parts(joint):
+    """The parts of the joint's assembly (its two parts when it is in none yet)."""
+    for parent in joint.InList:
+        group = getattr(parent, "Group", None)
+        if group and joint in group:
+            return [o for o in group if not is_joint(o)]
+    return [r[0] for r in (joint.Reference1, joint.Reference2) if r and r[0] is not None]
+
+
+def _joint_view(obj):
     vobj = getattr(obj, "ViewObject", None)
-    if vobj is None:
+    proxy = getattr(vobj, "Proxy", None) if vobj is not None else None
+    return proxy if isinstance(proxy, ViewProviderJoint) and hasattr(proxy, "marker") else None
+
+
+def joint_view(obj):
+    """The joint's view provider proxy (its marker's looks), or None without the GUI."""
+    return _joint_view(obj)
+
+
+def install():
+    """Registers the observers; returns a handle for uninstall."""
+    observer = Observer()
+    App.addDocumentObserver(observer)
+    Gui.Selection.addObserver(observer)
+    return observer
+
+
+def uninstall(observer):
+    App.removeDocumentObserver(observer)
+    Gui.Selection.removeObserver(observer)
+
+
+def attach(obj, kind=None):
+    """Gives a joint or an assembly its view provider (new objects, or objects of a document
+    saved before the view providers existed); `kind` ("Assembly", "Joint") when known."""
+    if not App.GuiUp or obj.ViewObject is None:
         return
-    cls = {"Assembly": ViewProviderAssembly, "Joint": ViewProviderJoint}[kind]
-    if not isinstance(getattr(vobj, "Proxy", None), cls):
-        cls(vobj)
+    if isinstance(getattr(obj.ViewObject, "Proxy", None), (ViewProviderJoint, ViewProviderAssembly)):
+        return
+    if kind == "Joint" or (kind is None and is_joint(obj)):
+        ViewProviderJoint(obj.ViewObject)
+    elif kind == "Assembly" or (kind is None and hasattr(obj, "Group")):
+        ViewProviderAssembly(obj.ViewObject)

@@ -1,13 +1,16 @@
 """The workbench's commands, one module per group (build, joints, motion, analysis): thin
-shells over dispcon_fc.operations. `register()` adds them to FreeCAD and returns their names."""
+shells over dispcon_fc.operations. `register()` adds them to FreeCAD and returns them by group,
+which the workbench makes its toolbars and its menu of."""
 import FreeCADGui as Gui
 
 from .. import panels
+from ..resources import icon_path
 from . import analysis, build, joints, motion
 from .common import Command, active_assembly  # noqa: F401
 from .motion import _drive, _solve  # noqa: F401  (scripts and tests run them directly)
 
-GROUPS = (build, joints, motion, analysis)
+# (title, module): one toolbar each, and one section of the menu (the joints in a submenu).
+GROUPS = (("Assembly", build), ("Joints", joints), ("Motion", motion), ("Analysis", analysis))
 
 
 def __getattr__(name):
@@ -18,9 +21,13 @@ def __getattr__(name):
 
 
 def register():
-    names = []
-    for group in GROUPS:
+    """Adds every command to FreeCAD; returns [(group title, [command names])]."""
+    groups = []
+    for title, group in GROUPS:
+        names = []
         for name, cmd in group.commands():
+            cmd.pixmap = icon_path(name + ".svg")
             Gui.addCommand(name, cmd)
             names.append(name)
-    return names
+        groups.append((title, names))
+    return groups

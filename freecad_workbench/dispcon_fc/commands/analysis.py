@@ -1,7 +1,7 @@
 """Commands that look at an assembly or take it elsewhere: Check, Export and Import .dcl."""
 from .. import operations, panels
 from ..panels.check import CheckPanel
-from .common import Command, active_assembly
+from .common import Command, active_assembly, has_joints, has_parts
 
 
 def _check():
@@ -26,7 +26,10 @@ def _import_dcl():
 
 def commands():
     return [
-        ("Dispcon_Check", Command("Check", "Degrees of freedom, redundant and conflicting joints, collisions", _check)),
-        ("Dispcon_ExportDcl", Command("Export .dcl", "Write the assembly for the dispcon command line", _export)),
-        ("Dispcon_ImportDcl", Command("Import .dcl", "Place the parts as a .dcl file says", _import_dcl)),
+        ("Dispcon_Check", Command("Check", "Check: degrees of freedom, redundant and conflicting joints (marked red "
+                                  "in the 3D view) and parts that overlap.", _check, active=has_joints)),
+        ("Dispcon_ExportDcl", Command("Export .dcl", "Export .dcl: write the assembly as a .dcl file for the dispcon "
+                                      "command line.", _export, active=lambda: has_parts(1))),
+        ("Dispcon_ImportDcl", Command("Import .dcl", "Import .dcl: place the parts as a .dcl file says (one the "
+                                      "command line solved).", _import_dcl, active=lambda: has_parts(1))),
     ]

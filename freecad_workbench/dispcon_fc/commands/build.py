@@ -52,11 +52,29 @@ def _ground():
             operations.set_grounded(o, not o.Grounded)
 
 
+def _can_add():
+    asm = active_assembly()
+    return asm is not None and any(hasattr(o, "Shape") and o is not asm and o not in asm.Group
+                                   for o in Gui.Selection.getSelection())
+
+
+def _can_ground():
+    return any(hasattr(o, "Grounded") for o in Gui.Selection.getSelection())
+
+
 def commands():
     return [
-        ("Dispcon_CreateAssembly", Command("New assembly", "An empty assembly in the document", _create, False)),
-        ("Dispcon_AddParts", Command("Add parts", "Add the selected objects as parts", _add_parts)),
-        ("Dispcon_ImportPart", Command("Import part", "Import a STEP, IGES or BREP file as a part", _import)),
-        ("Dispcon_InsertLink", Command("Insert part from file", "Link a part of another FreeCAD document (.FCStd) into the assembly; save this document first", _insert_link)),
-        ("Dispcon_Ground", Command("Ground", "Toggle: the selected parts never move", _ground)),
+        ("Dispcon_CreateAssembly", Command("New assembly", "New assembly: an empty assembly in the active document. "
+                                           "Then add or import its parts.", _create, False)),
+        ("Dispcon_AddParts", Command("Add parts", "Add parts: select solids of the document in the tree or the "
+                                     "3D view, then run this to make them parts of the assembly.", _add_parts,
+                                     active=_can_add)),
+        ("Dispcon_ImportPart", Command("Import part", "Import part: choose a STEP, IGES or BREP file; its solid "
+                                       "becomes a part of the assembly.", _import)),
+        ("Dispcon_InsertLink", Command("Insert part from file", "Insert part from file: choose a saved FreeCAD "
+                                       "document (.FCStd) and one of its solids; it is linked into the assembly "
+                                       "(App::Link) and follows that file's changes. Save this document first.",
+                                       _insert_link)),
+        ("Dispcon_Ground", Command("Ground", "Ground: select one or more parts; they never move (run again "
+                                   "to free them).", _ground, active=_can_ground)),
     ]

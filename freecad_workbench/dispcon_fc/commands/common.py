@@ -4,7 +4,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from ..feedback import report
-from ..objects import is_assembly
+from ..objects import is_assembly, joints, parts
 
 
 def active_assembly():
@@ -24,17 +24,58 @@ def active_assembly():
 
 
 class Command:
-    def __init__(self, text, tip, run, needs_assembly=True):
+    """A command: its menu text, its tooltip (what to select), what it runs, and when it can run.
+
+    `active` says whether it can run now (FreeCAD greys it out otherwise); by default, when a
+    document is open and, if `needs_assembly`, it has an assembly. The icon is
+    Resources/icons/<command name>.svg, set by register(). A `checkable` command (drag mode) gets
+    its new state as run's argument."""
+
+    def __init__(self, text, tip, run, needs_assembly=True, active=None, checkable=False):
         self.text, self.tip, self.run, self.needs = text, tip, run, needs_assembly
+        self.active, self.checkable = active, checkable
+        self.pixmap = ""
 
     def GetResources(self):
-        return {"MenuText": self.text, "ToolTip": self.tip}
+        res = {"MenuText": self.text, "ToolTip": self.tip, "Pixmap": self.pixmap}
+        if self.checkable:
+            res["Checkable"] = False
+        return res
 
     def IsActive(self):
-        return App.ActiveDocument is not None and (not self.needs or active_assembly() is not None)
-
-    def Activated(self):
+        if App.ActiveDocument is None:
+            return False
         try:
-            self.run()
+            if self.active is not None:
+                return bool(self.active())
+            return not self.needs or active_assembly() is not None
+        except Exception:  # a document half-way through a change: not now
+            return False
+
+    def Activated(self, *checked):
+        try:
+            self.run(*checked)
         except Exception as e:  # a command reports, never crashes the GUI
             report(str(e), error=True)
+            status(str(e))
+
+
+def status(text, msecs=8000):
+    """A message in the main window's status bar."""
+    Gui.getMainWindow().statusBar().showMessage(text, msecs)
+
+
+# When commands can run (FreeCAD asks often: these stay cheap).
+
+def has_parts(n=1):
+    asm = active_assembly()
+    return asm is not None and len(parts(asm)) >= n
+
+
+def has_joints():
+    asm = active_assembly()
+    return asm is not None and bool(joints(asm))
+
+
+def no_task_dialog():
+    return not Gui.Control.activeDialog()

@@ -1,25 +1,22 @@
-"""One command per joint type: a joint from the two picked references, then its panel."""
+"""One command per joint type: its panel, with the references already selected or picked in it."""
 import FreeCADGui as Gui
 
-from .. import operations, panels
 from ..objects import JOINT_TYPES
-from ..panels.joint import JointPanel
-from .common import Command, active_assembly
+from ..panels.joint import open_panel
+from ..guide import tooltip
+from .common import Command, active_assembly, has_parts
 
 
 def joint_command(kind):
     def run():
+        # The references selected already (up to two); the panel asks for the rest.
         sel = Gui.Selection.getSelectionEx()
-        refs = [(s.Object, name) for s in sel for name in s.SubElementNames]
-        if len(refs) != 2:
-            raise ValueError("select two edges, faces or vertices on two parts for a %s joint" % kind)
-        j = operations.add_joint(active_assembly(), kind, refs[0], refs[1])
-        panels.show(JointPanel(j))
+        refs = [(s.Object, name) for s in sel for name in s.SubElementNames][:2]
+        open_panel(asm=active_assembly(), joint_type=kind, refs=refs)
     return run
 
 
 def commands():
     return [("Dispcon_Joint" + kind,
-             Command(kind + " joint", "A %s joint from two picked edges, faces or vertices" % kind,
-                     joint_command(kind)))
+             Command(kind + " joint", tooltip(kind), joint_command(kind), active=lambda: has_parts(2)))
             for kind in JOINT_TYPES]

@@ -2,26 +2,32 @@
 import FreeCADGui as Gui
 
 from .. import operations
-from ..feedback import highlight, report
+from ..feedback import report, solve_outcome
 from ..objects import joints
-from .common import Command, active_assembly
+from .common import Command, active_assembly, has_joints
 
 
 def _solve():
     asm = active_assembly()
-    for j in joints(asm):
-        highlight([j], colour=(0.1, 0.1, 0.1))
     r = operations.solve(asm)
-    report(r.message, error=not r.converged)
-    if not r.converged:
-        highlight(r.violated)
+    solve_outcome(asm, r)
     return r
 
 
-def _drag_mode():
+def _drag_mode(checked=None):
     from .. import dragging
 
-    dragging.toggle(active_assembly())
+    view = Gui.ActiveDocument.ActiveView
+    on = dragging.active(view) is None if checked is None else bool(checked)
+    if on and dragging.active(view) is None:
+        dragging.start(active_assembly(), view)
+    elif not on and dragging.active(view) is not None:
+        dragging.stop(view)
+
+
+def _has_revolute():
+    asm = active_assembly()
+    return asm is not None and any(j.JointType in ("Revolute", "Cylindrical") for j in joints(asm))
 
 
 def _drive():
@@ -67,9 +73,15 @@ def _motion_study():
 
 def commands():
     return [
-        ("Dispcon_Solve", Command("Solve", "Snap the parts into place (grounded parts stay)", _solve)),
-        ("Dispcon_Drag", Command("Drag", "Toggle drag mode: grab a part with the mouse, the linkage follows", _drag_mode)),
-        ("Dispcon_Drive", Command("Drive", "Turn the selected revolute, as an animation", _drive)),
-        ("Dispcon_MotionStudy", Command("Motion study", "Sweep the selected joint: lock-ups, interference "
-                                        "along the motion, and an animated SVG with the plot", _motion_study)),
+        ("Dispcon_Solve", Command("Solve", "Solve: snap the parts into place so that every joint holds; grounded "
+                                  "parts stay. Select the assembly (or any of its parts) first when the "
+                                  "document has several.", _solve, active=has_joints)),
+        ("Dispcon_Drag", Command("Drag", "Drag mode (on/off): press on a part in the 3D view and move the mouse; "
+                                 "the linkage follows. Esc leaves it.", _drag_mode, active=has_joints,
+                                 checkable=True)),
+        ("Dispcon_Drive", Command("Drive", "Drive: select a revolute joint, then run this to turn it as an "
+                                  "animation until a limit or a lock stops it.", _drive, active=_has_revolute)),
+        ("Dispcon_MotionStudy", Command("Motion study", "Motion study: select a revolute or slider joint, then run "
+                                        "this to sweep it: lock-ups, interference along the motion, and an "
+                                        "animated SVG with its plot and CSV.", _motion_study, active=_has_revolute)),
     ]

@@ -1,17 +1,18 @@
-"""The check panel: the report of `operations.check` and of interference (Resources/ui/check.ui)."""
+"""The check panel: the report of `operations.check` and of interference (Resources/ui/check.ui),
+also shown by a Solve that failed, headed by what went wrong."""
 import FreeCADGui as Gui
 
 from .. import operations
-from ..feedback import highlight, report
+from ..feedback import labels, mark, report, status
 from . import load_ui
 
 
 class CheckPanel:
-    """The check's report (ui/check.ui); the conflicting and redundant joints' parts are
-    outlined in the 3D view (red and orange)."""
+    """The check's report (ui/check.ui), by the joints' and parts' labels; the conflicting joints'
+    markers turn red in the 3D view (the next Solve or Check that finds none clears them)."""
 
-    def __init__(self, asm):
-        c = operations.check(asm)
+    def __init__(self, asm, headline=None, result=None):
+        c = result if result is not None else operations.check(asm)
         lines = ["degrees of freedom: %d" % c["dof"]]
         lines += ["  %s: %d" % (name, dof) for name, dof in c["part_dof"].items()]
         for what, joints in (("conflicting", c["conflicting"]), ("redundant", c["redundant"]),
@@ -23,11 +24,17 @@ class CheckPanel:
             lines.append("%s and %s overlap by %.4g" % (a.Label, b.Label, v))
         self.result = c
         self.form = load_ui("check.ui")
-        self.form.summary.setText(c["message"])
+        self.form.summary.setWordWrap(True)
+        self.form.summary.setText(_summary(c))
         self.form.report.setPlainText("\n".join(lines))
-        highlight(c["redundant"], colour=(1.0, 0.6, 0.0))
-        highlight(c["conflicting"])
-        report(c["message"], error=not c["converged"])
+        if headline:
+            self.form.summary.setText(headline)
+            self.form.summary.setStyleSheet("color: #cc0000; font-weight: bold;")
+        mark(asm, c["conflicting"])
+        if headline is None:
+            report(c["message"], error=not c["converged"])
+            status("Check: %d degree(s) of freedom%s" % (c["dof"], "; conflicting: " + labels(c["conflicting"])
+                                                        if c["conflicting"] else ""))
 
     def accept(self):
         Gui.Control.closeDialog()
@@ -35,3 +42,16 @@ class CheckPanel:
 
     def reject(self):
         return self.accept()
+
+
+def _summary(c):
+    """The check's verdict in a person's words (the engine's message names internal objects)."""
+    if c["conflicting"]:
+        return "Does not assemble: %s conflict%s with the other joints." % (
+            labels(c["conflicting"]), "s" if len(c["conflicting"]) == 1 else "")
+    if not c["converged"]:
+        return "Does not assemble yet: run Solve."
+    dof = c["dof"]
+    return "Assembles; %d degree%s of freedom left%s." % (
+        dof, "" if dof == 1 else "s", "" if not c["redundant"] else
+        " (%s repeat%s other joints)" % (labels(c["redundant"]), "s" if len(c["redundant"]) == 1 else ""))

@@ -1,42 +1,446 @@
-"""The joint panel: edits a joint's type and limits (Resources/ui/joint.ui)."""
+"""The joint task panel: pick two references, choose the type, set limits, reverse and offset,
+and watch the parts move while you do.
+
+The panel holds one transaction open from the moment it opens: the joint it creates, every
+preview solve and every change of a field are inside it, so OK is one undo step and Cancel
+aborts it, which removes a new joint or gives an edited one (and the parts) back as they were.
+
+Only the fields that apply to the chosen type are shown; lengths and angles are FreeCAD quantity
+spin boxes (mm, deg). A min above its max is said in the panel and disables OK."""
+import FreeCAD as App
 import FreeCADGui as Gui
 
-from .. import operations
-from ..feedback import report
+from .. import geometry, markers, operations, panels
+from ..guide import PICK
 from ..objects import JOINT_TYPES
-from . import load_ui
+
+try:
+    from PySide2 import QtCore, QtGui, QtWidgets
+except ImportError:  # FreeCAD's own shim
+    from PySide import QtCore, QtGui
+    from PySide import QtGui as QtWidgets
+
+# Which groups of fields each type shows.
+FIELDS = {
+    "Fixed": ("reverse", "offset"),
+    "Revolute": ("reverse", "offset", "rotation"),
+    "Slider": ("reverse", "travel"),
+    "Cylindrical": ("reverse", "rotation", "travel"),
+    "Ball": ("offset", "cone"),
+    "Planar": ("reverse", "offset"),
+    "PointOnLine": ("travel",),
+    "PointOnPlane": ("offset",),
+    "PointOnCurve": (),
+    "Angle": ("reverse", "angle"),
+}
+
+def quantity_box(unit, minimum, maximum, value=0.0):
+    """A Gui::QuantitySpinBox in `unit` (mm, deg) between minimum and maximum."""
+    box = Gui.UiLoader().createWidget("Gui::QuantitySpinBox")
+    box.setProperty("unit", unit)
+    box.setProperty("minimum", minimum)
+    box.setProperty("maximum", maximum)
+    box.setProperty("rawValue", value)
+    return box
+
+
+def raw(box):
+    return float(box.property("rawValue"))
 
 
 class JointPanel:
-    """Edits a joint's type and limits (ui/joint.ui)."""
+    """The task panel of a new joint (asm, joint_type, refs) or of an existing one (joint)."""
 
-    def __init__(self, joint):
+    def __init__(self, asm, joint_type=None, refs=(), joint=None):
+        self.asm = asm
         self.joint = joint
-        self.form = load_ui("joint.ui")
-        f = self.form
-        f.jointType.addItems(JOINT_TYPES)
-        f.jointType.setCurrentText(joint.JointType)
-        f.hasRotation.setChecked(joint.HasRotationLimits)
-        f.rotationMin.setValue(joint.RotationMin.Value)
-        f.rotationMax.setValue(joint.RotationMax.Value)
-        f.hasTravel.setChecked(joint.HasTravelLimits)
-        f.travelMin.setValue(joint.TravelMin.Value)
-        f.travelMax.setValue(joint.TravelMax.Value)
-        f.cone.setValue(joint.ConeAngle.Value)
+        self.new = joint is None
+        self.doc = asm.Document
+        self.refs = list(refs)
+        self.transaction = operations.Transaction(self.doc, "Edit joint" if joint else "Add joint")
+        self.closed = False
+        self.preview = None  # the marker under the cursor while picking
+        self.form = self._build(joint.JointType if joint else joint_type)
+        self._load()
+        self.picking = False
+        Gui.Selection.addObserver(self)
+        if self.joint is None and len(self.refs) == 2:
+            self._create()
+        elif self.joint is None:
+            self._start_picking(keep=self.refs)
+        self._show_fields()
+
+    # -- the form ----------------------------------------------------------------------------
+    def _build(self, joint_type):
+        w = QtWidgets.QWidget()
+        w.setObjectName("DispconJointPanel")
+        w.setWindowTitle("Joint")
+        w.setWindowIcon(QtGui.QIcon(markers_icon(joint_type)))
+        top = QtWidgets.QVBoxLayout(w)
+        form = QtWidgets.QFormLayout()
+        form.setRowWrapPolicy(QtWidgets.QFormLayout.WrapLongRows)
+        top.addLayout(form)
+        self.type_box = QtWidgets.QComboBox()
+        for t in JOINT_TYPES:
+            self.type_box.addItem(QtGui.QIcon(markers_icon(t)), t)
+        self.type_box.setCurrentText(joint_type)
+        form.addRow("Type", self.type_box)
+
+        refs = QtWidgets.QGroupBox("References")
+        rl = QtWidgets.QVBoxLayout(refs)
+        self.ref_list = QtWidgets.QListWidget()
+        self.ref_list.setMaximumHeight(52)
+        rl.addWidget(self.ref_list)
+        self.pick_button = QtWidgets.QPushButton("Pick again")
+        self.pick_button.setToolTip("Forget the two references and pick two new ones in the 3D view")
+        rl.addWidget(self.pick_button)
+        top.addWidget(refs)
+
+        self.groups = {}
+        g = self._group(top, "reverse", None)
+        self.reverse = QtWidgets.QCheckBox("Reverse (flip part 2's axis)")
+        g.layout().addWidget(self.reverse)
+        g = self._group(top, "offset", None)
+        gl = QtWidgets.QFormLayout()
+        g.layout().addLayout(gl)
+        self.offset = quantity_box("mm", -1e6, 1e6)
+        self.offset.setToolTip("Gap between the two points along part 1's axis")
+        gl.addRow("Offset", self.offset)
+        self.rot_min, self.rot_max, self.has_rotation = self._range(top, "rotation", "Limit the turn", "deg", -360, 360)
+        self.tr_min, self.tr_max, self.has_travel = self._range(top, "travel", "Limit the travel", "mm", -1e6, 1e6)
+        g = self._group(top, "cone", None)
+        gl = QtWidgets.QFormLayout()
+        g.layout().addLayout(gl)
+        self.cone = quantity_box("deg", 0, 180)
+        self.cone.setToolTip("Largest tilt of part 2's axis from part 1's (0: none)")
+        gl.addRow("Cone", self.cone)
+        self.ang_min, self.ang_max, _ = self._range(top, "angle", None, "deg", 0, 180)
+
+        self.message = QtWidgets.QLabel()
+        self.message.setObjectName("message")
+        self.message.setWordWrap(True)
+        top.addWidget(self.message)
+        top.addStretch(1)
+
+        self.type_box.currentTextChanged.connect(self._type_changed)
+        self.pick_button.clicked.connect(self._start_picking)
+        self.reverse.toggled.connect(self._changed)
+        for box in (self.offset, self.rot_min, self.rot_max, self.tr_min, self.tr_max, self.cone,
+                    self.ang_min, self.ang_max):
+            box.valueChanged.connect(self._changed)
+        for check in (self.has_rotation, self.has_travel):
+            check.toggled.connect(self._changed)
+        return w
+
+    def _group(self, top, name, title):
+        g = QtWidgets.QGroupBox(title) if title else QtWidgets.QWidget()
+        g.setObjectName(name)
+        layout = QtWidgets.QVBoxLayout(g)
+        if not title:
+            layout.setContentsMargins(0, 0, 0, 0)
+        top.addWidget(g)
+        self.groups[name] = g
+        return g
+
+    def _range(self, top, name, check_text, unit, lo, hi):
+        g = self._group(top, name, {"rotation": "Turn", "travel": "Travel", "angle": "Angle between axes"}[name])
+        check = None
+        if check_text:
+            check = QtWidgets.QCheckBox(check_text)
+            g.layout().addWidget(check)
+        gl = QtWidgets.QFormLayout()
+        g.layout().addLayout(gl)
+        a, b = quantity_box(unit, lo, hi), quantity_box(unit, lo, hi)
+        a.setObjectName(name + "Min")
+        b.setObjectName(name + "Max")
+        gl.addRow("Min", a)
+        gl.addRow("Max", b)
+        return a, b, check
+
+    def _load(self):
+        """The fields from the joint (or the defaults of a new one)."""
+        j = self.joint
+        self.loading = True
+        if j is not None:
+            self.refs = [(j.Reference1[0], j.Reference1[1][0] if j.Reference1[1] else ""),
+                         (j.Reference2[0], j.Reference2[1][0] if j.Reference2[1] else "")]
+            self.reverse.setChecked(bool(getattr(j, "Reversed", False)))
+            self.offset.setProperty("rawValue", float(getattr(j, "Offset", 0) and j.Offset.Value))
+            self.has_rotation.setChecked(j.HasRotationLimits)
+            self.rot_min.setProperty("rawValue", j.RotationMin.Value)
+            self.rot_max.setProperty("rawValue", j.RotationMax.Value)
+            self.has_travel.setChecked(j.HasTravelLimits)
+            self.tr_min.setProperty("rawValue", j.TravelMin.Value)
+            self.tr_max.setProperty("rawValue", j.TravelMax.Value)
+            self.cone.setProperty("rawValue", j.ConeAngle.Value)
+            self.ang_min.setProperty("rawValue", j.AngleMin.Value)
+            self.ang_max.setProperty("rawValue", j.AngleMax.Value)
+        else:
+            self.ang_max.setProperty("rawValue", 180.0)
+        self._list_refs()
+        self.loading = False
+
+    def _list_refs(self):
+        self.ref_list.clear()
+        for k, (o, sub) in enumerate(self.refs):
+            self.ref_list.addItem("%d. %s: %s" % (k + 1, o.Label, sub or "(whole part)"))
+
+    def _show_fields(self):
+        kind = self.type_box.currentText()
+        shown = FIELDS[kind]
+        for name, g in self.groups.items():
+            g.setVisible(name in shown)
+        for box, check in ((self.rot_min, self.has_rotation), (self.rot_max, self.has_rotation),
+                           (self.tr_min, self.has_travel), (self.tr_max, self.has_travel)):
+            box.setEnabled(check.isChecked())
+
+    # -- picking -----------------------------------------------------------------------------
+    def _start_picking(self, keep=()):
+        """New references from the 3D view (after those in `keep`)."""
+        self.picking = True
+        self.refs = list(keep)
+        self._list_refs()
+        if not keep:
+            Gui.Selection.clearSelection()
+        self._say("Pick %s." % PICK[self.type_box.currentText()])
+        self._set_ok(False)
+
+    def _gone(self):
+        """True, and the panel stops listening, once its document or its form is gone (FreeCAD
+        closes a task dialog without asking it when the document closes)."""
+        import shiboken2
+
+        try:
+            self.doc.Name
+            if shiboken2.isValid(self.form):
+                return False
+        except ReferenceError:
+            pass
+        self.closed = True
+        Gui.Selection.removeObserver(self)
+        return True
+
+    def addSelection(self, doc, name, sub, pos):
+        if self._gone() or not self.picking or not sub or doc != self.doc.Name:
+            return
+        obj = self.doc.getObject(name)
+        if obj is None or obj not in self.asm.Group:
+            self._say("%s is not a part of %s: pick on one of its parts." % (obj.Label if obj else name, self.asm.Label), True)
+            return
+        if self.refs and self.refs[0][0] == obj:
+            self._say("Pick the second reference on another part than %s." % obj.Label, True)
+            return
+        self.refs.append((obj, sub))
+        self._list_refs()
+        if len(self.refs) == 2:
+            self.picking = False
+            # Made once FreeCAD has finished with this selection event.
+            QtCore.QTimer.singleShot(0, self._replace)
+        else:
+            self._say("Now %s's partner: pick on another part." % obj.Label)
+
+    def setPreselection(self, doc, name, sub):
+        """While picking, the feature under the cursor shows the marker the joint would get."""
+        if self._gone() or not self.picking or not sub or doc != self.doc.Name:
+            return
+        obj = self.doc.getObject(name)
+        if obj is None or obj not in self.asm.Group:
+            return
+        try:
+            f = geometry.feature(obj, sub)
+        except Exception:  # an element that gives no joint feature: no preview
+            self._hide_preview()
+            return
+        if self.preview is None:
+            view = Gui.ActiveDocument.ActiveView if Gui.ActiveDocument else None
+            if view is None:
+                return
+            size = markers.size_for([o for o in self.asm.Group if hasattr(o, "Shape")])
+            self.preview = markers.Marker(self.type_box.currentText(), size, "dispcon_preview")
+            self.preview_graph = view.getSceneGraph()
+            self.preview_graph.addChild(self.preview.root)
+        self.preview.set_type(self.type_box.currentText())
+        self.preview.place(f.point, f.axis)
+        self.preview.root.setName("dispcon_preview")
+
+    def removePreselection(self, doc, name, sub):
+        if not self._gone():
+            self._hide_preview()
+
+    def _hide_preview(self):
+        if self.preview is not None:
+            self.preview_graph.removeChild(self.preview.root)
+            self.preview = None
+
+    # -- changes and the preview --------------------------------------------------------------
+    def _replace(self):
+        """The joint on the new references: the old one (if any) goes, inside the panel's
+        transaction, so Cancel brings it back."""
+        if self.closed:
+            return
+        self._hide_preview()
+        if self.joint is not None:
+            label = self.joint.Label
+            self.doc.removeObject(self.joint.Name)
+            self.joint = None
+            self._create()
+            if self.joint is not None:
+                self.joint.Label = label
+        else:
+            self._create()
+
+    def _create(self):
+        try:
+            self.joint = operations.add_joint(self.asm, self.type_box.currentText(), self.refs[0],
+                                              self.refs[1], undo_step=False)
+        except ValueError as e:
+            self._start_picking()
+            self._say(str(e), True)
+            return
+        self._list_refs()
+        self._changed()
+
+    def _type_changed(self, kind):
+        self._show_fields()
+        self.form.setWindowIcon(QtGui.QIcon(markers_icon(kind)))
+        if self.picking:
+            self._say("Pick %s." % PICK[kind])
+        else:
+            self._changed()
+
+    def values(self):
+        """The edit the fields ask for, as operations.edit_joint's keywords."""
+        kind = self.type_box.currentText()
+        shown = FIELDS[kind]
+        kw = {"joint_type": kind}
+        if "rotation" in shown:
+            kw["rotation"] = (raw(self.rot_min), raw(self.rot_max)) if self.has_rotation.isChecked() else False
+        if "travel" in shown:
+            kw["travel"] = (raw(self.tr_min), raw(self.tr_max)) if self.has_travel.isChecked() else False
+        if "cone" in shown:
+            kw["cone"] = raw(self.cone)
+        if "angle" in shown:
+            kw["angle"] = (raw(self.ang_min), raw(self.ang_max))
+        kw["reverse"] = "reverse" in shown and self.reverse.isChecked()
+        kw["offset"] = raw(self.offset) if "offset" in shown else 0.0
+        return kw
+
+    def problem(self):
+        """What is wrong with the fields, in the panel's words, or None."""
+        kw = self.values()
+        for key, what, unit in (("rotation", "Turn", "°"), ("travel", "Travel", " mm"), ("angle", "Angle", "°")):
+            pair = kw.get(key)
+            if pair and pair[0] > pair[1]:
+                return "%s: min %g%s is above max %g%s." % (what, pair[0], unit, pair[1], unit)
+        return None
+
+    def _changed(self, *_):
+        if self.loading:
+            return
+        self._show_fields()
+        bad = self.problem()
+        if bad:
+            self._say(bad, True)
+            self._set_ok(False)
+            return
+        if self.joint is None:
+            self._set_ok(False)
+            return
+        try:
+            operations.edit_joint(self.joint, undo_step=False, **self.values())
+            r = operations.solve(self.asm, undo_step=False)
+        except ValueError as e:
+            self._say(str(e), True)
+            self._set_ok(False)
+            return
+        self._set_ok(True)
+        if r.converged:
+            self._say("%s holds (%s)." % (self.joint.Label, r.message))
+        else:
+            self._say("The parts cannot be placed so: %s. OK keeps the joint anyway." % r.message, True)
+        Gui.updateGui()
+
+    def _say(self, text, error=False):
+        self.message.setText(text)
+        self.message.setStyleSheet("color: #cc0000;" if error else "")
+
+    def ok_button(self):
+        """The task view's OK button: the nearest one up from the form (a closed dialog's may
+        still be there, waiting for deletion)."""
+        import shiboken2
+
+        w = self.form
+        while w is not None:
+            found = [box.button(QtWidgets.QDialogButtonBox.Ok)
+                     for box in w.findChildren(QtWidgets.QDialogButtonBox) if shiboken2.isValid(box)]
+            found = [b for b in found if b is not None and shiboken2.isValid(b) and b.isVisibleTo(w)]
+            if found:
+                return found[-1]
+            w = w.parentWidget()
+        return None
+
+    def _set_ok(self, enabled):
+        button = self.ok_button()
+        if button is not None:
+            button.setEnabled(enabled)
+
+    # -- the task dialog ----------------------------------------------------------------------
+    def getStandardButtons(self):
+        return int(QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel)
 
     def accept(self):
-        f = self.form
-        rotation = (f.rotationMin.value(), f.rotationMax.value()) if f.hasRotation.isChecked() else False
-        travel = (f.travelMin.value(), f.travelMax.value()) if f.hasTravel.isChecked() else False
-        try:
-            operations.edit_joint(self.joint, joint_type=f.jointType.currentText(), rotation=rotation,
-                                  travel=travel, cone=f.cone.value())
-        except ValueError as e:  # limits that cannot hold: said, and the panel stays open
-            report(str(e), error=True)
+        bad = self.problem()
+        if bad or self.joint is None:
+            self._say(bad or "Pick two references first.", True)
             return False
-        Gui.Control.closeDialog()
+        self._close(commit=True)
         return True
 
     def reject(self):
-        Gui.Control.closeDialog()
+        self._close(commit=False)
         return True
+
+    def _close(self, commit):
+        if self.closed:
+            return
+        self.closed = True
+        self._hide_preview()
+        Gui.Selection.removeObserver(self)
+        if commit:
+            self.transaction.commit()
+        else:
+            self.transaction.abort()
+        self.doc.recompute()
+        Gui.Control.closeDialog()
+        if Gui.ActiveDocument is not None and Gui.ActiveDocument.getInEdit() is not None:
+            Gui.ActiveDocument.resetEdit()
+
+
+def markers_icon(kind):
+    from ..viewproviders import icon
+
+    return icon("Joint" + kind)
+
+
+def open_panel(joint=None, asm=None, joint_type=None, refs=()):
+    """Shows the panel for `joint`, or for a new joint of `asm` on `refs` (picked in the 3D view
+    when fewer than two); returns it."""
+    if Gui.Control.activeDialog():
+        Gui.Control.closeDialog()
+    if joint is not None:
+        asm = next(p for p in joint.InList if joint in getattr(p, "Group", []))
+    panel = JointPanel(asm, joint_type=joint_type, refs=refs, joint=joint)
+    panels.show(panel)
+    if panel.joint is not None:
+        panel._changed()
+    else:
+        panel._set_ok(False)
+    return panel
+
+
+def current():
+    """The joint panel open now, or None."""
+    panel = panels.last_panel
+    if isinstance(panel, JointPanel) and not panel.closed and Gui.Control.activeDialog():
+        return panel
+    return None

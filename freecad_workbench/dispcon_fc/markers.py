@@ -1,0 +1,266 @@
+"""Joint markers: a small Coin3D glyph at each joint's point, its z along the joint's axis, one
+shape per joint type (a ring for a revolute, a double arrow for a slider, a sphere for a ball, a
+square for a plane ...), in the colours of the workbench's icons: orange for a turn, green for
+travel, blue for part 1's guide, yellow for part 2's point.
+
+A marker has three looks: normal, selected (the joint is selected in the tree or the 3D view) and
+error (the joint a failed Solve or Check points at). The look is state of the view only: nothing
+here is a document property, so nothing of it is saved into the file.
+
+The glyphs are drawn over the parts (an SoAnnotation), so a joint inside a part stays visible."""
+import math
+
+import FreeCAD as App
+
+# Which pieces each joint type's glyph has: ring (turn about the axis), arrows (travel along
+# it), sphere (turn about the point), square (the plane across the axis), cube (no motion),
+# line (the axis), dot (part 2's point), curve, angle (a second axis at an angle).
+PIECES = {
+    "Fixed": ("cube",),
+    "Revolute": ("line", "ring"),
+    "Slider": ("arrows", "cube"),
+    "Cylindrical": ("arrows", "ring"),
+    "Ball": ("sphere",),
+    "Planar": ("square", "line"),
+    "PointOnLine": ("arrows", "dot"),
+    "PointOnPlane": ("square", "dot"),
+    "PointOnCurve": ("curve", "dot"),
+    "Angle": ("line", "angle"),
+}
+
+ORANGE = (0.96, 0.47, 0.0)
+GREEN = (0.30, 0.60, 0.02)
+BLUE = (0.20, 0.40, 0.64)
+YELLOW = (0.93, 0.83, 0.0)
+GREY = (0.33, 0.34, 0.33)
+SELECTED = (0.11, 0.85, 0.11)   # FreeCAD's default selection green
+ERROR = (1.0, 0.0, 0.0)         # and drawn half as large again
+
+LOOKS = ("normal", "selected", "error")
+
+
+def _coin():
+    from pivy import coin
+
+    return coin
+
+
+def _material(colour, transparency=0.0):
+    coin = _coin()
+    m = coin.SoMaterial()
+    m.diffuseColor.setValue(*colour)
+    m.emissiveColor.setValue(*[0.35 * c for c in colour])
+    m.transparency.setValue(transparency)
+    return m
+
+
+def _polyline(points, width=3.0):
+    coin = _coin()
+    sep = coin.SoSeparator()
+    style = coin.SoDrawStyle()
+    style.lineWidth.setValue(width)
+    sep.addChild(style)
+    coords = coin.SoCoordinate3()
+    coords.point.setValues(0, len(points), [list(p) for p in points])
+    sep.addChild(coords)
+    line = coin.SoLineSet()
+    line.numVertices.setValue(len(points))
+    sep.addChild(line)
+    return sep
+
+
+def _at(child, translation=(0, 0, 0), rotation=None):
+    """`child` moved by `translation` and turned by rotation=(axis, radians)."""
+    coin = _coin()
+    sep = coin.SoSeparator()
+    t = coin.SoTransform()
+    t.translation.setValue(*translation)
+    if rotation is not None:
+        t.rotation.setValue(coin.SbVec3f(*rotation[0]), rotation[1])
+    sep.addChild(t)
+    sep.addChild(child)
+    return sep
+
+
+def _cone_along_z(height, radius):
+    """A cone whose tip points along +z (SoCone points along +y)."""
+    coin = _coin()
+    cone = coin.SoCone()
+    cone.height.setValue(height)
+    cone.bottomRadius.setValue(radius)
+    return _at(cone, rotation=((1, 0, 0), math.pi / 2))
+
+
+def _piece(kind, s):
+    """One piece of a glyph of size `s` (model units), z along the joint axis."""
+    coin = _coin()
+    sep = coin.SoSeparator()
+    sep.setName("dispcon_" + kind)
+    if kind == "line":
+        sep.addChild(_material(ORANGE))
+        sep.addChild(_polyline([(0, 0, -1.6 * s), (0, 0, 1.6 * s)], 2.0))
+    elif kind == "ring":
+        sep.addChild(_material(ORANGE))
+        pts = [(s * math.cos(a), s * math.sin(a), 0) for a in
+               (math.radians(d) for d in range(0, 300, 10))]
+        sep.addChild(_polyline(pts, 4.0))
+        # The arrow head at the ring's end says which way is positive (right hand about z).
+        end = math.radians(300)
+        head = _cone_along_z(0.45 * s, 0.18 * s)
+        sep.addChild(_at(head, (s * math.cos(end), s * math.sin(end), 0),
+                         _turn_z_to((-math.sin(end), math.cos(end), 0))))
+    elif kind == "arrows":
+        sep.addChild(_material(GREEN))
+        sep.addChild(_polyline([(0, 0, -1.4 * s), (0, 0, 1.4 * s)], 4.0))
+        sep.addChild(_at(_cone_along_z(0.45 * s, 0.18 * s), (0, 0, 1.4 * s)))
+        sep.addChild(_at(_cone_along_z(0.45 * s, 0.18 * s), (0, 0, -1.4 * s), ((1, 0, 0), math.pi)))
+    elif kind == "sphere":
+        sep.addChild(_material(YELLOW))
+        ball = coin.SoSphere()
+        ball.radius.setValue(0.55 * s)
+        sep.addChild(ball)
+    elif kind == "dot":
+        sep.addChild(_material(YELLOW))
+        ball = coin.SoSphere()
+        ball.radius.setValue(0.3 * s)
+        sep.addChild(ball)
+    elif kind == "cube":
+        sep.addChild(_material(GREY))
+        cube = coin.SoCube()
+        cube.width.setValue(0.7 * s)
+        cube.height.setValue(0.7 * s)
+        cube.depth.setValue(0.7 * s)
+        sep.addChild(cube)
+    elif kind == "square":
+        sep.addChild(_material(BLUE, 0.4))
+        h = 1.2 * s
+        coords = coin.SoCoordinate3()
+        coords.point.setValues(0, 4, [[-h, -h, 0], [h, -h, 0], [h, h, 0], [-h, h, 0]])
+        sep.addChild(coords)
+        face = coin.SoFaceSet()
+        face.numVertices.setValue(4)
+        sep.addChild(face)
+        sep.addChild(_polyline([(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0), (-h, -h, 0)], 2.0))
+    elif kind == "curve":
+        sep.addChild(_material(BLUE))
+        pts = [(x * s * 0.4, 0, 0.6 * s * math.sin(x * 1.2)) for x in range(-4, 5)]
+        sep.addChild(_polyline(pts, 4.0))
+    elif kind == "angle":
+        sep.addChild(_material(ORANGE))
+        tilt = math.radians(40)
+        sep.addChild(_polyline([(0, 0, 0), (1.6 * s * math.sin(tilt), 0, 1.6 * s * math.cos(tilt))], 2.0))
+        pts = [(s * math.sin(a), 0, s * math.cos(a)) for a in (tilt * k / 8 for k in range(9))]
+        sep.addChild(_polyline(pts, 4.0))
+    else:
+        raise ValueError("unknown marker piece %r" % kind)
+    return sep
+
+
+def _turn_z_to(direction):
+    """(axis, angle) that turns +z onto `direction`."""
+    d = App.Vector(*direction)
+    if d.Length < 1e-12:
+        return ((0, 0, 1), 0.0)
+    d.normalize()
+    z = App.Vector(0, 0, 1)
+    axis = z.cross(d)
+    angle = math.acos(max(-1.0, min(1.0, z.dot(d))))
+    if axis.Length < 1e-9:
+        return ((1, 0, 0), angle)
+    axis.normalize()
+    return ((axis.x, axis.y, axis.z), angle)
+
+
+def glyph(joint_type, size):
+    """The glyph of `joint_type`, `size` model units across, z along the joint axis."""
+    coin = _coin()
+    sep = coin.SoSeparator()
+    sep.setName("dispcon_glyph_" + joint_type)
+    for kind in PIECES[joint_type]:
+        sep.addChild(_piece(kind, size))
+    return sep
+
+
+def size_for(objects):
+    """A glyph size that reads well next to these parts (all the assembly's, so that its markers
+    have one size): a fifth of the smallest part's size."""
+    sizes = []
+    for o in objects:
+        shape = getattr(o, "Shape", None)
+        if shape is not None and not shape.isNull() and shape.BoundBox.isValid():
+            sizes.append(shape.BoundBox.DiagonalLength)
+    return min(sizes) / 5.0 if sizes else 1.0
+
+
+class Marker:
+    """A glyph placed at a world point with its z along a world axis, with the three looks. Its
+    `root` goes into a view provider's display mode or straight into a view's scene graph."""
+
+    def __init__(self, joint_type, size, name="dispcon_marker"):
+        coin = _coin()
+        self.root = coin.SoSeparator()
+        self.root.setName(name)
+        self.transform = coin.SoTransform()
+        self.root.addChild(self.transform)
+        # The look: an override material and line width (ignoring the pieces' own colours)
+        # when selected or in error; nothing overridden when normal.
+        self.look_switch = coin.SoSwitch()
+        self.look_switch.whichChild.setValue(coin.SO_SWITCH_NONE)
+        for colour in (SELECTED, ERROR):
+            g = coin.SoGroup()
+            m = _material(colour)
+            m.setOverride(True)
+            g.addChild(m)
+            style = coin.SoDrawStyle()
+            style.lineWidth.setValue(6.0)
+            style.setOverride(True)
+            g.addChild(style)
+            if colour == ERROR:
+                grow = coin.SoScale()
+                grow.scaleFactor.setValue(1.5, 1.5, 1.5)
+                g.addChild(grow)
+            self.look_switch.addChild(g)
+        self.annotation = coin.SoAnnotation()
+        self.root.addChild(self.annotation)
+        self.annotation.addChild(self.look_switch)
+        self.joint_type = None
+        self.size = size
+        self.look = "normal"
+        self.set_type(joint_type)
+
+    def set_type(self, joint_type):
+        if joint_type == self.joint_type:
+            return
+        if self.annotation.getNumChildren() > 1:
+            self.annotation.removeChild(1)
+        self.annotation.addChild(glyph(joint_type, self.size))
+        self.joint_type = joint_type
+
+    def set_size(self, size):
+        if abs(size - self.size) > 1e-12 * max(1.0, size):
+            joint_type, self.joint_type = self.joint_type, None
+            self.size = size
+            self.set_type(joint_type)
+
+    def place(self, point, axis):
+        self.transform.translation.setValue(point.x, point.y, point.z)
+        (a, angle) = _turn_z_to((axis.x, axis.y, axis.z))
+        from pivy import coin
+
+        self.transform.rotation.setValue(coin.SbVec3f(*a), angle)
+
+    def set_look(self, look):
+        if look not in LOOKS:
+            raise ValueError("unknown marker look %r (expected one of %s)" % (look, ", ".join(LOOKS)))
+        self.look = look
+        self.look_switch.whichChild.setValue(LOOKS.index(look) - 1 if look != "normal" else -1)
+
+
+def joint_frame(joint):
+    """The joint's point and axis in world coordinates, from part 1 (the guide's part), or None
+    when a reference is missing."""
+    ref = joint.Reference1
+    if not ref or ref[0] is None:
+        return None
+    pl = ref[0].Placement
+    return pl.multVec(joint.Point1), pl.Rotation.multVec(joint.Axis1)
