@@ -70,7 +70,7 @@ def _mark(obj, kind):
     _add(obj, "App::PropertyString", "DispconType", "Dispcon", "what this object is to the Dispcon workbench")
     if obj.DispconType != kind:
         obj.DispconType = kind
-    obj.setEditorMode("DispconType", 1)  # read-only: it is what the object is
+    obj.setEditorMode("DispconType", 2)  # hidden: it is what the object is, not a setting
 
 
 class AssemblyProxy(_Proxy):
