@@ -369,22 +369,37 @@ def rounded(value):
     return value
 
 
+# What a session may change without a person changing anything: the proxy itself, the shape (a
+# result, compared by volume below), recompute state, and the last solve's outcome.
+NOT_SETTINGS = {"Proxy", "Shape", "ExpressionEngine", "Label2", "Visibility", "Residual", "Violated", "LastSolve"}
+
+
+def plain(value):
+    """A property's value as plain data to compare: objects by label, quantities by value."""
+    if hasattr(value, "Label") and hasattr(value, "TypeId"):
+        return value.Label
+    if isinstance(value, (list, tuple)):
+        return tuple(plain(v) for v in value)
+    if isinstance(value, App.Placement):
+        return plain(tuple(value.Base) + tuple(value.Rotation.Q))
+    if isinstance(value, App.Vector):
+        return plain(tuple(value))
+    if hasattr(value, "Value") and hasattr(value, "Unit"):
+        return rounded(float(value.Value))
+    return rounded(value)
+
+
 def settings_of(doc):
-    """Every value a person set in an assembly, by object label: parts, joints, limits, settings."""
-    out = {}
+    """Every property of an assembly and of its parts and joints, by object label: the joints, their
+    limits and every setting, whatever properties the workbench gives them."""
     asm = next(o for o in doc.Objects if o.TypeId == "App::DocumentObjectGroupPython")
-    out["assembly"] = (asm.Label, float(asm.Tolerance), asm.MaxIterations, sorted(o.Label for o in asm.Group))
-    for o in asm.Group:
-        if "JointType" in o.PropertiesList:
-            out[o.Label] = (o.JointType, o.Reference1[0].Label, tuple(o.Reference1[1]), o.Reference2[0].Label,
-                            tuple(o.Reference2[1]), tuple(o.Point1), tuple(o.Axis1), tuple(o.Point2), tuple(o.Axis2),
-                            tuple(o.Perp1), tuple(o.Perp2), o.HasRotationLimits, o.RotationMin.Value,
-                            o.RotationMax.Value, o.HasTravelLimits, o.TravelMin.Value, o.TravelMax.Value,
-                            o.ConeAngle.Value, o.AngleMin.Value, o.AngleMax.Value, o.Move)
-        else:
-            out[o.Label] = (o.Grounded, o.Density, o.AbilityToRotate, tuple(o.Placement.Base),
-                            tuple(o.Placement.Rotation.Q))
-    return {k: rounded(v) for k, v in out.items()}
+    out = {}
+    for o in [asm] + list(asm.Group):
+        values = {p: plain(getattr(o, p)) for p in o.PropertiesList if p not in NOT_SETTINGS}
+        if hasattr(o, "Shape"):
+            values["volume"] = rounded(o.Shape.Volume)
+        out[o.Label] = values
+    return out
 
 
 def saved_fourbar(tmp):
