@@ -10,7 +10,7 @@ import FreeCAD as App
 
 from . import engine, geometry, objects
 from .adapter import Adapter, Result, _vec
-from .objects import joints, parts, shape_of
+from .objects import joints, parts
 
 
 class Transaction:
@@ -510,19 +510,16 @@ def check(asm):
     }
 
 
-def interference(asm):
-    """Pairs of parts whose solids overlap at the current pose, with the overlap volume."""
+def interference(asm, clearance=None):
+    """Pairs of parts whose solids overlap at the current pose, with the overlap volume (parts
+    that only touch do not count). `clearance`, a studies.Clearance of these parts, carries
+    what it learnt from one pose to the next."""
+    from .studies import Clearance, local_shapes
+
     ps = parts(asm)
-    out = []
-    for i in range(len(ps)):
-        for k in range(i + 1, len(ps)):
-            a, b = shape_of(ps[i]), shape_of(ps[k])
-            if not a.BoundBox.intersect(b.BoundBox):
-                continue
-            common = a.common(b)
-            if common.Volume > 1e-9:
-                out.append((ps[i], ps[k], common.Volume))
-    return out
+    if clearance is None:
+        clearance = Clearance(local_shapes(ps), [p.Label for p in ps])
+    return [(ps[i], ps[k], v) for i, k, v in clearance.at([p.Placement for p in ps])]
 
 
 def interference_along(asm, joint, angles_deg, ignore=()):
@@ -536,13 +533,17 @@ def interference_along(asm, joint, angles_deg, ignore=()):
     before = {p.Name: p.Placement for p in parts(asm)}
     skip = {frozenset((a.Name, b.Name)) for a, b in ignore}
     hits = []
+    from .studies import Clearance, local_shapes
+
+    ps = parts(asm)
+    clearance = Clearance(local_shapes(ps), [p.Label for p in ps])
     d = Drag(asm, part)
     try:
         for a in angles_deg:
             r = d.move(_turned(start, pivot, axis_world, a))
             if not r.converged:
                 break
-            for pa, pb, volume in interference(asm):
+            for pa, pb, volume in interference(asm, clearance):
                 if frozenset((pa.Name, pb.Name)) not in skip:
                     hits.append((a, pa, pb, volume))
     finally:

@@ -148,14 +148,8 @@ class Study:
         return [self.adapter.placement_of(p) for p in self.parts]
 
     def local_shapes(self):
-        """Every part's shape in its own frame, so a pose is a placement away (no copy of the
-        geometry per pose)."""
         if self._local is None:
-            self._local = []
-            for p in self.parts:
-                s = da.shape_of(p).copy()
-                s.Placement = p.Placement.inverse().multiply(s.Placement)
-                self._local.append(s)
+            self._local = local_shapes(self.parts)
         return self._local
 
     def rename(self, text):
@@ -195,6 +189,17 @@ class Study:
 
 # ---------------------------------------------------------------------------------------------
 # Interference
+
+
+def local_shapes(parts):
+    """Every part's shape in its own frame, so a pose is a placement away (no copy of the
+    geometry per pose)."""
+    out = []
+    for p in parts:
+        s = da.shape_of(p).copy()
+        s.Placement = p.Placement.inverse().multiply(s.Placement)
+        out.append(s)
+    return out
 
 
 class Clearance:
