@@ -1,7 +1,7 @@
 """Interference along a sweep, timed against its peer: the same sweep (poses computed once), its
 collisions found by dispcon_fc.studies.Clearance (boxes in both parts' frames first, unchanged
 pairs cached, booleans only where boxes truly overlap) and by the way the workbench's
-interference_along does it (world boxes, then OpenCascade's common() for every pair whose boxes
+interference_along worked before it used Clearance (world boxes, then OpenCascade's common() for every pair whose boxes
 meet). Both must find the same collisions. Run with freecadcmd; the samples come from
 samples/freecad/build_samples.py, the request from the environment (freecadcmd opens its
 arguments as documents):
