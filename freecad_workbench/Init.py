@@ -14,10 +14,13 @@ if _here and _here not in sys.path:
 class _DispconRestoreObserver:
     # FreeCAD 0.20's App has no "restore finished" signal; a document opened is made the active
     # one once its objects are read, so activation is where the proxies are given back.
+    # (FreeCAD runs this file inside a function: methods import what they use.)
     def slotActivateDocument(self, doc):
         if any("DispconType" in o.PropertiesList or "JointType" in o.PropertiesList for o in doc.Objects):
             from dispcon_fc import objects
 
+            # (A document built headless gets its view providers here, which FreeCAD counts as
+            # a modification; 0.20 offers no way to say otherwise.)
             objects.adopt_document(doc)
 
 

@@ -1,13 +1,14 @@
 # dispcon workbench: its toolbars and menu; the work is in dispcon_fc.
+# FreeCAD runs this file inside a function: a name defined at its top level is gone by the time
+# the workbench's methods run, so they import what they use and keep constants on the class.
 import FreeCADGui as Gui
-
-# Toolbars are named so: the first of them starts a row of its own (see Activated).
-TOOLBAR = "Dispcon %s"
 
 
 class DispconWorkbench(Gui.Workbench):
     MenuText = "Dispcon"
     ToolTip = "Mechanism assembly with displacement constraints (Gascuel & Gascuel 1994)"
+    # Toolbars are named so: the first of them starts a row of its own (see Activated).
+    TOOLBAR = "Dispcon %s"
 
     def __init__(self):
         # The workbench's own icon, beside this file (here, or in the Mod folder it was installed in).
@@ -20,7 +21,7 @@ class DispconWorkbench(Gui.Workbench):
 
         groups = commands.register()
         for title, names in groups:
-            self.appendToolbar(TOOLBAR % title, names)
+            self.appendToolbar(self.TOOLBAR % title, names)
         # One menu: the build commands, the joints in a submenu, then motion and analysis, with
         # separators between the groups.
         for k, (title, names) in enumerate(groups):
@@ -34,14 +35,15 @@ class DispconWorkbench(Gui.Workbench):
     def Activated(self):
         # FreeCAD's own toolbars fill the first row at 1280 px: ours start a row of their own, so
         # Solve, Drag and Check never hide behind a toolbar's ">>".
+        import FreeCADGui
         from PySide2 import QtWidgets
 
-        window = Gui.getMainWindow()
+        window = FreeCADGui.getMainWindow()
         bars = [tb for tb in window.findChildren(QtWidgets.QToolBar)
-                if tb.objectName().startswith(TOOLBAR % "")]
+                if tb.objectName().startswith(self.TOOLBAR % "")]
         if bars:
             first = min(bars, key=lambda tb: (tb.y(), tb.x()))
-            named = [tb for tb in bars if tb.objectName() == TOOLBAR % "Assembly"]
+            named = [tb for tb in bars if tb.objectName() == self.TOOLBAR % "Assembly"]
             first = named[0] if named else first
             if not window.toolBarBreak(first):
                 window.insertToolBarBreak(first)

@@ -1,5 +1,6 @@
 """The workbench's scripting API in real FreeCAD (freecadcmd): build assemblies from parts and
 picked sub-elements, solve, drag, save, reopen, against analytic answers."""
+import ast
 import math
 import os
 import re
@@ -734,7 +735,31 @@ class Samples(unittest.TestCase):
                                                   "side-rods.FCStd", "slider-crank.FCStd"])
 
 
-UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples)
+class WorkbenchFiles(unittest.TestCase):
+    def test_methods_use_no_name_from_the_top_of_init_files(self):
+        """FreeCAD 0.20 runs Init.py and InitGui.py so that their top-level names are gone by the time
+        a method of theirs runs (installed, the workbench once failed to start: "name 'TOOLBAR' is
+        not defined"): methods import what they use."""
+        for name in ("Init.py", "InitGui.py"):
+            tree = ast.parse(open(os.path.join(REPO, "freecad_workbench", name)).read())
+            top = set()
+            for node in tree.body:
+                if isinstance(node, (ast.Import, ast.ImportFrom)):
+                    top |= {(a.asname or a.name).split(".")[0] for a in node.names}
+                elif isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+                    top.add(node.name)
+                elif isinstance(node, ast.Assign):
+                    top |= {n.id for t in node.targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+            for cls in (n for n in tree.body if isinstance(n, ast.ClassDef)):
+                for method in (n for n in cls.body if isinstance(n, ast.FunctionDef)):
+                    used = {n.id for n in ast.walk(method) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+                    local = {n.id for n in ast.walk(method) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+                    local |= {(a.asname or a.name).split(".")[0] for n in ast.walk(method)
+                              if isinstance(n, (ast.Import, ast.ImportFrom)) for a in n.names}
+                    self.assertEqual((used & top) - local, set(), "%s: %s.%s" % (name, cls.name, method.name))
+
+
+UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles)
 
 
 def run_unit_tests():
