@@ -98,18 +98,23 @@ def _sweep(req, out, err):
     return study.exit_code()
 
 
-def _save(req, doc, err):
-    """--write OUT (never the input unless --in-place), or --in-place alone."""
-    target = req.get("write")
-    same = target and os.path.realpath(target) == os.path.realpath(req["file"])
-    if same and not req.get("in_place"):
-        err.write("%s: error: --write names the input file: add --in-place to overwrite it\n" % target)
-        return False
-    if target:
-        doc.saveAs(os.path.abspath(target))
-    elif req.get("in_place"):
-        doc.save()
-    return True
+def _save(req, doc):
+    """--write OUT, or --in-place alone (_refuse_in_place_alone has refused the input as OUT
+    without --in-place before anything was done)."""
+    target = req.get("write") or (req["file"] if req.get("in_place") else None)
+    if target is None:
+        return
+    try:
+        if req.get("write"):
+            doc.saveAs(os.path.abspath(target))
+        else:
+            doc.save()
+    except Exception as e:  # FreeCAD raises its own exception types for unwritable files
+        detail = e.args[0].get("swhat", e) if e.args and isinstance(e.args[0], dict) else e
+        raise studies.StudyError("%s: error: cannot write the document (%s)" % (target, detail))
+    # FreeCAD 0.20 may report a failed save on its console only.
+    if not os.path.isfile(target):
+        raise studies.StudyError("%s: error: cannot write the document" % target)
 
 
 def _refuse_in_place_alone(req, err):
@@ -126,10 +131,9 @@ def _assemble(req, out, err):
         return 2
     doc, asm = _open(req)
     r = studies.assemble(asm, **_options(req))
-    if r["converged"] and not _save(req, doc, err):
-        return 2
-    text = ["%s: %s" % (req["file"], r["message"]),
-            "  %-16s%-40s%s" % ("part", "position", "rotation (axis, degrees)")]
+    if r["converged"]:
+        _save(req, doc)
+    text = ["%s: %s" % (req["file"], r["message"]), "  %-16s%s" % ("part", "position")]
     for label, b in r["bodies"].items():
         p = b["position"]
         text.append("  %-16s%12.6f%12.6f%12.6f" % (label, p[0], p[1], p[2]))
@@ -150,8 +154,8 @@ def _drag(req, out, err):
         colliding = [clearance.at(pls) for pls in study.placements]
         if not _write(req["svg"], motion_svg.drag_svg(study, colliding, req.get("view") or "iso"), err):
             return 2
-    if study.converged and not _save(req, doc, err):
-        return 2
+    if study.converged:
+        _save(req, doc)
     _emit(req, out, _clean(r), "%s: %s\n" % (req["file"], r["message"]))
     return 0 if study.converged else 3
 

@@ -211,6 +211,10 @@ class Write(unittest.TestCase):
             code, r, err = run_json("assemble", src, "--write", os.path.join(tmp, "a.FCStd"))
             self.assertEqual(code, 0, err)
             self.assertEqual(r["status"], "converged")
+            # A document that cannot be written is an error naming it, not a silent success.
+            code, out, err = run("assemble", src, "--write", "/proc/a.FCStd")
+            self.assertEqual((code, out), (2, ""))
+            self.assertIn("/proc/a.FCStd: error: cannot write the document", err)
 
 
 class BadInput(unittest.TestCase):
