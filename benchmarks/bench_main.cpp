@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common.hpp"
+#include "dispcon/solve/diagnostics.hpp"
 #include "dispcon/solve/solver.hpp"
 #include "mechanisms.hpp"
 #include "slvs_include.hpp"
@@ -61,6 +62,24 @@ void BM_FourBars_slvs_rigid(benchmark::State& state) {
   solvespace(state, bench::fourbars_slvs_rigid);
 }
 BENCHMARK(BM_FourBars_slvs_rigid)->Apply([](auto* b) { fourbar_counts(b, 400); }) -> Iterations(3);
+
+// `dispcon check` (assembly, DOF, per-body DOF, redundant joints) of N independent four-bars,
+// ranked group by group. Refuses to time an answer other than N times that of one four-bar.
+void BM_Check_FourBars(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Model m = bench::fourbars_dispcon(n);
+  const CheckResult one = check(bench::fourbars_dispcon(1));
+  for (auto _ : state) {
+    const CheckResult c = check(m);
+    if (!c.solve.converged || c.dof != n * one.dof ||
+        c.redundant.size() != static_cast<size_t>(n) * one.redundant.size()) {
+      state.SkipWithError("check's answer is not n times that of one four-bar");
+    }
+    benchmark::DoNotOptimize(c);
+  }
+  state.counters["redundant"] = static_cast<double>(n * one.redundant.size());
+}
+BENCHMARK(BM_Check_FourBars)->Arg(25)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 
 // A closed chain of n point-to-point links, one fixed, from a perturbed circle.
 void BM_ClosedChain(benchmark::State& state) {

@@ -1,9 +1,8 @@
 // Diagnostics at the assembled pose: degrees of freedom from the rank of the constraints'
-// Jacobian (SVD), redundant joints (equations that repeat others), conflicting joints (whose
+// Jacobian (SVD, group by group: rank.cpp), redundant joints (equations that repeat others), conflicting joints (whose
 // removal lets the rest assemble), limits in contact, and range-of-motion sweeps.
 #include "dispcon/solve/diagnostics.hpp"
 
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,65 +11,38 @@
 #include "dispcon/parts/angle.hpp"
 #include "dispcon/parts/nearest.hpp"
 #include "dispcon/parts/twist.hpp"
-#include "dispcon/solve/jacobian.hpp"
+#include "dispcon/solve/group.hpp"
+#include "dispcon/solve/rank.hpp"
+#include "dispcon/solve/state.hpp"
 
 namespace dispcon {
 
 namespace {
 
-constexpr double kRankTolerance = 1e-8;
-
-// Columns of the bodies that can move (the fixed ones' columns do not count).
-Eigen::MatrixXd movable_columns(const Model& model,
-                                const Eigen::SparseMatrix<double, Eigen::RowMajor>& J,
-                                std::vector<int>& body_of_column) {
-  std::vector<int> cols;
-  body_of_column.clear();
-  for (int i = 1; i < model.body_count(); ++i) {
-    if (model.body(BodyId{i}).fixed) continue;
-    for (int k = 0; k < 6; ++k) cols.push_back(6 * i + k), body_of_column.push_back(i);
-  }
-  const Eigen::MatrixXd dense = Eigen::MatrixXd(J);
-  Eigen::MatrixXd out(dense.rows(), static_cast<Eigen::Index>(cols.size()));
-  for (size_t c = 0; c < cols.size(); ++c)
-    out.col(static_cast<Eigen::Index>(c)) = dense.col(cols[c]);
-  return out;
-}
-
-int rank_of(const Eigen::MatrixXd& A) {
-  if (A.rows() == 0 || A.cols() == 0) return 0;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A);
-  const auto& s = svd.singularValues();
-  if (s.size() == 0 || s(0) == 0) return 0;
-  int r = 0;
-  for (Eigen::Index k = 0; k < s.size(); ++k) r += s(k) > kRankTolerance * s(0);
-  return r;
-}
-
-// Row-equilibrated copy: every row scaled to unit norm (a row in radians and a row in lengths
-// weigh the same), then every column.
-Eigen::MatrixXd equilibrate(Eigen::MatrixXd A) {
-  if (A.rows() == 0 || A.cols() == 0) return A;  // no body can move: an empty row has no data
-  for (Eigen::Index r = 0; r < A.rows(); ++r) {
-    const double n = A.row(r).norm();
-    if (n > 0) A.row(r) /= n;
-  }
-  // Rotation and translation columns have different units; scaling a column changes neither the
-  // rank nor which body a null-space direction moves.
-  for (Eigen::Index c = 0; c < A.cols(); ++c) {
-    const double n = A.col(c).norm();
-    if (n > 0) A.col(c) /= n;
-  }
-  return A;
-}
-
-Model without(const Model& model, JointId skip) {
+// Every body (the same ids) and the joints `keep(c)` accepts.
+template <typename Keep>
+Model with_joints(const Model& model, Keep keep) {
   Model m;
   for (int i = 1; i < model.body_count(); ++i) m.add_body(model.body(BodyId{i}));
   for (int c = 0; c < model.joint_count(); ++c) {
-    if (c != skip.value) m.add_joint(model.joint(JointId{c}));
+    if (keep(c)) m.add_joint(model.joint(JointId{c}));
   }
   return m;
+}
+
+// The group of bodies each joint belongs to (find_groups' index); -1 for an active joint between
+// two bodies that cannot move, -2 for an inactive joint.
+std::vector<int> group_of_joints(const Model& model, const SolveOptions& options) {
+  const SolverState s(model, model.poses(), options, {});
+  std::vector<int> out(s.joints.size(), -1);
+  for (size_t c = 0; c < s.joints.size(); ++c) {
+    if (!s.joints[c].active) out[c] = -2;
+  }
+  const std::vector<Group> groups = find_groups(s);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    for (int c : groups[g].joints) out[static_cast<size_t>(c)] = static_cast<int>(g);
+  }
+  return out;
 }
 
 std::string joint_name(const Model& model, JointId id) {
@@ -88,7 +60,6 @@ CheckResult check(const Model& input, const SolveOptions& options) {
   CheckResult out;
   Model model = input;
   out.solve = assemble(model, options);
-  out.body_dof.assign(static_cast<size_t>(model.body_count()), 0);
   for (const ConstraintReport& c : out.solve.constraints) {
     if (c.at_limit) out.limits_active.push_back(c.joint);
   }
@@ -106,14 +77,28 @@ CheckResult check(const Model& input, const SolveOptions& options) {
     });
     SolveOptions o = options;
     o.max_iterations = std::min(options.max_iterations, 2000);
+    // Groups of bodies solve independently: a removal can only mend the group it is in, so when
+    // the violated joints lie in several groups no single removal can help, and a removal is
+    // tried on its group alone. Only a removal that mends its group is tried on the whole model.
+    const std::vector<int> group = group_of_joints(input, options);
+    bool one_group = true;
     for (const ConstraintReport& c : bad) {
-      Model trial = without(input, c.joint);
+      one_group = one_group && group[static_cast<size_t>(c.joint.value)] ==
+                                   group[static_cast<size_t>(bad[0].joint.value)];
+    }
+    for (size_t k = 0; one_group && k < bad.size(); ++k) {
+      const JointId c = bad[k].joint;
+      const int g = group[static_cast<size_t>(c.value)];
+      // The group alone, the other bodies free (they cost nothing), then the whole model.
+      Model part = with_joints(
+          input, [&](int j) { return j != c.value && group[static_cast<size_t>(j)] == g; });
+      if (!assemble(part, o).converged) continue;
+      Model trial = with_joints(input, [&](int j) { return j != c.value; });
       if (assemble(trial, o).converged) {
-        removed = c.joint.value;
+        removed = c.value;
         model = trial;
-        out.conflicting.push_back(c.joint);
-        out.advice.push_back("removing " + joint_name(input, c.joint) +
-                             " makes the model consistent");
+        out.conflicting.push_back(c);
+        out.advice.push_back("removing " + joint_name(input, c) + " makes the model consistent");
         break;
       }
     }
@@ -125,63 +110,21 @@ CheckResult check(const Model& input, const SolveOptions& options) {
     }
   }
 
-  // Degrees of freedom and redundancy at the assembled pose; when a conflicting joint was found,
-  // of the consistent model without it (joint numbers stay those of the input).
+  // Degrees of freedom and redundancy at the assembled pose, group by group; when a conflicting
+  // joint was found, of the consistent model without it (joint numbers stay those of the input).
   auto to_input = [&](int c) { return removed >= 0 && c >= removed ? c + 1 : c; };
-  const std::vector<Pose> poses = model.poses();
-  const ConstraintJacobian cj = constraint_jacobian(model, poses, options);
-  std::vector<int> body_of_column;
-  const Eigen::MatrixXd A = equilibrate(movable_columns(model, cj.J, body_of_column));
-  const int n = static_cast<int>(A.cols());
-  const int rank = rank_of(A);
-  out.dof = n - rank;
-
-  // Per body: how many independent motions it has in the mechanism's nullspace.
-  if (out.dof > 0 && A.rows() > 0) {
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-    const Eigen::MatrixXd N = svd.matrixV().rightCols(out.dof);
-    for (int i = 1; i < model.body_count(); ++i) {
-      std::vector<Eigen::Index> rows;
-      for (int c = 0; c < n; ++c) {
-        if (body_of_column[static_cast<size_t>(c)] == i) rows.push_back(c);
-      }
-      if (rows.empty()) continue;
-      Eigen::MatrixXd block(static_cast<Eigen::Index>(rows.size()), N.cols());
-      for (size_t r = 0; r < rows.size(); ++r)
-        block.row(static_cast<Eigen::Index>(r)) = N.row(rows[r]);
-      out.body_dof[static_cast<size_t>(i)] = rank_of(block);
-    }
-  } else if (A.rows() == 0) {
-    for (int i = 1; i < model.body_count(); ++i) {
-      out.body_dof[static_cast<size_t>(i)] = model.body(BodyId{i}).fixed ? 0 : 6;
-    }
-  }
-
-  // Redundant: going through the joints in order, a joint whose rows add less rank than they
-  // count repeats equations of the joints before it.
-  Eigen::MatrixXd acc(0, A.cols());
-  int acc_rank = 0;
-  for (int c = 0; c < model.joint_count(); ++c) {
-    std::vector<Eigen::Index> rows;
-    for (size_t r = 0; r < cj.rows.size(); ++r) {
-      if (cj.rows[r].joint.value == c) rows.push_back(static_cast<Eigen::Index>(r));
-    }
-    if (rows.empty()) continue;
-    Eigen::MatrixXd next(acc.rows() + static_cast<Eigen::Index>(rows.size()), A.cols());
-    next << acc, A(rows, Eigen::all);
-    const int next_rank = rank_of(next);
-    const int repeated = static_cast<int>(rows.size()) - (next_rank - acc_rank);
-    if (repeated > 0) {
-      out.redundant.push_back(JointId{to_input(c)});
-      std::ostringstream a;
-      a << joint_name(input, JointId{to_input(c)}) << ": " << repeated << " of its " << rows.size()
-        << " equations repeat those of the joints before it; the model stays consistent and "
-           "keeps its mobility without them (for a planar linkage modelled in 3D, make one of "
-           "its revolutes a point-to-point joint)";
-      out.advice.push_back(a.str());
-    }
-    acc = std::move(next);
-    acc_rank = next_rank;
+  RankReport rank = rank_by_group(model, options);
+  out.dof = rank.dof;
+  out.body_dof = std::move(rank.body_dof);
+  for (const Repeated& r : rank.redundant) {
+    const JointId id{to_input(r.joint.value)};
+    out.redundant.push_back(id);
+    std::ostringstream a;
+    a << joint_name(input, id) << ": " << r.repeated << " of its " << r.equations
+      << " equations repeat those of the joints before it; the model stays consistent and "
+         "keeps its mobility without them (for a planar linkage modelled in 3D, make one of "
+         "its revolutes a point-to-point joint)";
+    out.advice.push_back(a.str());
   }
 
   std::ostringstream msg;

@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "dispcon/io/dcl_reader.hpp"
 #include "dispcon/io/sweep_plot.hpp"
+#include "dispcon/solve/rank.hpp"
 #include "support/samples.hpp"
 
 namespace dispcon {
@@ -93,6 +95,90 @@ TEST(Check, ConflictingJointIsNamedWithItsLine) {
   // The rest of the report is about the consistent model without it: the four-bar.
   EXPECT_EQ(c.dof, 1);
   EXPECT_EQ(values(c.redundant), std::vector<int>{3});
+}
+
+// Several samples side by side in one model, each its own group of bodies (names prefixed).
+Model side_by_side(const std::vector<std::string>& files) {
+  Model m;
+  for (size_t k = 0; k < files.size(); ++k) {
+    const Model part = sample(files[k]);
+    std::vector<BodyId> id(static_cast<size_t>(part.body_count()), Model::kWorld);
+    for (int i = 1; i < part.body_count(); ++i) {
+      Body b = part.body(BodyId{i});
+      b.name = "s" + std::to_string(k) + "_" + b.name;
+      id[static_cast<size_t>(i)] = m.add_body(b);
+    }
+    for (const Joint& j : part.joints()) {
+      Joint c = j;
+      c.body1 = id[static_cast<size_t>(j.body1.value)];
+      c.body2 = id[static_cast<size_t>(j.body2.value)];
+      m.add_joint(c);
+    }
+  }
+  return m;
+}
+
+TEST(Check, GroupByGroupGivesTheWholeJacobiansAnswers) {
+  const std::vector<std::string> files = {"fourbar.dcl",     "bennett.dcl", "sarrus.dcl",
+                                          "welded.dcl",      "peaucellier.dcl",
+                                          "slider-crank.dcl", "double-rocker.dcl", "robot-arm.dcl"};
+  Model m = side_by_side(files);
+  Body free_body;  // a group without joints
+  free_body.name = "loose";
+  m.add_body(free_body);
+  ASSERT_TRUE(assemble(m).converged);
+  const RankReport grouped = rank_by_group(m, {});
+  const RankReport whole = rank_whole(m, {});
+  EXPECT_EQ(grouped.dof, whole.dof);
+  EXPECT_EQ(grouped.body_dof, whole.body_dof);
+  ASSERT_EQ(grouped.redundant.size(), whole.redundant.size());
+  for (size_t k = 0; k < whole.redundant.size(); ++k) {
+    EXPECT_EQ(grouped.redundant[k].joint.value, whole.redundant[k].joint.value);
+    EXPECT_EQ(grouped.redundant[k].equations, whole.redundant[k].equations);
+    EXPECT_EQ(grouped.redundant[k].repeated, whole.redundant[k].repeated);
+  }
+  // And check() of the whole is the sum of its parts checked one by one.
+  const CheckResult c = check(m);
+  int dof = 6, redundant = 0;  // the loose body's six
+  for (const std::string& f : files) {
+    const CheckResult one = check(sample(f));
+    dof += one.dof;
+    redundant += static_cast<int>(one.redundant.size());
+  }
+  EXPECT_EQ(c.dof, dof);
+  EXPECT_EQ(c.dof, whole.dof);
+  EXPECT_EQ(static_cast<int>(c.redundant.size()), redundant);
+  EXPECT_GT(redundant, 0);
+  EXPECT_EQ(c.body_dof.back(), 6);
+}
+
+TEST(Check, AConflictInOneGroupIsFoundThere) {
+  // The conflicting four-bar third of three: its joint 4 is joint 4 + 4 + 4 = 12 here.
+  const Model m = side_by_side({"fourbar.dcl", "slider-crank.dcl", "conflicting.dcl"});
+  ASSERT_EQ(m.joint(JointId{12}).body2, *m.find("s2_rocker"));
+  const CheckResult c = check(m);
+  EXPECT_FALSE(c.solve.converged);
+  EXPECT_EQ(values(c.conflicting), std::vector<int>{12});
+  // The rest is reported of the model without it: each linkage's closing joint redundant.
+  EXPECT_EQ(c.dof, 3);
+  EXPECT_EQ(values(c.redundant), (std::vector<int>{3, 7, 11}))
+      << ::testing::PrintToString(values(c.redundant));
+}
+
+TEST(Check, ConflictsInTwoGroupsHaveNoSingleRemoval) {
+  const CheckResult c = check(side_by_side({"conflicting.dcl", "fourbar.dcl", "conflicting.dcl"}));
+  EXPECT_FALSE(c.solve.converged);
+  std::vector<int> violated;
+  for (JointId j : c.solve.violated()) violated.push_back(j.value);
+  std::vector<int> conflicting = values(c.conflicting);
+  std::sort(conflicting.begin(), conflicting.end());
+  EXPECT_EQ(conflicting, violated);
+  // Both groups' culprits are among them.
+  EXPECT_NE(std::find(conflicting.begin(), conflicting.end(), 4), conflicting.end());
+  EXPECT_NE(std::find(conflicting.begin(), conflicting.end(), 13), conflicting.end());
+  bool said = false;
+  for (const std::string& a : c.advice) said |= a.find("no single joint") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(Check, LimitsInContactAreListed) {
