@@ -4,20 +4,25 @@
 #include "bindings.hpp"
 #include "dispcon/io/dcl_reader.hpp"
 #include "dispcon/io/dcl_writer.hpp"
+#include "dispcon/model/joint_kinds.hpp"
 
 namespace dispcon::py {
 
 namespace {
 
+// Errors raise ValueError with every line; warnings (bounds clamped) go to Python's warnings
+// module, each as the command line prints it.
 Model parsed(ParseResult r) {
   if (!r.ok()) throw std::invalid_argument(r.messages());
+  for (const Diagnostic& d : r.diagnostics)
+    if (!d.error) warn(d.format());
   return std::move(*r.model);
 }
 
 // What a joint joins and where it was declared; read by attribute, or by key as a dict.
 struct JointInfo {
   int index = 0, line = 0;
-  std::string object1, object2, label;
+  std::string object1, object2, label, kind;
 };
 
 // A live view of one body of a model: read only, changed through the model's checked setters.
@@ -50,6 +55,115 @@ double bound(const pyb::sequence& s, size_t k, double fallback) {
   return number(s[k], "a bound");
 }
 
+
+std::optional<Range> range(const pyb::handle& h, const char* what) {
+  if (h.is_none()) return std::nullopt;
+  const pyb::sequence s = items(pyb::reinterpret_borrow<pyb::object>(h), 2, what);
+  return Range{number(s[0], what), number(s[1], what)};
+}
+
+// A joint from a row of joint_kinds(): its anchors and the limits it takes, by keyword.
+Joint joint_of_kind(const Model& model, const std::string& kind, const std::string& object1,
+                    const std::string& object2, const pyb::kwargs& kw) {
+  const JointKindRow* row = find_joint_kind(kind);
+  if (!row) {
+    std::string known;
+    for (const JointKindRow& r : joint_kinds()) known += (known.empty() ? "" : ", ") + std::string(r.name);
+    throw std::invalid_argument("unknown joint kind '" + kind + "' (expected " + known + ")");
+  }
+  Anchor at1, at2;
+  JointLimits limits;
+  std::vector<Vec3> curve;
+  for (const auto& item : kw) {
+    const std::string key = pyb::str(item.first);
+    const pyb::handle v = item.second;
+    if (key == "point1") {
+      at1.point = vec3(v, "point1");
+    } else if (key == "point2") {
+      at2.point = vec3(v, "point2");
+    } else if (key == "axis1") {
+      at1.axis = vec3(v, "axis1");
+    } else if (key == "axis2") {
+      at2.axis = vec3(v, "axis2");
+    } else if (key == "across1") {
+      at1.across = vec3(v, "across1");
+    } else if (key == "across2") {
+      at2.across = vec3(v, "across2");
+    } else if (key == "curve") {
+      for (const pyb::handle p : items(pyb::reinterpret_borrow<pyb::object>(v), 2, "curve"))
+        curve.push_back(vec3(p, "curve point"));
+    } else if (key == "turn") {
+      limits.turn = range(v, "turn (min, max)");
+    } else if (key == "travel") {
+      limits.travel = range(v, "travel (min, max)");
+    } else if (key == "angle") {
+      limits.angle = range(v, "angle (min, max)");
+    } else if (key == "distance") {
+      limits.distance = range(v, "distance (min, max)");
+    } else if (key == "cone") {
+      if (!v.is_none()) limits.cone = number(v, "cone");
+    } else {
+      throw std::invalid_argument(
+          "add_joint(kind='" + kind + "') takes point1, point2, axis1, axis2, across1, across2, "
+          "curve, turn, travel, cone, angle, distance; not '" + key + "'");
+    }
+  }
+  return make_joint(row->kind, body_id(model, object1), at1, body_id(model, object2), at2, limits,
+                    curve);
+}
+
+// A joint from the .dcl statements, each a tuple in the order the statement is written (the
+// arguments of its row of components(), then min and max).
+Joint joint_of_components(const pyb::kwargs& kw) {
+  Joint j;
+  const ComponentRow* guide = nullptr;
+  for (const auto& item : kw) {
+    const std::string key = pyb::str(item.first);
+    const ComponentRow* row = find_component(key);
+    if (!row) {
+      std::string known;
+      for (const ComponentRow& r : components()) known += std::string(r.keyword) + ", ";
+      throw std::invalid_argument("add_joint takes kind=..., or the statements " + known +
+                                  "move, time, label; not '" + key + "'");
+    }
+    if (item.second.is_none()) continue;
+    if (row->guide && guide)
+      throw std::invalid_argument(std::string("a joint has at most one translation guide: '") +
+                                  key + "' with '" + guide->keyword + "'");
+    if (row->guide) guide = row;
+    const pyb::object o = pyb::reinterpret_borrow<pyb::object>(item.second);
+    ComponentValues v;
+    v.bounds = row->defaults;
+    // polyline=[p, q, ...] is its list of points; every other statement is a tuple.
+    const bool list_only = row->args.size() == 1 && row->args[0].kind == Arg::Points;
+    const pyb::sequence s = items(o, list_only ? 2 : row->args.size(), key.c_str());
+    size_t k = 0;
+    for (const ArgSpec& a : row->args) {
+      const std::string what = key + " " + a.name;
+      switch (a.kind) {
+        case Arg::Point:
+        case Arg::Direction:
+          v.vectors.push_back(vec3(s[k++], what.c_str()));
+          break;
+        case Arg::PositiveLength:
+        case Arg::NonNegativeLength:
+          v.scalars.push_back(number(s[k++], what.c_str()));
+          break;
+        case Arg::Points:
+          for (const pyb::handle p : s) v.points.push_back(vec3(p, what.c_str()));
+          k = pyb::len(s);
+          break;
+      }
+    }
+    if (row->has_bounds) {
+      v.bounds.min = bound(s, k, row->defaults.min);
+      v.bounds.max = bound(s, k + 1, row->defaults.max);
+    }
+    set_component(j, row->id, v);
+  }
+  return j;
+}
+
 }  // namespace
 
 ModelClass bind_model(pyb::module_& m) {
@@ -59,6 +173,7 @@ ModelClass bind_model(pyb::module_& m) {
       .def_readonly("object2", &JointInfo::object2)
       .def_readonly("line", &JointInfo::line)
       .def_readonly("label", &JointInfo::label)
+      .def_readonly("kind", &JointInfo::kind, "its row of joint_kinds(), or 'constraint'")
       .def(
           "__getitem__",
           [](const JointInfo& j, const std::string& key) -> pyb::object {
@@ -67,6 +182,7 @@ ModelClass bind_model(pyb::module_& m) {
             if (key == "object1") return pyb::str(j.object1);
             if (key == "object2") return pyb::str(j.object2);
             if (key == "label") return pyb::str(j.label);
+            if (key == "kind") return pyb::str(j.kind);
             throw pyb::key_error(key);
           },
           pyb::arg("key"))
@@ -150,100 +266,32 @@ ModelClass bind_model(pyb::module_& m) {
       .def(
           "add_joint",
           [](Model& model, const std::string& object2, const std::string& object1,
-             const pyb::object& hinge, const pyb::object& axial, const pyb::object& planar,
-             const pyb::object& sphere, const pyb::object& circle, const pyb::object& cylinder,
-             const pyb::object& polyline, const pyb::object& angle, const pyb::object& twist,
-             std::optional<double> move, const pyb::object& time, const std::string& label) {
-            Joint j;
+             const std::optional<std::string>& kind, std::optional<double> move,
+             const pyb::object& time, const std::string& label, const pyb::kwargs& parts) {
+            Joint j = kind ? joint_of_kind(model, *kind, object1, object2, parts)
+                           : joint_of_components(parts);
             j.body1 = body_id(model, object1);
             j.body2 = body_id(model, object2);
             j.label = label;
             j.move = move;
-            if (!hinge.is_none()) {
-              const pyb::sequence h = items(hinge, 2, "hinge (P1, P2)");
-              j.has_hinge = true;
-              j.p1 = vec3(h[0], "hinge P1");
-              j.p2 = vec3(h[1], "hinge P2");
-            }
-            int guides = 0;
-            auto guide = [&](GuideKind kind) {
-              ++guides;
-              Guide g;
-              g.kind = kind;
-              return g;
-            };
-            if (!axial.is_none()) {
-              const pyb::sequence s = items(axial, 1, "axial (u, min, max)");
-              Guide g = guide(GuideKind::Axial);
-              g.dir = vec3(s[0], "axial u");
-              g.min = bound(s, 1, -kInf);
-              g.max = bound(s, 2, kInf);
-              j.guide = g;
-            }
-            if (!planar.is_none()) {
-              const pyb::sequence s = items(planar, 1, "planar (n, min, max)");
-              Guide g = guide(GuideKind::Planar);
-              g.dir = vec3(s[0], "planar n");
-              g.min = bound(s, 1, 0);
-              g.max = bound(s, 2, kInf);
-              j.guide = g;
-            }
-            if (!sphere.is_none()) {
-              const pyb::sequence s = items(sphere, 0, "sphere (min, max)");
-              Guide g = guide(GuideKind::Sphere);
-              g.min = bound(s, 0, 0);
-              g.max = bound(s, 1, kInf);
-              j.guide = g;
-            }
-            if (!circle.is_none()) {
-              const pyb::sequence s = items(circle, 2, "circle (n, r)");
-              Guide g = guide(GuideKind::Circle);
-              g.dir = vec3(s[0], "circle n");
-              g.radius = number(s[1], "circle r");
-              j.guide = g;
-            }
-            if (!cylinder.is_none()) {
-              const pyb::sequence s = items(cylinder, 2, "cylinder (u, r, min, max)");
-              Guide g = guide(GuideKind::Cylinder);
-              g.dir = vec3(s[0], "cylinder u");
-              g.radius = number(s[1], "cylinder r");
-              g.min = bound(s, 2, -kInf);
-              g.max = bound(s, 3, kInf);
-              j.guide = g;
-            }
-            if (!polyline.is_none()) {
-              const pyb::sequence s = items(polyline, 2, "polyline");
-              Guide g = guide(GuideKind::Polyline);
-              for (const pyb::handle p : s) g.points.push_back(vec3(p, "polyline point"));
-              j.guide = g;
-            }
-            if (guides > 1) {
-              throw std::invalid_argument("a joint has at most one translation guide");
-            }
-            if (!angle.is_none()) {
-              const pyb::sequence s = items(angle, 2, "angle (a1, a2, min, max)");
-              j.angle = AngleSpec{vec3(s[0], "angle a1"), vec3(s[1], "angle a2"), bound(s, 2, 0),
-                                  bound(s, 3, kPi)};
-            }
-            if (!twist.is_none()) {
-              const pyb::sequence s = items(twist, 2, "twist (b1, b2, min, max)");
-              j.twist = TwistSpec{vec3(s[0], "twist b1"), vec3(s[1], "twist b2"), bound(s, 2, 0),
-                                  bound(s, 3, 0)};
-            }
             if (!time.is_none()) {
               const pyb::sequence s = items(time, 2, "time (t0, t1)");
               j.t0 = number(s[0], "time t0");
               j.t1 = number(s[1], "time t1");
             }
-            return model.add_joint(j).value;
+            const size_t warned = model.warnings().size();
+            const JointId id = model.add_joint(j);
+            for (size_t k = warned; k < model.warnings().size(); ++k)
+              warn("joint " + std::to_string(id.value) + ": " + model.warnings()[k].message);
+            return id.value;
           },
-          pyb::arg("object2"), pyb::arg("object1") = "world", pyb::arg("hinge") = pyb::none(),
-          pyb::arg("axial") = pyb::none(), pyb::arg("planar") = pyb::none(),
-          pyb::arg("sphere") = pyb::none(), pyb::arg("circle") = pyb::none(),
-          pyb::arg("cylinder") = pyb::none(), pyb::arg("polyline") = pyb::none(),
-          pyb::arg("angle") = pyb::none(), pyb::arg("twist") = pyb::none(),
+          pyb::arg("object2"), pyb::arg("object1") = "world", pyb::arg("kind") = pyb::none(),
           pyb::arg("move") = pyb::none(), pyb::arg("time") = pyb::none(), pyb::arg("label") = "",
-          "Adds a joint (a constraint block) and returns its index.")
+          "Adds a joint and returns its index. Either a kind (dispcon.joint_kinds()) with\n"
+          "point1, point2, axis1, axis2, across1, across2, curve and its limits (turn, travel,\n"
+          "cone, angle, distance), or the .dcl statements (hinge, axial, planar, sphere, circle,\n"
+          "cylinder, polyline, angle, twist). A bound clamped into its range warns\n"
+          "(dispcon.ModelWarning).")
       .def("body_names",
            [](const Model& model) {
              std::vector<std::string> out;
@@ -277,10 +325,10 @@ ModelClass bind_model(pyb::module_& m) {
               throw std::invalid_argument("no joint " + std::to_string(i));
             const Joint& j = model.joint(JointId{i});
             return JointInfo{i, j.line, model.body(j.body1).name, model.body(j.body2).name,
-                             j.label};
+                             j.label, kind_name(j)};
           },
           pyb::arg("index"),
-          "The joint's index, object1, object2, line (0 if built in code), label.")
+          "The joint's index, object1, object2, line (0 if built in code), label, kind.")
       .def("to_dcl", &write_dcl, "The model as .dcl text.")
       .def(
           "save",

@@ -24,6 +24,10 @@ void bind_solve(pyb::module_& m, ModelClass& model);
 void bind_diagnostics(pyb::module_& m, ModelClass& model);
 void bind_dynamics(pyb::module_& m, ModelClass& model);
 void bind_results(pyb::module_& m);
+void bind_vocabulary(pyb::module_& m);
+
+// warnings.warn(message, dispcon.ModelWarning): what the model changed of a caller's values.
+void warn(const std::string& message);
 
 // SolveOptions from keyword arguments; ValueError for an unknown name.
 SolveOptions solve_options(const pyb::kwargs& kw,

@@ -6,13 +6,11 @@
 #include <cstdlib>
 #include <limits>
 
+#include "dispcon/model/model.hpp"
+
 namespace dispcon {
 
 namespace {
-
-bool name_char(char c) {
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
-}
 
 std::string describe_byte(unsigned char c) {
   char buf[16];
@@ -20,9 +18,48 @@ std::string describe_byte(unsigned char c) {
   return buf;
 }
 
+int hex_digit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
 }  // namespace
 
-std::vector<Token> lex_dcl(std::string_view text, std::vector<LexError>& errors) {
+void LexErrors::add(LexError e) {
+  if (listed.size() < static_cast<size_t>(kErrorCap)) {
+    listed.push_back(std::move(e));
+  } else {
+    ++more;
+  }
+}
+
+std::string quote_string(const std::string& value) {
+  std::string out = "\"";
+  for (const char ch : value) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", c);
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+std::vector<Token> lex_dcl(std::string_view text, LexErrors& errors) {
   std::vector<Token> out;
   size_t i = 0;
   int line = 1, column = 1;
@@ -52,12 +89,12 @@ std::vector<Token> lex_dcl(std::string_view text, std::vector<LexError>& errors)
       while (i < text.size() && !(text[i] == '*' && i + 1 < text.size() && text[i + 1] == '/')) {
         const unsigned char b = static_cast<unsigned char>(text[i]);
         if (b == 0 || (b < 0x20 && b != '\n' && b != '\r' && b != '\t')) {
-          errors.push_back({line, column, "byte " + describe_byte(b) + " is not text"});
+          errors.add({line, column, "byte " + describe_byte(b) + " is not text"});
         }
         advance(1);
       }
       if (i >= text.size()) {
-        errors.push_back({l0, c0, "comment '/*' is never closed with '*/'"});
+        errors.add({l0, c0, "comment '/*' is never closed with '*/'"});
         break;
       }
       advance(2);
@@ -104,7 +141,7 @@ std::vector<Token> lex_dcl(std::string_view text, std::vector<LexError>& errors)
         const bool hex_or_word = body.find_first_of("xXnN") != std::string::npos;
         if (end != t.text.c_str() + t.text.size() || hex_or_word || body.empty()) {
           t.kind = Token::Bad;
-          errors.push_back({t.line, t.column, "malformed number '" + t.text + "'"});
+          errors.add({t.line, t.column, "malformed number '" + t.text + "'"});
         } else {
           t.kind = Token::Number;
           t.value = v;
@@ -114,9 +151,62 @@ std::vector<Token> lex_dcl(std::string_view text, std::vector<LexError>& errors)
       out.push_back(t);
       continue;
     }
+    if (c == '"') {
+      // A string ends at the next unescaped quote on the same line: a lost quote cannot
+      // swallow the rest of the file.
+      t.kind = Token::String;
+      advance(1);
+      bool closed = false, bad = false;
+      while (i < text.size() && text[i] != '\n') {
+        const unsigned char b = static_cast<unsigned char>(text[i]);
+        if (b == '"') {
+          closed = true;
+          advance(1);
+          break;
+        }
+        if (b == '\\') {
+          const char e = i + 1 < text.size() ? text[i + 1] : '\0';
+          const int h1 = i + 2 < text.size() ? hex_digit(text[i + 2]) : -1;
+          const int h2 = i + 3 < text.size() ? hex_digit(text[i + 3]) : -1;
+          if (e == '\\' || e == '"') {
+            t.text += e;
+          } else if (e == 'n' || e == 't' || e == 'r') {
+            t.text += e == 'n' ? '\n' : e == 't' ? '\t' : '\r';
+          } else if (e == 'x' && h1 >= 0 && h2 >= 0) {
+            t.text += static_cast<char>(h1 * 16 + h2);
+            advance(4);
+            continue;
+          } else {
+            errors.add({line, column,
+                        "unknown escape in a string (use \\\\, \\\", \\n, \\t, \\r or \\xHH)"});
+            bad = true;
+            if (e == '\n' || e == '\0') {  // a backslash ending the line escapes nothing
+              advance(1);
+              continue;
+            }
+          }
+          advance(2);
+          continue;
+        }
+        if ((b < 0x20 && b != '\t') || b == 0x7f) {
+          errors.add({line, column, "byte " + describe_byte(b) + " in a string: write it as \\xHH"});
+          bad = true;
+        } else {
+          t.text += static_cast<char>(b);
+        }
+        advance(1);
+      }
+      if (!closed) {
+        errors.add({t.line, t.column, "string is not closed with '\"' on its line"});
+        bad = true;
+      }
+      if (bad) t.kind = Token::Bad;
+      out.push_back(t);
+      continue;
+    }
     if (std::isalpha(c)) {
       size_t j = i;
-      while (j < text.size() && name_char(text[j])) ++j;
+      while (j < text.size() && is_name_char(text[j])) ++j;
       t.kind = Token::Word;
       t.text = std::string(text.substr(i, j - i));
       advance(j - i);
@@ -125,9 +215,9 @@ std::vector<Token> lex_dcl(std::string_view text, std::vector<LexError>& errors)
     }
     t.kind = Token::Bad;
     if (c < 0x20 || c >= 0x7f) {
-      errors.push_back({line, column, "byte " + describe_byte(c) + " is not text"});
+      errors.add({line, column, "byte " + describe_byte(c) + " is not text"});
     } else {
-      errors.push_back(
+      errors.add(
           {line, column, std::string("unexpected character '") + static_cast<char>(c) + "'"});
     }
     advance(1);

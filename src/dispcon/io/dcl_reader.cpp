@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "dispcon/io/dcl_lexer.hpp"
+#include "dispcon/model/joint_kinds.hpp"
 
 namespace dispcon {
 
@@ -46,16 +47,17 @@ struct ObjectBlock {
   Place at;
   Body body;
   Statements seen;
+  bool ok = true;  // parsed without error: the model checks it
 };
 
 struct ConstraintBlock {
   Place at;
   std::string object1 = "world", object2;
-  Place object1_at, object2_at;
   bool has_object2 = false;
   Joint joint;
-  Place guide_at;
   Statements seen;
+  std::string guide;  // the keyword of its translation guide
+  bool ok = true;
 };
 
 // Thrown inside the parser to abandon one statement; caught at statement level.
@@ -64,20 +66,23 @@ struct StatementError {};
 class Parser {
  public:
   Parser(std::string_view text, const std::string& file) : file_(file) {
-    std::vector<LexError> lex_errors;
+    LexErrors lex_errors;
     tokens_ = lex_dcl(text, lex_errors);
-    for (const LexError& e : lex_errors) error({e.line, e.column}, e.message);
+    for (const LexError& e : lex_errors.listed) error({e.line, e.column}, e.message);
+    errors_ += lex_errors.more;
   }
 
   ParseResult run() {
-    while (peek().kind != Token::End && !too_many()) {
+    while (peek().kind != Token::End) {
       const Token& t = peek();
       if (t.kind == Token::Word && t.text == "object") {
         object_block();
       } else if (t.kind == Token::Word && t.text == "constraint") {
         constraint_block();
       } else {
-        error(at(t), "expected 'object' or 'constraint', found " + quote(t));
+        // A bad token was reported by the lexer; saying so twice would double a flood.
+        if (t.kind != Token::Bad)
+          error(at(t), "expected 'object' or 'constraint', found " + quote(t));
         next();
       }
     }
@@ -99,23 +104,26 @@ class Parser {
         return "the end of the file";
       case Token::Semicolon:
         return "';'";
+      case Token::String:
+        return "a string";
       default:
         return "'" + t.text + "'";
     }
   }
-  bool too_many() const { return errors_ >= 100; }
   // The place of a block's statement `keyword`, or the block's own.
   static Place place(const Statements& seen, const std::string& keyword, Place block) {
     const auto it = seen.find(keyword);
     return it == seen.end() ? block : it->second;
   }
 
+  // Past kErrorCap, errors (and warnings) are counted, not listed: a binary file or 200,000
+  // duplicate objects print about a hundred lines, then one line with the count of the rest.
   void error(Place p, const std::string& message) {
-    diagnostics_.push_back({file_, p.line, p.column, true, message});
-    ++errors_;
+    if (errors_++ < kErrorCap) diagnostics_.push_back({file_, p.line, p.column, true, message});
   }
   void warning(Place p, const std::string& message) {
-    diagnostics_.push_back({file_, p.line, p.column, false, message});
+    if (warnings_++ < kErrorCap)
+      diagnostics_.push_back({file_, p.line, p.column, false, message});
   }
 
   // Skips to just after the next ';', or to (not past) `end`, `object`, `constraint`.
@@ -166,16 +174,6 @@ class Parser {
     return v;
   }
 
-  Vec3 direction(const std::string& what) {
-    const Token& first = peek();
-    const Vec3 v = vec3(what);
-    if (v.isZero(0)) {
-      error(at(first), what + " is a zero vector");
-      throw StatementError{};
-    }
-    return v;  // the model makes it a unit vector (without overflow for large components)
-  }
-
   std::string name(const std::string& what) {
     const Token& t = peek();
     if (t.kind != Token::Word) {
@@ -213,29 +211,6 @@ class Parser {
       throw StatementError{};
     }
     next();
-  }
-
-  // Clamps [lo, hi] into [natural_lo, natural_hi] with a warning; min above max is an error.
-  void check_range(Place p, const std::string& what, double& lo, double& hi, double natural_lo,
-                   double natural_hi) {
-    if (lo > hi) {
-      std::ostringstream m;
-      m << what << ": min " << lo << " is above max " << hi;
-      error(p, m.str());
-      throw StatementError{};
-    }
-    auto clamp = [&](double& v, const char* which) {
-      if (v < natural_lo || v > natural_hi) {
-        const double c = v < natural_lo ? natural_lo : natural_hi;
-        std::ostringstream m;
-        m << what << " " << which << " " << v << " is outside [" << natural_lo << ", " << natural_hi
-          << "]; clamped to " << c;
-        warning(p, m.str());
-        v = c;
-      }
-    };
-    clamp(lo, "min");
-    clamp(hi, "max");
   }
 
   // A block's statement keyword: a word, not given before in the block (`seen` records it).
@@ -280,6 +255,7 @@ class Parser {
     ObjectBlock ob;
     ob.at = at(kw);
     ob.body.line = kw.line;
+    const long long errors_before = errors_;
     try {
       ob.body.name = name("an object name");
       if (ob.body.name == "world") {
@@ -291,7 +267,7 @@ class Parser {
     }
     Statements& seen = ob.seen;
     Vec3 rotation = Vec3::Zero();
-    while (!block_end("object '" + ob.body.name + "'", ob.at) && !too_many()) {
+    while (!block_end("object '" + ob.body.name + "'", ob.at)) {
       const Token& t = next();
       try {
         const std::string& k = keyword(t, "object", "object '" + ob.body.name + "'", seen);
@@ -349,7 +325,47 @@ class Parser {
     } catch (const ValueError& e) {
       error(place(ob.seen, e.field(), ob.at), "object '" + ob.body.name + "': " + e.what());
     }
+    ob.ok = errors_ == errors_before;
     objects_.push_back(ob);
+  }
+
+  // A component's statement (hinge, a guide, angle, twist) as its row of components() says:
+  // its arguments, then `{min} {max}` or `;`. The model checks the values.
+  void component_statement(const ComponentRow& row, const std::string& k, ConstraintBlock& cb) {
+    ComponentValues v;
+    for (const ArgSpec& a : row.args) {
+      const std::string what = k + " " + a.name;
+      switch (a.kind) {
+        case Arg::Point:
+        case Arg::Direction:
+          v.vectors.push_back(vec3(what));
+          break;
+        case Arg::PositiveLength:
+        case Arg::NonNegativeLength:
+          v.scalars.push_back(number(what));
+          break;
+        case Arg::Points: {
+          const Token& first = peek();
+          std::vector<double> x;
+          while (peek().kind == Token::Number) x.push_back(number(what));
+          if (x.size() % 3 != 0) {
+            error(at(first), k + " needs three coordinates per point, found " +
+                                 std::to_string(x.size()) + " numbers");
+            throw StatementError{};
+          }
+          for (size_t i = 0; i < x.size(); i += 3) v.points.emplace_back(x[i], x[i + 1], x[i + 2]);
+          break;
+        }
+      }
+    }
+    if (row.has_bounds) {
+      v.bounds = row.defaults;
+      bounds(k, v.bounds.min, v.bounds.max);
+    } else {
+      semicolon(k);
+    }
+    set_component(cb.joint, row.id, v);
+    if (row.guide) cb.guide = k;
   }
 
   void constraint_block() {
@@ -357,139 +373,60 @@ class Parser {
     ConstraintBlock cb;
     cb.at = at(kw);
     cb.joint.line = kw.line;
-    Statements& seen = cb.seen;
     Joint& j = cb.joint;
-    while (!block_end("constraint", cb.at) && !too_many()) {
+    const long long errors_before = errors_;
+    while (!block_end("constraint", cb.at)) {
       const Token& t = next();
       try {
-        const std::string& k = keyword(t, "constraint", "this constraint", seen);
-        static const char* guides[] = {"axial",  "planar",   "sphere",
-                                       "circle", "cylinder", "polyline"};
-        bool is_guide = false;
-        for (const char* g : guides) is_guide |= k == g;
-        if (is_guide && j.guide) {
+        const std::string& k = keyword(t, "constraint", "this constraint", cb.seen);
+        const ComponentRow* row = find_component(k);
+        if (row && row->guide && !cb.guide.empty()) {
           error(at(t), "a constraint has at most one translation guide: '" + k + "' after '" +
-                           to_string(j.guide->kind) + "' at line " +
-                           std::to_string(cb.guide_at.line));
+                           cb.guide + "' at line " + std::to_string(place(cb.seen, cb.guide, cb.at).line));
           throw StatementError{};
         }
-        if (k == "object1") {
+        if (row) {
+          component_statement(*row, k, cb);
+        } else if (k == "object1") {
           cb.object1 = name("an object name");
-          cb.object1_at = at(t);
           semicolon("object1");
         } else if (k == "object2") {
           cb.object2 = name("an object name");
-          cb.object2_at = at(t);
           cb.has_object2 = true;
           semicolon("object2");
-        } else if (k == "hinge") {
-          j.p1 = vec3("hinge P1");
-          j.p2 = vec3("hinge P2");
-          j.has_hinge = true;
-          semicolon("hinge");
-        } else if (k == "axial" || k == "cylinder") {
-          Guide g;
-          g.kind = k == "axial" ? GuideKind::Axial : GuideKind::Cylinder;
-          g.dir = direction(k + " direction");
-          if (k == "cylinder") {
-            g.radius = number("cylinder radius");
-            if (g.radius < 0) {
-              error(at(t), "cylinder radius must not be negative");
-              throw StatementError{};
-            }
-          }
-          bounds(k, g.min, g.max);
-          check_range(at(t), k, g.min, g.max, -kInf, kInf);
-          j.guide = g;
-          cb.guide_at = at(t);
-        } else if (k == "planar") {
-          Guide g;
-          g.kind = GuideKind::Planar;
-          g.dir = direction("planar normal");
-          g.min = 0;
-          bounds(k, g.min, g.max);
-          check_range(at(t), k, g.min, g.max, 0, kInf);
-          j.guide = g;
-          cb.guide_at = at(t);
-        } else if (k == "sphere") {
-          Guide g;
-          g.kind = GuideKind::Sphere;
-          g.min = 0;
-          bounds(k, g.min, g.max);
-          check_range(at(t), k, g.min, g.max, 0, kInf);
-          j.guide = g;
-          cb.guide_at = at(t);
-        } else if (k == "circle") {
-          Guide g;
-          g.kind = GuideKind::Circle;
-          g.dir = direction("circle normal");
-          g.radius = number("circle radius");
-          if (!(g.radius > 0)) {
-            error(at(t), "circle radius must be positive");
-            throw StatementError{};
-          }
-          semicolon("circle");
-          j.guide = g;
-          cb.guide_at = at(t);
-        } else if (k == "polyline") {
-          Guide g;
-          g.kind = GuideKind::Polyline;
-          std::vector<double> v;
-          while (peek().kind == Token::Number) v.push_back(number("polyline point"));
-          if (v.size() % 3 != 0 || v.size() < 6) {
-            error(at(t), "polyline needs at least two points of three coordinates each, found " +
-                             std::to_string(v.size()) + " numbers");
-            throw StatementError{};
-          }
-          for (size_t i = 0; i < v.size(); i += 3) g.points.emplace_back(v[i], v[i + 1], v[i + 2]);
-          semicolon("polyline");
-          j.guide = g;
-          cb.guide_at = at(t);
-        } else if (k == "angle") {
-          AngleSpec a;
-          a.a1 = direction("angle a1");
-          a.a2 = direction("angle a2");
-          bounds(k, a.min, a.max);
-          check_range(at(t), k, a.min, a.max, 0, kPi);
-          j.angle = a;
-        } else if (k == "twist") {
-          TwistSpec w;
-          w.b1 = direction("twist b1");
-          w.b2 = direction("twist b2");
-          bounds(k, w.min, w.max);
-          check_range(at(t), k, w.min, w.max, -kPi, kPi);
-          j.twist = w;
         } else if (k == "move") {
-          const double mu = number("move");
-          if (mu < 0 || mu > 1) {
-            std::ostringstream m;
-            m << "move must be in [0, 1], found " << mu;
-            error(at(t), m.str());
-            throw StatementError{};
-          }
-          j.move = mu;
+          j.move = number("move");
           semicolon("move");
         } else if (k == "time") {
           j.t0 = number("time t0", true);
           j.t1 = number("time t1", true);
-          if (j.t0 > j.t1) {
-            error(at(t), "time interval: t0 is after t1");
+          semicolon("time");
+        } else if (k == "label") {
+          if (peek().kind != Token::String) {
+            if (peek().kind != Token::Bad)
+              error(at(peek()), "expected a string in double quotes for label, found " +
+                                    quote(peek()));
             throw StatementError{};
           }
-          semicolon("time");
+          j.label = next().text;
+          semicolon("label");
         } else {
-          error(at(t), "unknown constraint statement '" + k +
-                           "' (expected object1, object2, hinge, axial, planar, sphere, circle, "
-                           "cylinder, polyline, angle, twist, move, time or end)");
+          std::string known;
+          for (const ComponentRow& r : components()) known += std::string(r.keyword) + ", ";
+          error(at(t), "unknown constraint statement '" + k + "' (expected object1, object2, " +
+                           known + "move, time, label or end)");
           throw StatementError{};
         }
       } catch (const StatementError&) {
         recover();
       }
     }
+    cb.ok = errors_ == errors_before;
     constraints_.push_back(cb);
   }
 
+  // Names are resolved and the model checks every block that parsed cleanly, so that each
+  // problem is reported once, at the statement it is about.
   ParseResult build() {
     ParseResult result;
     Model model;
@@ -503,7 +440,7 @@ class Parser {
         continue;
       }
       declared[ob.body.name] = ob.at;
-      if (errors_ > 0) continue;
+      if (!ob.ok) continue;
       try {
         model.add_body(ob.body);
       } catch (const ValueError& e) {
@@ -514,47 +451,59 @@ class Parser {
     }
     for (ConstraintBlock& cb : constraints_) {
       Joint& j = cb.joint;
-      bool ok = true;
-      auto resolve = [&](const std::string& name, Place p, BodyId& out) {
+      bool ok = cb.ok;
+      auto resolve = [&](const std::string& name, const char* keyword, BodyId& out) {
         if (name == "world") {
           out = Model::kWorld;
           return;
         }
         if (!declared.count(name)) {
-          error(p.line ? p : cb.at,
+          error(place(cb.seen, keyword, cb.at),
                 "unknown object '" + name + "' (no 'object " + name + "' block declares it)");
           ok = false;
           return;
         }
-        if (const auto id = model.find(name)) out = *id;
+        if (const auto id = model.find(name)) {
+          out = *id;
+        } else {
+          ok = false;  // its object block had an error, reported there
+        }
       };
       if (!cb.has_object2) {
         error(cb.at, "constraint needs 'object2'");
         ok = false;
       } else {
-        resolve(cb.object1, cb.object1_at, j.body1);
-        resolve(cb.object2, cb.object2_at, j.body2);
-        if (ok && cb.object1 == cb.object2) {
-          error(cb.object2_at, "object1 and object2 are the same object '" + cb.object2 + "'");
-          ok = false;
-        }
+        resolve(cb.object1, "object1", j.body1);
+        resolve(cb.object2, "object2", j.body2);
       }
-      if (!j.has_translation() && !j.angle) {
-        error(cb.at, "constraint has no component: give a hinge, a translation guide or an angle");
-        ok = false;
-      }
-      if (j.twist && !j.angle) {
-        error(cb.at, "twist needs an angle (it uses the angle's vectors a1 and a2)");
-        ok = false;
-      }
-      if (!ok || errors_ > 0) continue;
+      if (!ok) continue;
+      const size_t warned = model.warnings().size();
       try {
         model.add_joint(j);
+      } catch (const JointError& e) {
+        error(place(cb.seen, e.keyword(), cb.at), e.detail());
       } catch (const ValueError& e) {
         error(place(cb.seen, e.field(), cb.at), e.what());
       } catch (const std::invalid_argument& e) {
         error(cb.at, e.what());
       }
+      for (size_t k = warned; k < model.warnings().size(); ++k) {
+        const ModelWarning& w = model.warnings()[k];
+        warning(place(cb.seen, w.keyword, cb.at), w.message);
+      }
+    }
+    // One last line for what the cap left out, at the end of the file.
+    const Place end = at(tokens_.back());
+    if (errors_ > kErrorCap) {
+      diagnostics_.push_back({file_, end.line, end.column, true,
+                              std::to_string(errors_ - kErrorCap) + " more errors (only the first " +
+                                  std::to_string(kErrorCap) + " are listed)"});
+    }
+    if (warnings_ > kErrorCap) {
+      diagnostics_.push_back({file_, end.line, end.column, false,
+                              std::to_string(warnings_ - kErrorCap) +
+                                  " more warnings (only the first " + std::to_string(kErrorCap) +
+                                  " are listed)"});
     }
     result.diagnostics = diagnostics_;
     if (errors_ == 0) result.model = std::move(model);
@@ -565,7 +514,8 @@ class Parser {
   std::vector<Token> tokens_;
   size_t pos_ = 0;
   std::vector<Diagnostic> diagnostics_;
-  int errors_ = 0;
+  long long errors_ = 0;  // every error, listed or not
+  long long warnings_ = 0;
   std::vector<ObjectBlock> objects_;
   std::vector<ConstraintBlock> constraints_;
 };

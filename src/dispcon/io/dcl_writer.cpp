@@ -4,6 +4,9 @@
 #include <cstdio>
 #include <sstream>
 
+#include "dispcon/io/dcl_lexer.hpp"
+#include "dispcon/model/joint_kinds.hpp"
+
 namespace dispcon {
 
 namespace {
@@ -18,13 +21,6 @@ std::string num(double v) {
 
 std::string vec(const Vec3& v) {
   return num(v.x()) + " " + num(v.y()) + " " + num(v.z());
-}
-
-std::string bounds(double lo, double hi, double default_lo, double default_hi) {
-  std::string out;
-  if (lo != default_lo) out += " min " + num(lo);
-  if (hi != default_hi) out += " max " + num(hi);
-  return out;
 }
 
 }  // namespace
@@ -53,48 +49,22 @@ std::string write_dcl(const Model& model) {
     out << "end\n";
   }
   for (const Joint& j : model.joints()) {
-    out << "\nconstraint\n";
-    if (!j.label.empty()) out << "  // " << j.label << "\n";
+    // The kind is a comment for people; the statements below are the joint.
+    out << "\nconstraint  // " << kind_name(j) << "\n";
+    if (!j.label.empty()) out << "  label " << quote_string(j.label) << ";\n";
     out << "  object1 " << model.body(j.body1).name << ";\n";
     out << "  object2 " << model.body(j.body2).name << ";\n";
-    if (j.has_hinge) out << "  hinge " << vec(j.p1) << " " << vec(j.p2) << ";\n";
-    if (j.guide) {
-      const Guide& g = *j.guide;
-      switch (g.kind) {
-        case GuideKind::Point:
-          break;
-        case GuideKind::Axial:
-          out << "  axial " << vec(g.dir) << bounds(g.min, g.max, -kInf, kInf) << ";\n";
-          break;
-        case GuideKind::Planar:
-          out << "  planar " << vec(g.dir) << bounds(g.min, g.max, 0, kInf) << ";\n";
-          break;
-        case GuideKind::Sphere:
-          out << "  sphere" << bounds(g.min, g.max, 0, kInf) << ";\n";
-          break;
-        case GuideKind::Circle:
-          out << "  circle " << vec(g.dir) << " " << num(g.radius) << ";\n";
-          break;
-        case GuideKind::Cylinder:
-          out << "  cylinder " << vec(g.dir) << " " << num(g.radius)
-              << bounds(g.min, g.max, -kInf, kInf) << ";\n";
-          break;
-        case GuideKind::Polyline:
-          out << "  polyline";
-          for (const Vec3& p : g.points) out << " " << vec(p);
-          out << ";\n";
-          break;
-      }
-    }
-    if (j.angle) {
-      out << "  angle " << vec(j.angle->a1) << " " << vec(j.angle->a2)
-          << bounds(j.angle->min, j.angle->max, 0, kPi) << ";\n";
-    }
-    if (j.twist) {
-      // Twist bounds default to 0 0: write both whenever either differs.
-      out << "  twist " << vec(j.twist->b1) << " " << vec(j.twist->b2);
-      if (j.twist->min != 0 || j.twist->max != 0) {
-        out << " min " << num(j.twist->min) << " max " << num(j.twist->max);
+    for (const ComponentRow& row : components()) {
+      if (!has_component(j, row.id)) continue;
+      const ComponentValues v = get_component(j, row.id);
+      out << "  " << row.keyword;
+      for (const Vec3& x : v.vectors) out << " " << vec(x);
+      for (const double x : v.scalars) out << " " << num(x);
+      for (const Vec3& x : v.points) out << " " << vec(x);
+      // Bounds equal to the defaults are left out (reading fills them back in).
+      if (row.has_bounds) {
+        if (v.bounds.min != row.defaults.min) out << " min " << num(v.bounds.min);
+        if (v.bounds.max != row.defaults.max) out << " max " << num(v.bounds.max);
       }
       out << ";\n";
     }

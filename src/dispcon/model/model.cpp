@@ -3,7 +3,12 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cctype>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
+
+#include "dispcon/model/joint_kinds.hpp"
 
 namespace dispcon {
 
@@ -11,23 +16,6 @@ namespace {
 
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
-}
-
-// A bound pair: each bound a number within range or an infinity (no bound); min not above max;
-// then clamped into the natural range of the quantity.
-void check_bounds(double& lo, double& hi, double natural_lo, double natural_hi,
-                  const std::string& field, const std::string& what) {
-  auto one = [&](double v, const char* which) {
-    if (!std::isinf(v)) check_number(v, field, what + " " + which);
-  };
-  one(lo, "min");
-  one(hi, "max");
-  if (lo > hi) {
-    throw ValueError(field,
-                     what + ": min " + format_number(lo) + " is above max " + format_number(hi));
-  }
-  lo = std::clamp(lo, natural_lo, natural_hi);
-  hi = std::clamp(hi, natural_lo, natural_hi);
 }
 
 void check_inertia(const Mat3& J, const std::string& who) {
@@ -44,27 +32,131 @@ void check_inertia(const Mat3& J, const std::string& who) {
   check_positive(moments.maxCoeff(), "inertia", who + ": largest principal inertia");
 }
 
+// Valid UTF-8 (no overlong forms, no surrogates, at most U+10FFFF): what Python and FreeCAD hold.
+bool is_utf8(std::string_view s) {
+  size_t i = 0;
+  while (i < s.size()) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    int extra = 0;
+    unsigned lo = 0x80, hi = 0xBF;  // the allowed range of the second byte
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if (c >= 0xC2 && c <= 0xDF) {
+      extra = 1;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+      extra = 2;
+      if (c == 0xE0) lo = 0xA0;
+      if (c == 0xED) hi = 0x9F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+      extra = 3;
+      if (c == 0xF0) lo = 0x90;
+      if (c == 0xF4) hi = 0x8F;
+    } else {
+      return false;
+    }
+    if (i + extra >= s.size()) return false;
+    for (int k = 1; k <= extra; ++k) {
+      const unsigned char b = static_cast<unsigned char>(s[i + k]);
+      if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) return false;
+    }
+    i += extra + 1;
+  }
+  return true;
+}
+
+// Checks and normalises one component of a joint by its row: every argument, then the bounds
+// (NaN and min above max are errors; outside the natural range is clamped with a warning).
+class ComponentCheck {
+ public:
+  ComponentCheck(const std::string& who, const ComponentRow& row,
+                 std::vector<std::string>& warnings)
+      : who_(who), row_(row), warnings_(warnings) {}
+
+  void operator()(ComponentValues& v) const {
+    size_t vec = 0, scalar = 0;
+    for (const ArgSpec& a : row_.args) {
+      const std::string what = std::string(row_.keyword) + " " + a.name;
+      switch (a.kind) {
+        case Arg::Point:
+          door([&] { check_vector(v.vectors.at(vec), row_.keyword, what); });
+          ++vec;
+          break;
+        case Arg::Direction:
+          door([&] { v.vectors.at(vec) = check_direction(v.vectors.at(vec), row_.keyword, what); });
+          ++vec;
+          break;
+        case Arg::PositiveLength:
+        case Arg::NonNegativeLength: {
+          const double r = v.scalars.at(scalar++);
+          const bool positive = a.kind == Arg::PositiveLength;
+          door([&] { check_number(r, row_.keyword, what); });
+          if (r < 0 || (positive && r == 0))
+            fail(what + (positive ? " must be positive" : " must not be negative") + ", found " +
+                 format_number(r));
+          break;
+        }
+        case Arg::Points:
+          if (v.points.size() < 2) fail(what + ": at least two points are needed");
+          for (const Vec3& p : v.points) door([&] { check_vector(p, row_.keyword, what + " point"); });
+          break;
+      }
+    }
+    if (row_.has_bounds) bounds(v.bounds);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& detail) const {
+    throw JointError(who_, row_.keyword, detail);
+  }
+
+  // The door's checks (numbers.hpp), their message placed at this statement.
+  template <class Check>
+  void door(Check check) const {
+    try {
+      check();
+    } catch (const ValueError& e) {
+      fail(e.what());
+    }
+  }
+
+  // Each bound a number within range or an infinity (no bound); min not above max.
+  void bounds(Range& b) const {
+    const std::string what = row_.keyword;
+    if (!std::isinf(b.min)) door([&] { check_number(b.min, row_.keyword, what + " min"); });
+    if (!std::isinf(b.max)) door([&] { check_number(b.max, row_.keyword, what + " max"); });
+    if (b.min > b.max) fail(what + ": min " + format_number(b.min) + " is above max " + format_number(b.max));
+    clamp(b.min, "min");
+    clamp(b.max, "max");
+  }
+
+  void clamp(double& v, const char* which) const {
+    const Range n = row_.natural;
+    if (v >= n.min && v <= n.max) return;
+    const double c = v < n.min ? n.min : n.max;
+    warnings_.push_back(std::string(row_.keyword) + " " + which + " " + format_number(v) + " is outside [" +
+                        format_number(n.min) + ", " + format_number(n.max) + "]; clamped to " + format_number(c));
+    v = c;
+  }
+
+  const std::string& who_;
+  const ComponentRow& row_;
+  std::vector<std::string>& warnings_;
+};
+
 }  // namespace
 
-const char* to_string(GuideKind kind) {
-  switch (kind) {
-    case GuideKind::Point:
-      return "point";
-    case GuideKind::Axial:
-      return "axial";
-    case GuideKind::Planar:
-      return "planar";
-    case GuideKind::Sphere:
-      return "sphere";
-    case GuideKind::Circle:
-      return "circle";
-    case GuideKind::Cylinder:
-      return "cylinder";
-    case GuideKind::Polyline:
-      return "polyline";
-  }
-  return "?";
+bool is_name_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
 }
+
+bool is_valid_name(std::string_view name) {
+  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
+  return std::all_of(name.begin(), name.end(), is_name_char);
+}
+
+JointError::JointError(const std::string& who, std::string keyword, std::string detail)
+    : ValueError(std::move(keyword), who + ": " + detail), detail_(std::move(detail)) {}
 
 Model::Model() {
   Body world;
@@ -77,6 +169,10 @@ Model::Model() {
 BodyId Model::add_body(Body body) {
   const std::string who = "object '" + body.name + "'";
   require(!body.name.empty(), "an object needs a name");
+  require(is_valid_name(body.name),
+          "object name '" + body.name +
+              "' cannot be written in a .dcl file: a name starts with a letter and holds only "
+              "letters, digits, '-', '_' and '.'");
   require(body.name != "world", "'world' is reserved for the fixed world frame");
   require(by_name_.count(body.name) == 0, "duplicate object '" + body.name + "'");
   body.pose = check_pose(body.pose, "position", who);
@@ -97,64 +193,38 @@ BodyId Model::add_body(Body body) {
 
 JointId Model::add_joint(Joint j) {
   const std::string who = "constraint" + (j.line ? " at line " + std::to_string(j.line) : "");
+  auto fail = [&](const char* keyword, const std::string& detail) {
+    throw JointError(who, keyword, detail);
+  };
   auto valid = [&](BodyId b) { return b.value >= 0 && b.value < body_count(); };
-  require(valid(j.body1), who + ": object1 is not a body of the model");
-  require(valid(j.body2), who + ": object2 is not a body of the model");
-  require(j.body1 != j.body2,
-          who + ": object1 and object2 are the same object '" + body(j.body1).name + "'");
-  require(j.has_translation() || j.angle.has_value(),
-          who + ": a constraint needs a hinge, a translation guide or an angle");
-  require(!j.twist || j.angle, who + ": twist needs an angle (it uses the angle's axes)");
-  check_vector(j.p1, "hinge", who + ": hinge P1");
-  check_vector(j.p2, "hinge", who + ": hinge P2");
-  if (j.guide) {
-    Guide& g = *j.guide;
-    const std::string field = to_string(g.kind);
-    const std::string gw = who + ": " + field;
-    switch (g.kind) {
-      case GuideKind::Point:
-        break;
-      case GuideKind::Axial:
-        g.dir = check_direction(g.dir, field, gw + " direction");
-        check_bounds(g.min, g.max, -kInf, kInf, field, gw);
-        break;
-      case GuideKind::Planar:
-      case GuideKind::Sphere:
-        if (g.kind == GuideKind::Planar) g.dir = check_direction(g.dir, field, gw + " normal");
-        check_bounds(g.min, g.max, 0, kInf, field, gw);
-        break;
-      case GuideKind::Circle:
-        g.dir = check_direction(g.dir, field, gw + " normal");
-        check_number(g.radius, field, gw + " radius");
-        if (!(g.radius > 0)) throw ValueError(field, gw + " radius must be positive");
-        break;
-      case GuideKind::Cylinder:
-        g.dir = check_direction(g.dir, field, gw + " axis");
-        check_number(g.radius, field, gw + " radius");
-        if (!(g.radius >= 0)) throw ValueError(field, gw + " radius must not be negative");
-        check_bounds(g.min, g.max, -kInf, kInf, field, gw);
-        break;
-      case GuideKind::Polyline:
-        if (g.points.size() < 2) throw ValueError(field, gw + " needs at least two points");
-        for (const Vec3& p : g.points) check_vector(p, field, gw + " point");
-        break;
-    }
+  if (!valid(j.body1)) fail("object1", "object1 is not a body of the model");
+  if (!valid(j.body2)) fail("object2", "object2 is not a body of the model");
+  if (j.body1 == j.body2)
+    fail("object2", "object1 and object2 are the same object '" + body(j.body1).name + "'");
+  // A point guide is the hinge itself (seed 3): kept as the hinge, which the writer can write.
+  if (j.guide && j.guide->kind == GuideKind::Point) {
+    j.has_hinge = true;
+    j.guide.reset();
   }
-  if (j.angle) {
-    j.angle->a1 = check_direction(j.angle->a1, "angle", who + ": angle vector a1");
-    j.angle->a2 = check_direction(j.angle->a2, "angle", who + ": angle vector a2");
-    check_bounds(j.angle->min, j.angle->max, 0, kPi, "angle", who + ": angle");
-  }
-  if (j.twist) {
-    j.twist->b1 = check_direction(j.twist->b1, "twist", who + ": twist vector b1");
-    j.twist->b2 = check_direction(j.twist->b2, "twist", who + ": twist vector b2");
-    check_bounds(j.twist->min, j.twist->max, -kPi, kPi, "twist", who + ": twist");
+  if (!j.has_translation() && !j.angle)
+    fail("", "no component: give a hinge, a translation guide or an angle");
+  if (j.twist && !j.angle) fail("twist", "twist needs an angle (it uses the angle's vectors)");
+  const JointId id{static_cast<int>(joints_.size())};
+  std::vector<ModelWarning> clamped;  // kept only if the joint is accepted
+  for (const ComponentRow& row : components()) {
+    if (!has_component(j, row.id)) continue;
+    ComponentValues v = get_component(j, row.id);
+    std::vector<std::string> messages;
+    ComponentCheck(who, row, messages)(v);
+    set_component(j, row.id, v);
+    for (std::string& m : messages) clamped.push_back({id, row.keyword, std::move(m)});
   }
   if (j.move && !(*j.move >= 0 && *j.move <= 1))
-    throw ValueError("move", who + ": move " + format_number(*j.move) + " is not in [0, 1]");
+    fail("move", "move " + format_number(*j.move) + " is not in [0, 1]");
   if (std::isnan(j.t0) || std::isnan(j.t1) || !(j.t0 <= j.t1))
-    throw ValueError("time", who + ": time interval must have t0 <= t1");
-  const JointId id{static_cast<int>(joints_.size())};
+    fail("time", "time interval must have t0 <= t1");
+  if (!is_utf8(j.label)) fail("label", "label is not valid UTF-8");
+  warnings_.insert(warnings_.end(), clamped.begin(), clamped.end());
   joints_.push_back(std::move(j));
   ++revision_;
   return id;
@@ -239,9 +309,14 @@ void Model::set_twist_range(JointId id, double min, double max) {
   Joint& j = joints_[static_cast<size_t>(id.value)];
   const std::string who = "joint " + std::to_string(id.value);
   if (!j.twist) throw std::invalid_argument(who + " has no twist");
-  check_bounds(min, max, -kPi, kPi, "twist", who + ": twist");
-  j.twist->min = min;
-  j.twist->max = max;
+  // Checked and clamped by the twist's row, as add_joint does.
+  ComponentValues v = get_component(j, Component::Twist);
+  v.bounds = {min, max};
+  std::vector<std::string> messages;
+  ComponentCheck(who, component(Component::Twist), messages)(v);
+  for (std::string& m : messages) warnings_.push_back({id, "twist", std::move(m)});
+  j.twist->min = v.bounds.min;
+  j.twist->max = v.bounds.max;
 }
 
 double Model::ability_to_rotate(BodyId id) const {

@@ -15,6 +15,31 @@
 
 namespace dispcon {
 
+// Names of bodies are what the .dcl format can hold (format.md): a letter, then letters, digits,
+// '-', '_' or '.'. The lexer reads names with the same rule.
+bool is_name_char(char c);
+bool is_valid_name(std::string_view name);
+
+// A joint refused by the model: a ValueError whose field() is the statement ("axial", "move",
+// "object2"; empty for the block as a whole), so that the reader can point at its place;
+// `detail` is the message without the "constraint at line N: " prefix that what() carries.
+class JointError : public ValueError {
+ public:
+  JointError(const std::string& who, std::string keyword, std::string detail);
+  const std::string& keyword() const { return field(); }
+  const std::string& detail() const { return detail_; }
+
+ private:
+  std::string detail_;
+};
+
+// What add_joint changed while accepting a joint: a bound clamped into its natural range.
+struct ModelWarning {
+  JointId joint;
+  std::string keyword;  // the statement, as for JointError
+  std::string message;
+};
+
 // The model is the engine's door: every value reaches it through add_body, add_joint or a
 // setter below, each of which checks it (numbers.hpp) and throws std::invalid_argument (a
 // ValueError naming the statement) before anything changes. Bodies and joints are read only.
@@ -26,9 +51,13 @@ class Model {
 
   // Throws std::invalid_argument naming the problem (duplicate or reserved name, bad value).
   BodyId add_body(Body body);
-  // Throws std::invalid_argument when the joint is malformed (unknown body, same body twice,
-  // no component, twist without angle, zero vector, min above max, move outside [0, 1]).
+  // Throws JointError (a std::invalid_argument) when the joint is malformed (unknown body, same
+  // body twice, no component, twist without angle, zero vector, min above max, move outside
+  // [0, 1], a label that is not UTF-8). Every component is checked by its row of components()
+  // (joint_kinds.hpp); a bound outside its natural range is clamped and recorded in warnings().
   JointId add_joint(Joint joint);
+  // The warnings of every joint added so far, in order.
+  const std::vector<ModelWarning>& warnings() const { return warnings_; }
 
   std::optional<BodyId> find(std::string_view name) const;
 
@@ -76,6 +105,7 @@ class Model {
 
   std::vector<Body> bodies_;
   std::vector<Joint> joints_;
+  std::vector<ModelWarning> warnings_;
   std::unordered_map<std::string, int> by_name_;
   std::uint64_t revision_ = 0;
 };

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace dispcon {
 
@@ -51,6 +52,9 @@ Vec3 check_direction(const Vec3& v, const std::string& field, const std::string&
   // Scaled first, so a direction such as (1e200, 1e200, 0) does not overflow to a zero vector.
   const double largest = v.cwiseAbs().maxCoeff();
   if (!(largest > 0)) throw ValueError(field, what + " is a zero vector");
+  // Already of unit length (as the writer wrote it): kept bit for bit, so that writing and
+  // reading back gives the same model.
+  if (std::abs(v.squaredNorm() - 1) <= 4 * std::numeric_limits<double>::epsilon()) return v;
   const Vec3 u = v / largest;
   return u / u.norm();
 }

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include <string>
 
 #include "dispcon/io/dcl_writer.hpp"
@@ -138,16 +141,19 @@ TEST(DclReader, EveryErrorNamesItsPlace) {
       {"object a; position nan 0 0; end", 1, 20, "'nan' (not a number)"},
       {"object a; mass -2; end", 1, 11, "mass must be positive"},
       {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0; move 1.5; end", 2, 42,
-       "move must be in [0, 1]"},
+       "move 1.5 is not in [0, 1]"},
       {"object a; inertia 1 1 -1; end", 1, 11, "inertia is not positive definite"},
       {"object a; end\x01", 1, 14, "byte 0x01 is not text"},
-      {"object a; end\nconstraint object2 a; axial 0 0 0; end", 2, 29, "zero vector"},
+      {"object a; end\nconstraint object2 a; axial 0 0 0; end", 2, 23, "zero vector"},
+      {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0; label \"x;", 2, 48, "not closed"},
+      {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0; label x; end", 2, 48,
+       "expected a string in double quotes for label"},
       {"object a; end\nconstraint object2 a; axial 1 0 0; planar 0 0 1; end", 2, 36,
        "at most one translation guide"},
       {"object a; end\nconstraint object2 a; end", 2, 1, "no component"},
       {"object a; end\nconstraint object2 a; axial 1 0 0 min 2 max 1; end", 2, 23,
        "min 2 is above max 1"},
-      {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0; twist 1 0 0 1 0 0; end", 2, 1,
+      {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0; twist 1 0 0 1 0 0; end", 2, 42,
        "twist needs an angle"},
       {"object a; end\nconstraint hinge 0 0 0 0 0 0; end", 2, 1, "needs 'object2'"},
       {"object world; end", 1, 1, "reserved"},
@@ -171,6 +177,70 @@ TEST(DclReader, EveryErrorNamesItsPlace) {
     EXPECT_EQ(found->column, c.column) << found->format();
     EXPECT_EQ(found->format().rfind("f.dcl:" + std::to_string(c.line) + ":", 0), 0u);
   }
+}
+
+TEST(DclReader, ErrorsAreCappedWithACountOfTheRest) {
+  // A megabyte of binary: a hundred errors, then one line with the count of the rest.
+  std::string binary(1 << 20, '\0');
+  std::mt19937 rng(7);
+  for (char& c : binary) c = static_cast<char>(rng() & 0xFF);
+  const ParseResult noise = parse_dcl(binary, "noise.bin");
+  EXPECT_FALSE(noise.ok());
+  ASSERT_EQ(noise.diagnostics.size(), 101u);
+  const Diagnostic& last = noise.diagnostics.back();
+  EXPECT_TRUE(last.error);
+  EXPECT_NE(last.message.find(" more errors (only the first 100 are listed)"), std::string::npos)
+      << last.message;
+  EXPECT_GT(std::stoll(last.message), 100000);
+
+  std::string duplicates;
+  for (int i = 0; i < 200000; ++i) duplicates += "object a; end\n";
+  const ParseResult dup = parse_dcl(duplicates, "dup.dcl");
+  ASSERT_EQ(dup.diagnostics.size(), 101u);
+  EXPECT_EQ(dup.diagnostics.back().message,
+            "199899 more errors (only the first 100 are listed)");  // 199,999 duplicates
+  EXPECT_EQ(dup.diagnostics.back().format().rfind("dup.dcl:200001:1: error:", 0), 0u);
+
+  // Warnings likewise, and the file still reads.
+  std::string clamped = "object a; end\n";
+  for (int i = 0; i < 150; ++i) clamped += "constraint object2 a; angle 0 0 1 0 0 1 max 9; end\n";
+  const ParseResult warned = parse_dcl(clamped);
+  ASSERT_TRUE(warned.ok()) << warned.messages();
+  ASSERT_EQ(warned.diagnostics.size(), 101u);
+  EXPECT_EQ(warned.diagnostics.back().message,
+            "50 more warnings (only the first 100 are listed)");
+}
+
+TEST(DclReader, ModelChecksArePlacedAtTheirStatement) {
+  // Scaled before the norm, 1e200 1e200 0 is a direction, not an overflow to a zero vector.
+  const ParseResult big =
+      parse_dcl("object a; end\nconstraint object2 a; axial 1e200 1e200 0; end");
+  ASSERT_TRUE(big.ok()) << big.messages();
+  EXPECT_NEAR(big.model->joint(JointId{0}).guide->dir.x(), std::sqrt(0.5), 1e-15);
+  // Errors from the model (here a negative radius) point at the keyword, even after an earlier
+  // error in another block.
+  const ParseResult r = parse_dcl(
+      "object a; mass -1; end\nobject b; end\n"
+      "constraint object2 b;\n  cylinder 0 0 1 -2; end",
+      "f.dcl");
+  EXPECT_NE(r.messages().find("f.dcl:1:11: error: mass must be positive"), std::string::npos)
+      << r.messages();
+  EXPECT_NE(r.messages().find("f.dcl:4:3: error: cylinder r must not be negative, found -2"),
+            std::string::npos)
+      << r.messages();
+  // The warning of a clamp is the model's, placed at the statement.
+  const ParseResult w = parse_dcl("object a; end\nconstraint object2 a;\n twist 0 1 0 0 1 0 max 4;\n"
+                                  " angle 0 0 1 0 0 1 max 0; end", "w.dcl");
+  ASSERT_TRUE(w.ok()) << w.messages();
+  EXPECT_EQ(w.messages(),
+            "w.dcl:3:2: warning: twist max 4 is outside [-3.14159, 3.14159]; clamped to 3.14159\n");
+}
+
+TEST(DclReader, LabelsAreStrings) {
+  const ParseResult r = parse_dcl(
+      "object a; end\nconstraint label \"Revolute 1\\n\\\"crank\\\"\"; object2 a; hinge 0 0 0 0 0 0; end");
+  ASSERT_TRUE(r.ok()) << r.messages();
+  EXPECT_EQ(r.model->joint(JointId{0}).label, "Revolute 1\n\"crank\"");
 }
 
 TEST(DclReader, LexicalForms) {

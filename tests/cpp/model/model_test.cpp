@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace dispcon {
@@ -81,6 +82,44 @@ TEST(Model, NormalisesVectorsAndClampsAngleBounds) {
   m.add_joint(j);
   EXPECT_NEAR(m.joint(JointId{0}).angle->a1.norm(), 1, 1e-15);
   EXPECT_DOUBLE_EQ(m.joint(JointId{0}).angle->max, kPi);
+  // Not silently: the clamp is recorded, naming the statement, the value and the range.
+  ASSERT_EQ(m.warnings().size(), 1u);
+  EXPECT_EQ(m.warnings()[0].joint, JointId{0});
+  EXPECT_EQ(m.warnings()[0].keyword, "angle");
+  EXPECT_EQ(m.warnings()[0].message, "angle max 9 is outside [0, 3.14159]; clamped to 3.14159");
+  // A refused joint records nothing.
+  j.angle->min = 10;
+  j.angle->max = 9;
+  EXPECT_THROW(m.add_joint(j), JointError);
+  EXPECT_EQ(m.warnings().size(), 1u);
+}
+
+TEST(Model, JointErrorsNameTheirStatement) {
+  Model m;
+  Joint j;
+  j.body2 = m.add_body(named("a"));
+  j.guide = Guide{GuideKind::Axial, Vec3::Zero()};
+  try {
+    m.add_joint(j);
+    FAIL() << "accepted";
+  } catch (const JointError& e) {
+    EXPECT_EQ(e.keyword(), "axial");
+    EXPECT_EQ(e.detail(), "axial u is a zero vector");
+    EXPECT_EQ(std::string(e.what()), "constraint: axial u is a zero vector");
+  }
+  j.guide->dir = Vec3(1e200, 1e200, 0);  // scaled before the norm: no overflow
+  const JointId id = m.add_joint(j);
+  EXPECT_NEAR((m.joint(id).guide->dir - Vec3(1, 1, 0) / std::sqrt(2.0)).norm(), 0, 1e-15);
+  j.guide->dir = Vec3(1e-320, 0, 0);  // subnormal, still a direction
+  EXPECT_EQ(m.joint(m.add_joint(j)).guide->dir, Vec3(1, 0, 0));
+  j.label = "\xFF";
+  j.label[0] = static_cast<char>(0xFF);
+  try {
+    m.add_joint(j);
+    FAIL() << "accepted";
+  } catch (const JointError& e) {
+    EXPECT_EQ(e.keyword(), "label");
+  }
 }
 
 TEST(Model, AbilityToRotateIsInverseSquaredRmsDistance) {

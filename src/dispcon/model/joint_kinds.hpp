@@ -1,0 +1,193 @@
+// The joint vocabulary: the one table every layer reads (the .dcl reader and writer, the model's
+// validation, `to_string`, the Python `add_joint`, the workbench's joint mapping).
+//
+// Two tables:
+// - components(): the statements of a `constraint` block that carry geometry (format.md): `hinge`,
+//   the translation guides (seed 4.1), `angle` and `twist` (seed 4.2). Each row says what the
+//   statement is written with (points, directions, a radius, a list of points), whether it takes
+//   `{min} {max}`, their defaults and their natural range. A new part (a coupling of issue 11: a
+//   gear, a rack, a screw) is a new row plus its case in get_component/set_component.
+// - joint_kinds(): the named joints a designer picks (revolute, slider, ball, ...). Each row says
+//   which components the joint composes and which limits it takes; make_joint builds a Joint from
+//   a row, classify finds the row a Joint matches.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dispcon/model/joint.hpp"
+
+namespace dispcon {
+
+// ---------------------------------------------------------------------------------------------
+// Components: the statements of a constraint block.
+
+enum class Component { Hinge, Axial, Planar, Sphere, Circle, Cylinder, Polyline, Angle, Twist };
+
+// One argument of a component's statement, in the order it is written.
+enum class Arg {
+  Point,         // three numbers, kept as written
+  Direction,     // three numbers, normalised (a zero vector is an error)
+  PositiveLength,     // one number > 0
+  NonNegativeLength,  // one number >= 0
+  Points,        // three numbers per point, at least two points
+};
+
+struct ArgSpec {
+  Arg kind;
+  const char* name;  // as format.md writes it: "P1", "u", "r", ...
+};
+
+struct Range {
+  double min = -kInf;
+  double max = kInf;
+};
+
+struct ComponentRow {
+  Component id;
+  const char* keyword;  // the .dcl statement
+  const char* meaning;  // one line, for people
+  std::optional<GuideKind> guide;  // a translation guide (at most one per joint), or none
+  std::vector<ArgSpec> args;       // what follows the keyword, before the bounds
+  bool has_bounds = false;         // `{min a} {max b}` follow
+  Range defaults;                  // bounds when not given
+  Range natural;                   // bounds outside are clamped with a warning
+  const char* bound_unit = "";     // "length" or "radians"
+};
+
+// Every component, in the order the writer writes them.
+const std::vector<ComponentRow>& components();
+const ComponentRow& component(Component id);
+const ComponentRow* find_component(const std::string& keyword);
+const ComponentRow& component(GuideKind kind);
+
+// A component's values in the row's generic form: `vectors` holds the Point and Direction
+// arguments in order, `scalars` the lengths, `points` a Points argument.
+struct ComponentValues {
+  std::vector<Vec3> vectors;
+  std::vector<double> scalars;
+  std::vector<Vec3> points;
+  Range bounds;
+};
+
+bool has_component(const Joint& j, Component id);
+ComponentValues get_component(const Joint& j, Component id);
+// Sets the component on the joint (a guide replaces any other guide).
+void set_component(Joint& j, Component id, const ComponentValues& v);
+
+// ---------------------------------------------------------------------------------------------
+// Joint kinds: the named joints.
+
+enum class JointKind {
+  Fixed,
+  Revolute,
+  Slider,
+  Cylindrical,
+  Ball,
+  Planar,
+  PointOnLine,
+  PointOnPlane,
+  PointOnCurve,
+  Parallel,
+  Perpendicular,
+  Angle,
+  Distance,
+};
+
+// How a kind uses the angle between its two axes.
+enum class AngleUse {
+  None,
+  Fixed,  // min = max = angle_value (0: parallel axes, pi/2: perpendicular)
+  Cone,   // optional [0, cone]: a ball's cone
+  Range,  // [min, max] given by the `angle` limit (required)
+};
+
+// How a kind uses the twist (the turn about the common axis).
+enum class TwistUse {
+  None,
+  Weld,  // min = max = 0: no turn
+  Turn,  // optional [min, max] given by the `turn` limit; free without it
+};
+
+// The limits a designer may give a joint, each in its natural unit.
+enum LimitFlag : unsigned {
+  kTurnLimit = 1,      // radians, within [-pi, pi]: the twist
+  kTravelLimit = 2,    // length along axis1: the axial guide
+  kConeLimit = 4,      // radians, within [0, pi]: a ball's cone
+  kAngleLimit = 8,     // radians, within [0, pi]: the angle between the axes
+  kDistanceLimit = 16  // length, >= 0: the distance between the points
+};
+
+struct JointKindRow {
+  JointKind kind;
+  const char* name;   // "revolute": Python's kind=, to_string, the writer's comment
+  const char* title;  // "Revolute": for menus
+  const char* meaning;
+  bool hinge = false;              // the two points meet (or are guided, with a guide)
+  std::optional<GuideKind> guide;  // point 2 on a line, a plane, a curve, a sphere of point 1
+  AngleUse angle = AngleUse::None;
+  double angle_value = 0;  // AngleUse::Fixed
+  TwistUse twist = TwistUse::None;
+  unsigned limits = 0;  // LimitFlag: which limits it takes
+
+  bool needs_axis() const;    // axis1, axis2 are used
+  bool needs_across() const;  // across1, across2 (the twist's reference vectors) are used
+  bool needs_curve() const;   // a polyline in object1's frame
+  bool needs_points() const;  // point1, point2 are used
+};
+
+const std::vector<JointKindRow>& joint_kinds();
+const JointKindRow& joint_kind(JointKind kind);
+const JointKindRow* find_joint_kind(const std::string& name);
+const char* to_string(JointKind kind);
+
+// Where a joint meets one of its bodies, in that body's local frame.
+struct Anchor {
+  Vec3 point = Vec3::Zero();
+  Vec3 axis = Vec3::UnitZ();    // the joint's axis (a slider's line, a plane's normal)
+  Vec3 across = Vec3::UnitX();  // perpendicular to axis: where the turn is measured from
+};
+
+// The limits a designer gives; a kind refuses a limit it does not take.
+struct JointLimits {
+  std::optional<Range> turn;
+  std::optional<Range> travel;
+  std::optional<double> cone;
+  std::optional<Range> angle;
+  std::optional<Range> distance;
+};
+
+// Builds the joint a row describes between body1 (at1, the guide's side) and body2 (at2).
+// Throws std::invalid_argument naming the kind when a limit is given that it does not take, or a
+// required one (angle, distance) or a curve is missing. Values are checked by Model::add_joint.
+Joint make_joint(JointKind kind, BodyId body1, const Anchor& at1, BodyId body2, const Anchor& at2,
+                 const JointLimits& limits = {}, const std::vector<Vec3>& curve = {});
+
+// The named constructors.
+Joint fixed_joint(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2);
+Joint revolute(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2,
+               std::optional<Range> turn = {});
+Joint slider(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2,
+             std::optional<Range> travel = {});
+Joint cylindrical(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2,
+                  std::optional<Range> travel = {}, std::optional<Range> turn = {});
+Joint ball(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2,
+           std::optional<double> cone = {});
+Joint planar_joint(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2);
+Joint point_on_line(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2,
+                    std::optional<Range> travel = {});
+Joint point_on_plane(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2);
+Joint point_on_curve(BodyId b1, const std::vector<Vec3>& curve, BodyId b2, const Anchor& at2);
+Joint parallel(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2);
+Joint perpendicular(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2);
+Joint angle_joint(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, Range angle);
+Joint distance(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, Range distance);
+
+// The first row whose composition the joint has (a revolute whose turn is held at 0 is `fixed`),
+// or none for a block that no row names (a custom constraint).
+std::optional<JointKind> classify(const Joint& j);
+// "revolute", or "constraint" for a custom block.
+std::string kind_name(const Joint& j);
+
+}  // namespace dispcon

@@ -1,0 +1,162 @@
+// Names and labels: whatever the model accepts, the writer writes so that reading it back gives
+// the same model (a property over arbitrary strings), and what the format cannot hold the model
+// refuses.
+#include "dispcon/io/dcl_writer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "dispcon/io/dcl_lexer.hpp"
+#include "dispcon/io/dcl_reader.hpp"
+#include "dispcon/model/joint_kinds.hpp"
+
+namespace dispcon {
+namespace {
+
+// Strings a hostile user or a FreeCAD label might hold: the format's own punctuation, escapes,
+// new lines, UTF-8 (valid or cut short) and any byte at all.
+std::string arbitrary(std::mt19937& rng) {
+  static const char* pieces[] = {"\n",  "\"",  "\\",     ";",       "end",    "object evil; fixed;",
+                                 "//",  "/*",  "*/",     "\\x41",   "\\n",    "\r\n",
+                                 "\t",  " ",   "é",      "→",       "🙂",     "\xE2\x82",
+                                 "\xFF", "\0", "constraint", "label \"", "a",  "Z9_.-"};
+  std::uniform_int_distribution<int> length(0, 12);
+  std::uniform_int_distribution<int> which(0, static_cast<int>(std::size(pieces)));
+  std::uniform_int_distribution<int> byte(0, 255);
+  std::string s;
+  for (int n = length(rng); n > 0; --n) {
+    const int k = which(rng);
+    if (k == static_cast<int>(std::size(pieces))) {
+      s += static_cast<char>(byte(rng));
+    } else if (pieces[k][0] == '\0') {
+      s += '\0';
+    } else {
+      s += pieces[k];
+    }
+  }
+  return s;
+}
+
+Model pendulum(const std::string& body_name) {
+  Model m;
+  Body b;
+  b.name = body_name;
+  b.pose.x = Vec3(0.5, 0, 0);
+  const BodyId id = m.add_body(b);
+  m.add_joint(revolute(Model::kWorld, Anchor{}, id, Anchor{}));
+  return m;
+}
+
+TEST(DclWriter, LabelsRoundTripWhateverTheyHold) {
+  std::mt19937 rng(13);
+  int accepted = 0, refused = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const std::string label = arbitrary(rng);
+    Model m = pendulum("bar");
+    Joint j = ball(Model::kWorld, Anchor{}, BodyId{1}, Anchor{});
+    j.label = label;
+    try {
+      m.add_joint(j);
+    } catch (const JointError& e) {
+      // Only labels that are not UTF-8 are refused (Python and FreeCAD hold UTF-8 text).
+      EXPECT_EQ(e.keyword(), "label") << e.what();
+      ++refused;
+      continue;
+    }
+    ++accepted;
+    const std::string text = write_dcl(m);
+    const ParseResult back = parse_dcl(text, "written.dcl");
+    ASSERT_TRUE(back.ok()) << back.messages() << text;
+    ASSERT_EQ(back.model->joint_count(), 2) << text;
+    ASSERT_EQ(back.model->body_count(), 2) << text;
+    EXPECT_EQ(back.model->joint(JointId{1}).label, label) << text;
+    EXPECT_EQ(write_dcl(*back.model), text);
+  }
+  EXPECT_GT(accepted, 1000);
+  EXPECT_GT(refused, 100);
+}
+
+TEST(DclWriter, NamesAreRefusedOrRoundTrip) {
+  std::mt19937 rng(11);
+  int accepted = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const std::string name = arbitrary(rng);
+    Model m;
+    try {
+      m = pendulum(name);
+    } catch (const std::invalid_argument&) {
+      EXPECT_FALSE(is_valid_name(name) && name != "world") << name;
+      continue;
+    }
+    ++accepted;
+    EXPECT_TRUE(is_valid_name(name));
+    const ParseResult back = parse_dcl(write_dcl(m));
+    ASSERT_TRUE(back.ok()) << back.messages();
+    ASSERT_EQ(back.model->body_count(), 2);
+    EXPECT_EQ(back.model->body(BodyId{1}).name, name);
+  }
+  EXPECT_GT(accepted, 30);
+}
+
+TEST(DclWriter, TheIssuesLabelStaysALabel) {
+  Model m = pendulum("y");
+  Joint j = ball(Model::kWorld, Anchor{}, BodyId{1}, Anchor{});
+  j.label = "Joint\nobject evil; fixed; end";
+  m.add_joint(j);
+  const std::string text = write_dcl(m);
+  EXPECT_NE(text.find(R"(label "Joint\nobject evil; fixed; end";)"), std::string::npos) << text;
+  const ParseResult back = parse_dcl(text);
+  ASSERT_TRUE(back.ok()) << back.messages();
+  EXPECT_EQ(back.model->body_count(), 2);  // no body 'evil'
+  EXPECT_FALSE(back.model->find("evil"));
+}
+
+TEST(DclWriter, NamesTheFormatCannotHoldAreRefusedWithTheRule) {
+  Model m;
+  Body b;
+  b.name = "y; fixed";
+  try {
+    m.add_body(b);
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'y; fixed' cannot be written in a .dcl file"),
+              std::string::npos)
+        << e.what();
+  }
+  for (const char* bad : {"", "1a", "-a", "a b", "a\n", "é", "a\"", "_a"}) {
+    b.name = bad;
+    EXPECT_THROW(m.add_body(b), std::invalid_argument) << bad;
+  }
+  for (const char* good : {"a", "A-1", "link_2.b", "inf", "end", "nan"}) {
+    b.name = good;
+    EXPECT_NO_THROW(m.add_body(b)) << good;
+  }
+  const ParseResult back = parse_dcl(write_dcl(m));
+  ASSERT_TRUE(back.ok()) << back.messages();
+  EXPECT_EQ(back.model->body_count(), 7);
+}
+
+TEST(DclLexer, StringEscapes) {
+  LexErrors errors;
+  const std::vector<Token> t = lex_dcl(R"("a\"b\\c\n\t\r\x00\x7Fé" "x)", errors);
+  ASSERT_GE(t.size(), 2u);
+  EXPECT_EQ(t[0].kind, Token::String);
+  EXPECT_EQ(t[0].text, std::string("a\"b\\c\n\t\r\0\x7F\xC3\xA9", 12));
+  EXPECT_EQ(t[1].kind, Token::Bad);  // never closed
+  ASSERT_EQ(errors.listed.size(), 1u);
+  EXPECT_EQ(errors.listed[0].column, 27);
+  EXPECT_EQ(quote_string(t[0].text), R"("a\"b\\c\n\t\r\x00\x7Fé")");
+  // A raw new line ends an unclosed string: the next line is read as usual.
+  const std::vector<Token> u = lex_dcl("\"abc\nend", errors);
+  EXPECT_EQ(u[0].kind, Token::Bad);
+  EXPECT_EQ(u[1].kind, Token::Word);
+  EXPECT_EQ(u[1].text, "end");
+  LexErrors escape;
+  lex_dcl(R"("\q")", escape);
+  ASSERT_EQ(escape.listed.size(), 1u);
+  EXPECT_NE(escape.listed[0].message.find("unknown escape"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dispcon
