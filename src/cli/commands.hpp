@@ -23,8 +23,8 @@ constexpr int kViolated = 3;
 // The file and options every subcommand takes.
 struct Common {
   std::string file;
-  double tolerance = 1e-9;
-  int max_iterations = 10000;
+  double tolerance = SolveOptions{}.tolerance;  // the engine's defaults, stated there once
+  int max_iterations = SolveOptions{}.max_iterations;
   bool json = false;
 };
 

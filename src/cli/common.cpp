@@ -10,9 +10,12 @@ namespace dispcon::cli {
 void add_common(CLI::App* sub, Common& common, bool solves) {
   sub->add_option("FILE", common.file, "the .dcl file")->required();
   if (solves) {
-    // Their values are checked by the engine (validate(SolveOptions)), not here.
-    sub->add_option("--tolerance", common.tolerance, "largest violation accepted (default 1e-9)");
-    sub->add_option("--max-iterations", common.max_iterations, "iteration cap (default 10000)");
+    // Their values are checked by the engine (validate(SolveOptions)), not here; their defaults
+    // are the engine's (SolveOptions), shown by --help.
+    sub->add_option("--tolerance", common.tolerance, "largest violation accepted")
+        ->capture_default_str();
+    sub->add_option("--max-iterations", common.max_iterations, "iteration cap")
+        ->capture_default_str();
   }
   sub->add_flag("--json", common.json, "print one JSON document on standard output");
 }

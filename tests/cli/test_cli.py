@@ -3,6 +3,7 @@ import csv
 import json
 import math
 import os
+import random
 import subprocess
 import tempfile
 import unittest
@@ -56,6 +57,40 @@ class Assemble(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("warning.dcl:3:44: warning: angle max 9 is outside", r.stderr)
         self.assertIn("converged", r.stdout)
+
+    def test_errors_are_capped_with_a_count_of_the_rest(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            noise = os.path.join(tmp, "noise.dcl")
+            with open(noise, "wb") as f:
+                f.write(random.Random(5).randbytes(1 << 20))
+            dup = os.path.join(tmp, "dup.dcl")
+            with open(dup, "w") as f:
+                f.write("object a; end\n" * 200000)
+            for path, more in ((noise, None), (dup, "199899 more errors")):
+                r = subprocess.run([BIN, "check", path], capture_output=True, timeout=120)
+                self.assertEqual(r.returncode, 2)
+                lines = r.stderr.decode("utf-8", "replace").splitlines()
+                self.assertLessEqual(len(lines), 101)
+                self.assertRegex(lines[-1], r": error: [0-9]+ more errors \(only the first 100 are listed\)$")
+                if more:
+                    self.assertIn(more, lines[-1])
+
+    def test_a_huge_direction_is_a_direction_and_a_zero_one_is_placed(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "big.dcl")
+            with open(path, "w") as f:
+                f.write("object a; end\nconstraint object2 a;\n  axial 1e200 1e200 0; end\n")
+            self.assertEqual(run("assemble", path).returncode, 0)
+            with open(path, "w") as f:
+                f.write("object a; end\nconstraint object2 a;\n  axial 0 0 0; end\n")
+            r = run("assemble", path)
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("big.dcl:3:3: error: axial u is a zero vector", r.stderr)
+
+    def test_defaults_are_the_engines(self):
+        r = run("assemble", "--help")
+        self.assertRegex(r.stdout, r"--tolerance \S*=1e-0?9\b")
+        self.assertRegex(r.stdout, r"--max-iterations \S*=10000\b")
 
     def test_bad_usage_exits_2(self):
         self.assertEqual(run("assemble", os.path.join(DATA, "pendulum.dcl"), "--bogus").returncode, 2)

@@ -1,8 +1,10 @@
 """The dispcon Python module against python.md, mirroring the C++ tests."""
 import math
 import os
+import random
 import tempfile
 import unittest
+import warnings
 
 import numpy as np
 
@@ -348,6 +350,101 @@ class Door(unittest.TestCase):
         r = s.solve()
         self.assertFalse(r.converged)
         self.assertEqual(len(r.constraints), m.joint_count())
+class Vocabulary(unittest.TestCase):
+    """The engine's joint table, read by name: kinds build, classify back and round-trip."""
+
+    def test_every_kind_builds_classifies_back_and_round_trips(self):
+        limits = {"turn": (-0.5, 0.5), "travel": (-1, 2), "cone": 0.4, "angle": (0.2, 0.3),
+                  "distance": (1.5, 1.5)}
+        names = [k["name"] for k in dispcon.joint_kinds()]
+        self.assertEqual(len(names), len(set(names)))
+        for k in ("fixed", "revolute", "slider", "cylindrical", "ball", "planar", "point_on_line",
+                  "point_on_plane", "point_on_curve", "parallel", "perpendicular", "angle", "distance"):
+            self.assertIn(k, names)
+        for row in dispcon.joint_kinds():
+            with self.subTest(kind=row["name"]):
+                m = dispcon.Model()
+                m.add_body("a", position=(0.2, 0.1, 0))
+                kw = {name: limits[name] for name in row["limits"]}
+                if row["needs_curve"]:
+                    kw["curve"] = [(0, 0, 0), (1, 0, 0), (1, 1, 0)]
+                i = m.add_joint("a", kind=row["name"], point1=(0, 0, 0), point2=(0.1, 0, 0),
+                                axis1=(0, 0, 2), axis2=Z, label=row["title"], **kw)
+                self.assertEqual(m.joint(i).kind, row["name"])
+                back = dispcon.loads(m.to_dcl())
+                self.assertEqual(back.joint(0).kind, row["name"])
+                self.assertEqual(back.joint(0).label, row["title"])
+
+    def test_the_pendulum_built_by_kind_solves_like_the_one_built_by_statements(self):
+        by_kind = dispcon.Model()
+        by_kind.add_body("bar", position=(0.3, 0.2, 0.1))
+        by_kind.add_joint("bar", kind="revolute", point2=(-0.5, 0, 0))
+        by_text = dispcon.Model()
+        by_text.add_body("bar", position=(0.3, 0.2, 0.1))
+        by_text.add_joint("bar", hinge=((0, 0, 0), (-0.5, 0, 0)), angle=(Z, Z, 0, 0))
+        self.assertEqual(by_kind.to_dcl(), by_text.to_dcl())
+        self.assertTrue(by_kind.assemble().converged)
+        np.testing.assert_allclose(by_kind.body("bar").rotation @ (-0.5, 0, 0) + by_kind.body("bar").position,
+                                   (0, 0, 0), atol=1e-9)
+
+    def test_bad_kinds_and_keywords_raise_value_error(self):
+        m = dispcon.Model()
+        m.add_body("a")
+        with self.assertRaisesRegex(ValueError, "unknown joint kind 'hinge'"):
+            m.add_joint("a", kind="hinge")
+        with self.assertRaisesRegex(ValueError, "revolute takes no travel limit"):
+            m.add_joint("a", kind="revolute", travel=(0, 1))
+        with self.assertRaisesRegex(ValueError, "angle needs its angle range"):
+            m.add_joint("a", kind="angle")
+        with self.assertRaisesRegex(ValueError, "not 'hinge'"):
+            m.add_joint("a", kind="ball", hinge=((0, 0, 0), (0, 0, 0)))
+        with self.assertRaisesRegex(ValueError, "not 'bogus'"):
+            m.add_joint("a", bogus=1)
+        with self.assertRaisesRegex(ValueError, "at most one translation guide"):
+            m.add_joint("a", axial=(Z,), planar=(Z,))
+        self.assertEqual(m.joint_count(), 0)
+
+    def test_clamped_bounds_warn_instead_of_passing_silently(self):
+        m = dispcon.Model()
+        m.add_body("a")
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            m.add_joint("a", hinge=((0, 0, 0), (0, 0, 0)), angle=(Z, Z, 0, 9))
+        self.assertEqual([w.category for w in caught], [dispcon.ModelWarning])
+        self.assertIn("joint 0: angle max 9 is outside [0, 3.14159]; clamped to 3.14159",
+                      str(caught[0].message))
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", dispcon.ModelWarning)
+            with self.assertRaises(dispcon.ModelWarning):
+                dispcon.loads("object a; end\nconstraint object2 a; angle 0 0 1 0 0 1 max 9; end", "w.dcl")
+
+    def test_names_the_format_cannot_hold_are_refused(self):
+        m = dispcon.Model()
+        with self.assertRaisesRegex(ValueError, "'y; fixed' cannot be written in a .dcl file"):
+            m.add_body("y; fixed")
+        self.assertEqual(m.body_names(), [])
+
+    def test_labels_round_trip_whatever_they_hold(self):
+        rng = random.Random(13)
+        pieces = ["\n", '"', "\\", ";", "end", "object evil; fixed; end", "é", "🙂", "\x00", "\t",
+                  "label \"", "/*", "//"]
+        for _ in range(300):
+            label = "".join(rng.choice(pieces) if rng.random() < 0.7 else chr(rng.randrange(1, 0x3000))
+                            for _ in range(rng.randrange(0, 10)))
+            m = dispcon.Model()
+            m.add_body("bar")
+            m.add_joint("bar", kind="ball", label=label)
+            back = dispcon.loads(m.to_dcl())
+            self.assertEqual(back.body_names(), ["bar"])
+            self.assertEqual(back.joint(0).label, label)
+
+    def test_defaults_are_the_engines(self):
+        self.assertEqual(dispcon.DEFAULT_TOLERANCE, 1e-9)
+        self.assertEqual(dispcon.DEFAULT_MAX_ITERATIONS, 10000)
+        keywords = [c["keyword"] for c in dispcon.components()]
+        self.assertEqual(keywords[:2], ["hinge", "axial"])
+        angle = [c for c in dispcon.components() if c["keyword"] == "angle"][0]
+        self.assertEqual(angle["bounds"], (0, math.pi))
 
 
 if __name__ == "__main__":
