@@ -46,39 +46,38 @@ def missing_part(j, parts_by_name):
     return ""
 
 
-def _joint_kwargs(j):
-    """The joint as dispcon's constraint vocabulary (format.md)."""
-    t = j.JointType
+def kind_of(dispcon, joint_type):
+    """The row of the engine's joint table (dispcon.joint_kinds()) for a workbench joint type:
+    "PointOnLine" is the kind "point_on_line"."""
+    for row in dispcon.joint_kinds():
+        if row["name"].replace("_", "") == joint_type.lower():
+            return row
+    raise ValueError("joint type %r is not a kind of joint the engine knows (%s)"
+                     % (joint_type, ", ".join(r["name"] for r in dispcon.joint_kinds())))
+
+
+def joint_kwargs(dispcon, j):
+    """The joint as add_joint's arguments: its kind, its anchors in each part's frame, and those
+    of its limits the kind takes (a revolute keeps no travel set while it was a slider)."""
+    row = kind_of(dispcon, j.JointType)
     # Offset: part 2's point sits that far along part 1's axis; Reversed: part 2's axis flipped
     # (part 2 turned over about the twist reference, which stays put).
     offset = j.Offset.Value if "Offset" in j.PropertiesList else 0.0
-    p1, p2 = _vec(j.Point1 + j.Axis1 * offset), _vec(j.Point2)
     flip = -1 if "Reversed" in j.PropertiesList and j.Reversed else 1
-    a1, a2 = _vec(j.Axis1), _vec(j.Axis2 * flip)
-    b1, b2 = _vec(j.Perp1), _vec(j.Perp2)
-    inf = float("inf")
     rad = math.radians
-    rot = (rad(j.RotationMin.Value), rad(j.RotationMax.Value)) if j.HasRotationLimits else None
-    travel = (j.TravelMin.Value, j.TravelMax.Value) if j.HasTravelLimits else (-inf, inf)
-    kw = {}
-    if t != "Angle":
-        kw["hinge"] = (p1, p2)
-    if t in ("Fixed", "Revolute", "Slider", "Cylindrical", "Planar"):
-        kw["angle"] = (a1, a2, 0.0, 0.0)
-    if t in ("Fixed", "Slider"):
-        kw["twist"] = (b1, b2, 0.0, 0.0)
-    elif t in ("Revolute", "Cylindrical") and rot:
-        kw["twist"] = (b1, b2, rot[0], rot[1])
-    if t in ("Slider", "Cylindrical", "PointOnLine"):
-        kw["axial"] = (a1, travel[0], travel[1])
-    if t in ("Planar", "PointOnPlane"):
-        kw["planar"] = (a1, 0.0, inf)
-    if t == "Ball" and j.ConeAngle.Value > 0:
-        kw["angle"] = (a1, a2, 0.0, rad(j.ConeAngle.Value))
-    if t == "PointOnCurve":
-        kw["polyline"] = [_vec(p) for p in live_curve(j)]
-    if t == "Angle":
-        kw["angle"] = (a1, a2, rad(j.AngleMin.Value), rad(j.AngleMax.Value))
+    kw = dict(kind=row["name"], point1=_vec(j.Point1 + j.Axis1 * offset), point2=_vec(j.Point2),
+              axis1=_vec(j.Axis1), axis2=_vec(j.Axis2 * flip), across1=_vec(j.Perp1),
+              across2=_vec(j.Perp2))
+    limits = {"angle": (rad(j.AngleMin.Value), rad(j.AngleMax.Value))}
+    if j.HasRotationLimits:
+        limits["turn"] = (rad(j.RotationMin.Value), rad(j.RotationMax.Value))
+    if j.HasTravelLimits:
+        limits["travel"] = (j.TravelMin.Value, j.TravelMax.Value)
+    if j.ConeAngle.Value > 0:
+        limits["cone"] = rad(j.ConeAngle.Value)
+    kw.update({name: value for name, value in limits.items() if name in row["limits"]})
+    if row["needs_curve"]:
+        kw["curve"] = [_vec(p) for p in live_curve(j)]
     if j.Move >= 0:
         kw["move"] = j.Move
     return kw
@@ -127,7 +126,7 @@ class Adapter:
             for j in self.joints:
                 o1, o2 = j.Reference1[0], j.Reference2[0]
                 self.model.add_joint(self.names[o2.Name], object1=self.names[o1.Name], label=j.Label,
-                                     **_joint_kwargs(j))
+                                     **joint_kwargs(self.dispcon, j))
 
     def labelled(self, text):
         """`text` with the model's internal body names (p0_Base) as the parts' labels."""

@@ -5,6 +5,8 @@ import math
 
 import FreeCAD as App
 
+from . import engine
+
 JOINT_TYPES = ["Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "PointOnLine",
                "PointOnPlane", "PointOnCurve", "Angle"]
 
@@ -32,8 +34,6 @@ class _Proxy(Stateless):
 
 
 PARAMETERS = "User parameter:BaseApp/Preferences/Mod/Dispcon"
-DEFAULT_TOLERANCE = 1e-9
-DEFAULT_MAX_ITERATIONS = 10000
 DEFAULT_DRAG_STEPS = 20
 
 
@@ -41,17 +41,20 @@ def preferences():
     """The defaults a person set on the preferences page (Edit > Preferences > Dispcon); a value
     that is missing or not a positive number gives the built-in default."""
     p = App.ParamGet(PARAMETERS)
+    # The built-in defaults are the engine's, stated there once.
+    dispcon = engine.load()
+    default_tolerance, default_iterations = dispcon.DEFAULT_TOLERANCE, dispcon.DEFAULT_MAX_ITERATIONS
     # The page's tolerance field is text ("1e-9": readable, any magnitude).
     try:
-        tolerance = float(p.GetString("Tolerance", "") or DEFAULT_TOLERANCE)
+        tolerance = float(p.GetString("Tolerance", "") or default_tolerance)
     except ValueError:
         App.Console.PrintWarning("Dispcon preferences: tolerance %r is not a number; using %g\n"
-                                 % (p.GetString("Tolerance", ""), DEFAULT_TOLERANCE))
-        tolerance = DEFAULT_TOLERANCE
-    iterations = p.GetInt("MaxIterations", DEFAULT_MAX_ITERATIONS)
+                                 % (p.GetString("Tolerance", ""), default_tolerance))
+        tolerance = default_tolerance
+    iterations = p.GetInt("MaxIterations", default_iterations)
     steps = p.GetInt("DragSteps", DEFAULT_DRAG_STEPS)
-    return {"Tolerance": tolerance if 0 < tolerance < math.inf else DEFAULT_TOLERANCE,
-            "MaxIterations": iterations if iterations > 0 else DEFAULT_MAX_ITERATIONS,
+    return {"Tolerance": tolerance if 0 < tolerance < math.inf else default_tolerance,
+            "MaxIterations": iterations if iterations > 0 else default_iterations,
             "DragSteps": steps if steps > 0 else DEFAULT_DRAG_STEPS}
 
 

@@ -631,6 +631,26 @@ class RobustOperations(unittest.TestCase):
             da.edit_joint(j, joint_type="PointOnCurve")
         self.assertEqual(j.JointType, "Ball")
 
+    def test_every_joint_type_is_a_row_of_the_engines_table(self):
+        from dispcon_fc import adapter, engine
+        dispcon = engine.load()
+        kinds = {t: adapter.kind_of(dispcon, t)["name"] for t in da.JOINT_TYPES}
+        self.assertEqual(kinds["PointOnLine"], "point_on_line")
+        self.assertEqual(sorted(set(kinds.values())), sorted(kinds.values()))
+        asm, base, arm = arm_on_base(self.doc)
+        made = ["Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "PointOnLine",
+                "PointOnPlane", "Angle"]
+        for t in made:
+            da.add_joint(asm, t, pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)))
+        # Limits a kind does not take stay in the properties and out of the model.
+        j = da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)), rotation=(-20, 30),
+                         travel=(0, 5))
+        model = adapter.Adapter(asm).model
+        self.assertEqual([model.joint(i).kind for i in range(model.joint_count())],
+                         [kinds[t] for t in made] + ["revolute"])
+        self.assertTrue(j.HasTravelLimits)
+        self.assertRegex(model.to_dcl(), r"twist [^;]* min -0\.349065850398865\d* max 0\.523598775598298\d*;")
+
     def test_errors_name_parts_by_their_labels(self):
         asm, base, arm = arm_on_base(self.doc)
         da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)))
