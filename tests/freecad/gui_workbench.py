@@ -80,6 +80,25 @@ def shot(name, view=None):
     return path
 
 
+def mouse(view, kind, x, y):
+    """A Coin3D mouse event at (x, y) in `view`: "press" or "release" of the left button, or
+    "move", through the viewer's scene graph as a real mouse's event goes."""
+    from pivy import coin
+
+    viewer = view.getViewer()
+    region = viewer.getSoRenderManager().getViewportRegion()
+    if kind == "move":
+        event = coin.SoLocation2Event()
+    else:
+        event = coin.SoMouseButtonEvent()
+        event.setButton(coin.SoMouseButtonEvent.BUTTON1)
+        event.setState(coin.SoMouseButtonEvent.DOWN if kind == "press" else coin.SoMouseButtonEvent.UP)
+    event.setPosition(coin.SbVec2s(x, y))
+    action = coin.SoHandleEventAction(region)
+    action.setEvent(event)
+    action.apply(viewer.getSoRenderManager().getSceneGraph())
+
+
 def close_dialog():
     """Closes the task dialog as a person would: the joint panel by Cancel."""
     from dispcon_fc.panels import joint as jp
@@ -554,4 +573,5 @@ def main():
         QtWidgets.QApplication.instance().quit()
 
 
-main()
+if not os.environ.get("DISPCON_GUI_IMPORT_ONLY"):  # scripts/walkthrough.py imports the helpers only
+    main()
