@@ -57,6 +57,33 @@ struct TwistSpec {
   double max = 0;
 };
 
+// A coupling between the turns (or a turn and a travel) of the two objects (issue 11): gears,
+// belts, rack and pinion, screw. The math of each is at the top of its part's file
+// (parts/gear.hpp, rack_pinion.hpp, screw.hpp); every one holds
+//   k1 theta1 + k2 theta2 + s = phase
+// with theta the turns (unwrapped) and s a travel, so the state of a coupling is its phase alone.
+enum class CouplingKind {
+  Gear,   // turn2 = -ratio turn1, turns measured from the line of centres (external mesh)
+  Belt,   // turn2 = +ratio turn1 (belt, chain, internal mesh)
+  Rack,   // travel of object2 (the rack) along its axis = radius turn1 (object1: the pinion)
+  Screw,  // travel of object2 along object1's axis = pitch / (2 pi) relative turn (right-handed)
+};
+
+const char* to_string(CouplingKind kind);
+
+struct CouplingSpec {
+  CouplingKind kind = CouplingKind::Gear;
+  Vec3 c1 = Vec3::Zero();    // a point of object1's axis, object1's frame
+  Vec3 a1 = Vec3::UnitZ();   // object1's axis, unit
+  Vec3 c2 = Vec3::Zero();    // a point of object2's axis (rack: a point of the rack)
+  Vec3 a2 = Vec3::UnitZ();   // object2's axis (rack: its direction of travel), unit
+  double value = 1;          // ratio (gear, belt), radius (rack), pitch (screw); positive
+  bool left = false;         // screw: left-handed
+  // The coupling's constant; absent: taken at add_joint so that the model's poses hold it. The
+  // model keeps it as the turns go round (Model::set_poses), so it survives full turns.
+  std::optional<double> phase;
+};
+
 struct Joint {
   BodyId body1{0};  // the world (Model::kWorld) by default
   BodyId body2;
@@ -68,6 +95,7 @@ struct Joint {
 
   std::optional<AngleSpec> angle;
   std::optional<TwistSpec> twist;  // requires angle
+  std::optional<CouplingSpec> coupling;
 
   std::optional<double> move;  // mu12 in [0, 1]: body1's share of a translation
   double t0 = -kInf;           // active while t0 <= t <= t1

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "dispcon/model/joint_kinds.hpp"
+#include "dispcon/parts/coupling.hpp"
 
 namespace dispcon {
 
@@ -150,6 +151,28 @@ bool is_name_char(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
 }
 
+namespace {
+
+Frame frame(const Body& b) {
+  return Frame{b.pose.rotation(), b.pose.x, b.world_center()};
+}
+
+}  // namespace
+
+const char* to_string(CouplingKind kind) {
+  switch (kind) {
+    case CouplingKind::Gear:
+      return "gear";
+    case CouplingKind::Belt:
+      return "belt";
+    case CouplingKind::Rack:
+      return "rack";
+    case CouplingKind::Screw:
+      return "screw";
+  }
+  return "?";
+}
+
 bool is_valid_name(std::string_view name) {
   if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
   return std::all_of(name.begin(), name.end(), is_name_char);
@@ -206,8 +229,8 @@ JointId Model::add_joint(Joint j) {
     j.has_hinge = true;
     j.guide.reset();
   }
-  if (!j.has_translation() && !j.angle)
-    fail("", "no component: give a hinge, a translation guide or an angle");
+  if (!j.has_translation() && !j.angle && !j.coupling)
+    fail("", "no component: give a hinge, a translation guide, an angle or a coupling");
   if (j.twist && !j.angle) fail("twist", "twist needs an angle (it uses the angle's vectors)");
   const JointId id{static_cast<int>(joints_.size())};
   std::vector<ModelWarning> clamped;  // kept only if the joint is accepted
@@ -218,6 +241,32 @@ JointId Model::add_joint(Joint j) {
     ComponentCheck(who, row, messages)(v);
     set_component(j, row.id, v);
     for (std::string& m : messages) clamped.push_back({id, row.keyword, std::move(m)});
+  }
+  if (j.coupling) {
+    CouplingSpec& c = *j.coupling;
+    const std::string field = to_string(c.kind);
+    const std::string cw = who + ": " + field;
+    const bool rack = c.kind == CouplingKind::Rack;
+    c.c1 = check_vector(c.c1, field, cw + (rack ? " pinion centre" : " centre1"));
+    c.c2 = check_vector(c.c2, field, cw + (rack ? " rack point" : " centre2"));
+    c.a1 = check_direction(c.a1, field, cw + (rack ? " pinion axis" : " axis1"));
+    c.a2 = check_direction(c.a2, field, cw + (rack ? " rack direction" : " axis2"));
+    static const char* value_name[] = {"ratio", "ratio", "radius", "pitch"};
+    check_positive(c.value, field, cw + " " + value_name[static_cast<int>(c.kind)]);
+    if (c.phase) check_number(*c.phase, field, cw + " phase");
+    const CouplingMeasure m = measure_coupling(c, frame(body(j.body1)), frame(body(j.body2)), false);
+    if (!m.valid) {
+      throw ValueError(field, cw + (c.kind == CouplingKind::Screw
+                                        ? ": the axes are not aligned (a screw needs a "
+                                          "cylindrical pair)"
+                                        : ": the turn has no reference (the line of centres or "
+                                          "the rack lies along an axis)"));
+    }
+    // Made at the model's poses unless a phase is given: the equation holds there.
+    if (!c.phase) {
+      const double turns[2] = {m.theta[0], m.theta[1]};
+      c.phase = coupling_residual(m, turns, 0);
+    }
   }
   if (j.move && !(*j.move >= 0 && *j.move <= 1))
     fail("move", "move " + format_number(*j.move) + " is not in [0, 1]");
@@ -248,7 +297,26 @@ void Model::set_poses(const std::vector<Pose>& poses) {
   std::vector<Pose> checked(poses.size());
   for (size_t i = 1; i < bodies_.size(); ++i)
     checked[i] = check_pose(poses[i], "position", "object '" + bodies_[i].name + "'");
+  // A coupling's phase moves on by the whole turns its wrapped turns drop on the way (each turn
+  // taken the short way round), so the couplings hold through full turns.
+  std::vector<CouplingMeasure> before;
+  for (const Joint& j : joints_) {
+    if (j.coupling) {
+      before.push_back(
+          measure_coupling(*j.coupling, frame(body(j.body1)), frame(body(j.body2)), false));
+    }
+  }
   for (size_t i = 1; i < bodies_.size(); ++i) bodies_[i].pose = checked[i];
+  size_t k = 0;
+  for (Joint& j : joints_) {
+    if (!j.coupling) continue;
+    const CouplingMeasure& old = before[k++];
+    const CouplingMeasure now =
+        measure_coupling(*j.coupling, frame(body(j.body1)), frame(body(j.body2)), false);
+    for (int i = 0; i < now.angles; ++i) {
+      *j.coupling->phase += now.k[i] * (now.theta[i] - unwrap(now.theta[i], old.theta[i]));
+    }
+  }
 }
 
 Body& Model::movable_body(BodyId id, const char* what) {
@@ -260,8 +328,10 @@ Body& Model::movable_body(BodyId id, const char* what) {
 }
 
 void Model::set_pose(BodyId id, const Pose& pose) {
-  Body& b = movable_body(id, "set_pose");
-  b.pose = check_pose(pose, "position", "object '" + b.name + "'");
+  movable_body(id, "set_pose");
+  std::vector<Pose> all = poses();  // through set_poses, so that the couplings count turns
+  all[static_cast<size_t>(id.value)] = pose;
+  set_poses(all);
 }
 
 void Model::set_speeds(BodyId id, const Vec3& velocity, const Vec3& spin) {

@@ -127,6 +127,25 @@ CheckResult check(const Model& input, const SolveOptions& options) {
     out.advice.push_back(a.str());
   }
 
+  // Locked by its couplings (two gear paths with different ratios): with no freedom left, the
+  // couplings whose removal frees the mechanism.
+  if (out.dof == 0) {
+    for (int c = 0; c < model.joint_count(); ++c) {
+      if (!model.joint(JointId{c}).coupling) continue;
+      const Model freed = with_joints(model, [c](int k) { return k != c; });
+      if (rank_by_group(freed, options).dof > 0) out.locking.push_back(JointId{to_input(c)});
+    }
+    if (!out.locking.empty()) {
+      std::ostringstream a;
+      a << "the couplings lock the mechanism (gear paths with different ratios?): removing one of ";
+      for (size_t k = 0; k < out.locking.size(); ++k) {
+        a << (k ? ", " : "") << joint_name(input, out.locking[k]);
+      }
+      a << " frees it";
+      out.advice.push_back(a.str());
+    }
+  }
+
   std::ostringstream msg;
   if (out.solve.converged) {
     msg << "assembled; " << out.dof << " degree" << (out.dof == 1 ? "" : "s") << " of freedom";
@@ -136,6 +155,7 @@ CheckResult check(const Model& input, const SolveOptions& options) {
   if (!out.redundant.empty()) msg << ", " << out.redundant.size() << " redundant joint(s)";
   if (!out.conflicting.empty()) msg << ", " << out.conflicting.size() << " conflicting joint(s)";
   if (!out.limits_active.empty()) msg << ", " << out.limits_active.size() << " limit(s) in contact";
+  if (!out.locking.empty()) msg << ", locked by " << out.locking.size() << " coupling(s)";
   out.message = msg.str();
   return out;
 }

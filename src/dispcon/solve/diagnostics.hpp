@@ -17,6 +17,8 @@ struct CheckResult {
   std::vector<JointId> redundant;      // consistent but superfluous
   std::vector<JointId> conflicting;    // cannot hold together with the rest
   std::vector<JointId> limits_active;  // a bound in contact
+  std::vector<JointId> locking;        // couplings of a locked mechanism whose removal frees it
+                                       // (gear paths with different ratios)
   std::vector<std::string> advice;  // e.g. "removing joint 3 (line 12) makes the model consistent"
   std::string message;
 };

@@ -10,14 +10,15 @@ ConstraintJacobian constraint_jacobian(const Model& model, const std::vector<Pos
   ConstraintJacobian out;
   std::vector<Eigen::Triplet<double>> triplets;
   std::vector<double> residual;
-  PartRows parts[3];
-  const PartKind kinds[3] = {PartKind::Translation, PartKind::Angle, PartKind::Twist};
+  PartRows parts[kPartSlots];
+  const PartKind kinds[kPartSlots] = {PartKind::Translation, PartKind::Angle, PartKind::Twist,
+                                      PartKind::Coupling};
   int row = 0;
   for (size_t c = 0; c < s.joints.size(); ++c) {
     const JointState& js = s.joints[c];
     if (!js.active) continue;
     s.rows(js, BoundTest{contact_band(options.tolerance)}, parts);
-    for (int p = 0; p < 3; ++p) {
+    for (int p = 0; p < kPartSlots; ++p) {
       for (int k = 0; k < parts[p].count; ++k) {
         for (int col = 0; col < 12; ++col) {
           const double v = parts[p].J[k](col);

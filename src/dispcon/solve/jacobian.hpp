@@ -14,7 +14,7 @@
 
 namespace dispcon {
 
-enum class PartKind { Translation, Angle, Twist };
+enum class PartKind { Translation, Angle, Twist, Coupling };
 
 struct JacobianRow {
   JointId joint;

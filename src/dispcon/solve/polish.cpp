@@ -50,7 +50,7 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
 void Polisher::gather(const SolverState& s, const std::vector<double>& band) {
   w_->rows_.clear();
   w_->residual_.clear();
-  PartRows parts[3];
+  PartRows parts[kPartSlots];
   for (int c : group_->joints) {
     const JointState& js = s.joints[static_cast<size_t>(c)];
     const BodyState& s1 = s.bodies[static_cast<size_t>(js.b1)];

@@ -12,8 +12,9 @@ std::string describe(const Model& model, const ConstraintReport& c) {
   std::ostringstream out;
   out << "joint " << c.joint.value;
   if (c.line) out << " (line " << c.line << ")";
-  out << " " << model.body(j.body1).name << " / " << model.body(j.body2).name << " residual "
-      << c.residual;
+  out << " " << model.body(j.body1).name << " / " << model.body(j.body2).name;
+  if (j.coupling) out << " (" << to_string(j.coupling->kind) << ")";
+  out << " residual " << c.residual;
   return out.str();
 }
 

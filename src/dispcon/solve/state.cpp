@@ -5,6 +5,7 @@
 
 #include "dispcon/parts/angle.hpp"
 #include "dispcon/parts/circle.hpp"
+#include "dispcon/parts/coupling.hpp"
 #include "dispcon/parts/cylinder.hpp"
 #include "dispcon/parts/point.hpp"
 #include "dispcon/parts/point_to_point.hpp"
@@ -42,6 +43,10 @@ Nearest nearest_on_guide(const Joint& j, const Vec3& p, BoundTest bound) {
 
 Vec3 rotated(const Vec3& dR, const Vec3& v) {
   return quat_from_rotation_vector(dR) * v;
+}
+
+Frame frame(const BodyState& b) {
+  return Frame{b.R, b.x, b.G};
 }
 
 }  // namespace
@@ -95,6 +100,17 @@ SolverState::SolverState(const Model& model, const std::vector<Pose>& poses,
         (j.guide && j.guide->kind != GuideKind::Point && j.guide->kind != GuideKind::Circle) ||
         (j.angle && (j.angle->min > 0 || j.angle->max < kPi) && j.angle->min != j.angle->max) ||
         (j.twist && j.twist->min != j.twist->max);
+    if (j.coupling) {
+      // The phase holds at the model's poses: the turns there are the first ones seen.
+      const Body& m1 = model.body(j.body1);
+      const Body& m2 = model.body(j.body2);
+      const CouplingMeasure m = measure_coupling(
+          *j.coupling, Frame{m1.pose.rotation(), m1.pose.x, m1.world_center()},
+          Frame{m2.pose.rotation(), m2.pose.x, m2.world_center()}, false);
+      js.phase = j.coupling->phase.value_or(0);
+      js.last[0] = m.theta[0];
+      js.last[1] = m.theta[1];
+    }
     const BodyState& s1 = bodies[static_cast<size_t>(js.b1)];
     const BodyState& s2 = bodies[static_cast<size_t>(js.b2)];
     if (!s1.movable && !s2.movable) {
@@ -119,6 +135,25 @@ SolverState::SolverState(const Model& model, const std::vector<Pose>& poses,
     const int n = std::max(s1.movable ? s1.n : 0, s2.movable ? s2.n : 0);
     js.w = n == 0 ? 0 : options.seed_weights ? options.relaxation / n : options.relaxation;
   }
+  unwrap_couplings();
+}
+
+// Each coupling's turns move on by the short way round from the last seen, and its phase by the
+// whole turns the wrapped measure dropped, so the equation stays continuous through full turns.
+void SolverState::unwrap_couplings() {
+  for (JointState& js : joints) {
+    if (!js.joint->coupling) continue;
+    const CouplingMeasure m = coupling(js, false);
+    for (int i = 0; i < m.angles; ++i) {
+      js.phase += m.k[i] * (m.theta[i] - unwrap(m.theta[i], js.last[i]));
+      js.last[i] = m.theta[i];
+    }
+  }
+}
+
+CouplingMeasure SolverState::coupling(const JointState& js, bool with_rows) const {
+  return measure_coupling(*js.joint->coupling, frame(bodies[static_cast<size_t>(js.b1)]),
+                          frame(bodies[static_cast<size_t>(js.b2)]), with_rows);
 }
 
 void SolverState::write_poses(std::vector<Pose>& poses) const {
@@ -128,6 +163,7 @@ void SolverState::write_poses(std::vector<Pose>& poses) const {
 
 void SolverState::read_poses(const std::vector<Pose>& poses) {
   for (size_t i = 0; i < bodies.size(); ++i) bodies[i].set_pose(poses[i]);
+  unwrap_couplings();
 }
 
 Mobility SolverState::mobility(const JointState& js, int side) const {
@@ -176,19 +212,20 @@ double SolverState::residual(const JointState& js) const {
     const double t = twist_angle(g.a1, g.a2, g.b1, g.b2);
     r = std::max(r, std::abs(twist_violation(t, j.twist->min, j.twist->max)));
   }
+  if (j.coupling) r = std::max(r, std::abs(coupling_residual(coupling(js, false), js.last, js.phase)));
   return r;
 }
 
 bool SolverState::at_limit(const JointState& js, double band) const {
-  PartRows parts[3];
+  PartRows parts[kPartSlots];
   rows(js, BoundTest{band}, parts);
   return parts[0].at_limit || parts[1].at_limit || parts[2].at_limit;
 }
 
-void SolverState::rows(const JointState& js, BoundTest bound, PartRows out[3]) const {
+void SolverState::rows(const JointState& js, BoundTest bound, PartRows out[kPartSlots]) const {
   const Joint& j = *js.joint;
   const JointGeometry g = geometry(js, bound);
-  out[0] = out[1] = out[2] = PartRows{};
+  for (int p = 0; p < kPartSlots; ++p) out[p].count = 0, out[p].at_limit = false;
   if (g.translation) {
     out[0] = point_rows(g.Q, g.P2, bodies[static_cast<size_t>(js.b1)].G,
                         bodies[static_cast<size_t>(js.b2)].G, g.nearest);
@@ -197,6 +234,7 @@ void SolverState::rows(const JointState& js, BoundTest bound, PartRows out[3]) c
   if (j.twist) {
     out[2] = twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max, bound);
   }
+  if (j.coupling) out[3] = coupling_rows(coupling(js, true), js.last, js.phase);
 }
 
 // The rotations one joint proposes (seed 4.2.3 order): the translation part's eq. 18 first,
@@ -217,11 +255,20 @@ void SolverState::propose_rotations(const JointState& js, Vec3& dR1, Vec3& dR2) 
     twist_rotations(rotated(dR1, g.a1), rotated(dR2, g.a2), rotated(dR1, g.b1), rotated(dR2, g.b2),
                     j.twist->min, j.twist->max, m1, m2, dR1, dR2);
   }
+  // The coupling's impulse, rotation half (its translation half follows in propose_translations).
+  if (j.coupling) {
+    coupling_corrections(coupling(js, true), js.last, js.phase, m1, m2, &dR1, &dR2, nullptr,
+                         nullptr);
+  }
 }
 
 void SolverState::propose_translations(const JointState& js, Vec3& dx1, Vec3& dx2) const {
   dx1.setZero();
   dx2.setZero();
+  if (js.joint->coupling) {
+    coupling_corrections(coupling(js, true), js.last, js.phase, mobility(js, 1), mobility(js, 2),
+                         nullptr, nullptr, &dx1, &dx2);
+  }
   if (!js.joint->has_translation()) return;
   const JointGeometry g = geometry(js);
   point_translations(g.Q, g.P2, mobility(js, 1), mobility(js, 2), dx1, dx2);

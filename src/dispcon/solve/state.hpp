@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dispcon/model/model.hpp"
+#include "dispcon/parts/coupling.hpp"
 #include "dispcon/parts/nearest.hpp"
 #include "dispcon/parts/part.hpp"
 #include "dispcon/solve/solver.hpp"
@@ -46,7 +47,14 @@ struct JointState {
   double w = 1;  // seed 3.2 weight 1/max(n_i, n_j) times the relaxation
   bool active = true;
   bool bounded = false;  // has a bound that can be in contact (segment end, angle limit, ...)
+  // A coupling's phase and the turns last seen, against which its turns are unwrapped: both move
+  // on together whenever poses are read (read_poses), so full turns are counted.
+  double phase = 0;
+  double last[2] = {0, 0};
 };
+
+// The parts of a joint, in the order they give rows: translation, angle, twist, coupling.
+constexpr int kPartSlots = 4;
 
 // A joint's geometry at the current poses, world frame.
 struct JointGeometry {
@@ -72,6 +80,7 @@ class SolverState {
   std::vector<JointState> joints;
 
   void write_poses(std::vector<Pose>& poses) const;
+  // Reads new poses; each coupling's turns are unwrapped next to the last ones seen.
   void read_poses(const std::vector<Pose>& poses);
 
   Mobility mobility(const JointState& js, int side) const;
@@ -84,8 +93,13 @@ class SolverState {
   void propose_rotations(const JointState& js, Vec3& dR1, Vec3& dR2) const;
   // The translations one joint proposes from the current poses (eq. 19 after rotation).
   void propose_translations(const JointState& js, Vec3& dx1, Vec3& dx2) const;
-  // Appends the rows of one joint (translation part, angle, twist) to `out`.
-  void rows(const JointState& js, BoundTest bound, PartRows out[3]) const;
+  // Appends the rows of one joint (translation part, angle, twist, coupling) to `out`.
+  void rows(const JointState& js, BoundTest bound, PartRows out[kPartSlots]) const;
+  // A coupling's equation at the current poses (the joint must have one).
+  CouplingMeasure coupling(const JointState& js, bool with_rows) const;
+
+ private:
+  void unwrap_couplings();
 };
 
 }  // namespace dispcon

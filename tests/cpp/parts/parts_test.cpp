@@ -45,7 +45,28 @@ std::vector<Case> cases() {
       j.guide = g;
     };
   };
+  auto coupling = [](CouplingKind kind, double value, const Vec3& a2, bool left = false) {
+    return [=](Joint& j) {
+      CouplingSpec c;
+      c.kind = kind;
+      c.c1 = Vec3(0.3, -0.2, 0.5);
+      c.a1 = Vec3(0.2, 0.3, 1).normalized();
+      c.c2 = Vec3(-0.4, 0.1, 0.2);
+      c.a2 = a2.normalized();
+      c.value = value;
+      c.left = left;
+      c.phase = 0.4;  // off the poses' value, so the coupling is violated
+      j.coupling = c;
+    };
+  };
   return {
+      // Couplings correct a turn with one impulse whose metric includes the translations, so
+      // the rotation half alone leaves part of the error for the next iteration.
+      {"gear", coupling(CouplingKind::Gear, 1.7, Vec3(0, 0.1, 1)), false},
+      {"belt", coupling(CouplingKind::Belt, 0.6, Vec3(0.1, 0, 1)), false},
+      {"rack", coupling(CouplingKind::Rack, 0.8, Vec3(1, 0.2, 0)), false},
+      {"screw", coupling(CouplingKind::Screw, 0.3, Vec3(0.2, 0.3, 1)), false},
+      {"screw_left", coupling(CouplingKind::Screw, 0.3, Vec3(0.2, 0.3, 1), true), false},
       {"point_to_point", hinge},
       {"segment", guide(GuideKind::Axial, -kInf, kInf)},
       {"segment_bounded", guide(GuideKind::Axial, -0.1, 0.05)},
@@ -146,7 +167,7 @@ TEST(Parts, JacobianRowsMatchFiniteDifferences) {
     const Model m = c.aligned ? aligned_bodies(c) : two_bodies(c, false);
     const SolveOptions o;
     SolverState s(m, m.poses(), o, {});
-    PartRows rows[3];
+    PartRows rows[kPartSlots];
     // A large band makes every bound count as in contact, so each part gives its rows.
     s.rows(s.joints[0], BoundTest{10.0}, rows);
     const JointGeometry g0 = s.geometry(s.joints[0], BoundTest{10.0});
@@ -196,6 +217,14 @@ TEST(Parts, JacobianRowsMatchFiniteDifferences) {
         const double fd = (twist_angle(g2.a1, g2.a2, g2.b1, g2.b2) - t0) / h;
         EXPECT_NEAR(rows[2].J[0] * about_axis, fd, 1e-4 * (1 + std::abs(fd)));
         (void)t1;
+        ++total;
+      }
+      if (rows[3].count == 1) {
+        const JointState& js = s.joints[0];
+        const double f0 = coupling_residual(s.coupling(js, false), js.last, js.phase);
+        const double f1 = coupling_residual(moved.coupling(js, false), js.last, js.phase);
+        EXPECT_NEAR(rows[3].J[0] * dq, (f1 - f0) / h, 1e-4 * (1 + std::abs(f1 - f0) / h));
+        EXPECT_DOUBLE_EQ(rows[3].residual[0], f0);
         ++total;
       }
     }
