@@ -58,6 +58,7 @@ struct ConstraintBlock {
   Statements seen;
   std::string guide;  // the keyword of its translation guide
   bool ok = true;
+  Place coupling_at;
 };
 
 // Thrown inside the parser to abandon one statement; caught at statement level.
@@ -211,6 +212,51 @@ class Parser {
       throw StatementError{};
     }
     next();
+  }
+
+  // `gear|belt C1 a1 C2 a2 ratio r`, `rack C1 a1 C2 u radius r`, `screw C1 a1 C2 a2 pitch p
+  // {left}`, then `{phase f}` and `;` (the keyword `k` has been read).
+  CouplingSpec coupling(const std::string& k) {
+    CouplingSpec c;
+    c.kind = k == "gear"   ? CouplingKind::Gear
+             : k == "belt" ? CouplingKind::Belt
+             : k == "rack" ? CouplingKind::Rack
+                           : CouplingKind::Screw;
+    const bool rack = c.kind == CouplingKind::Rack;
+    c.c1 = vec3(k + (rack ? " pinion centre" : " centre1"));
+    c.a1 = direction(k + (rack ? " pinion axis" : " axis1"));
+    c.c2 = vec3(k + (rack ? " rack point" : " centre2"));
+    c.a2 = direction(k + (rack ? " rack direction" : " axis2"));
+    const char* value_name = rack ? "radius" : c.kind == CouplingKind::Screw ? "pitch" : "ratio";
+    const Token& v = peek();
+    if (v.kind != Token::Word || v.text != value_name) {
+      error(at(v), "expected '" + std::string(value_name) + "' in " + k + ", found " + quote(v));
+      throw StatementError{};
+    }
+    next();
+    const Token& first = peek();
+    c.value = number(k + " " + value_name);
+    if (!(c.value > 0)) {
+      error(at(first), k + " " + value_name + " must be positive");
+      throw StatementError{};
+    }
+    if (c.kind == CouplingKind::Screw && peek().kind == Token::Word && peek().text == "left") {
+      next();
+      c.left = true;
+    }
+    if (peek().kind == Token::Word && peek().text == "phase") {
+      next();
+      c.phase = number(k + " phase");
+    }
+    if (peek().kind != Token::Semicolon) {
+      error(at(peek()), std::string("expected ") +
+                            (c.kind == CouplingKind::Screw && !c.left && !c.phase ? "'left', " : "") +
+                            (c.phase ? "" : "'phase' or ") + "';' in " + k + ", found " +
+                            quote(peek()));
+      throw StatementError{};
+    }
+    next();
+    return c;
   }
 
   // A block's statement keyword: a word, not given before in the block (`seen` records it).
@@ -394,6 +440,15 @@ class Parser {
           cb.object2 = name("an object name");
           cb.has_object2 = true;
           semicolon("object2");
+        } else if (k == "gear" || k == "belt" || k == "rack" || k == "screw") {
+          if (j.coupling) {
+            error(at(t), "a constraint has at most one coupling: '" + k + "' after '" +
+                             to_string(j.coupling->kind) + "' at line " +
+                             std::to_string(cb.coupling_at.line));
+            throw StatementError{};
+          }
+          j.coupling = coupling(k);
+          cb.coupling_at = at(t);
         } else if (k == "move") {
           j.move = number("move");
           semicolon("move");
@@ -414,7 +469,7 @@ class Parser {
           std::string known;
           for (const ComponentRow& r : components()) known += std::string(r.keyword) + ", ";
           error(at(t), "unknown constraint statement '" + k + "' (expected object1, object2, " +
-                           known + "move, time, label or end)");
+                           known + "gear, belt, rack, screw, move, time, label or end)");
           throw StatementError{};
         }
       } catch (const StatementError&) {

@@ -162,6 +162,22 @@ TEST(DclReader, EveryErrorNamesItsPlace) {
       {"object a; position 1x 0 0; end", 1, 20, "malformed number '1x'"},
       {"object a; position inf 0 0; end", 1, 20, "must be finite"},
       {"stuff", 1, 1, "expected 'object' or 'constraint'"},
+      {"object a; end\nconstraint object2 a; gear 1 0 0 0 0 1 0 0 0 0 0 1 ratio -2; end", 2, 58,
+       "gear ratio must be positive"},
+      {"object a; end\nconstraint object2 a; gear 1 0 0 0 0 0 0 0 0 0 0 1 ratio 2; end", 2, 34,
+       "gear axis1 is a zero vector"},
+      {"object a; end\nconstraint object2 a; rack 1 0 0 0 0 1 0 0 0 1 0 0 ratio 2; end", 2, 52,
+       "expected 'radius' in rack, found 'ratio'"},
+      {"object a; end\nconstraint object2 a; belt 1 0 0 0 0 1 0 0 0 0 0 1 ratio 2 phase; end", 2,
+       65, "expected a number for belt phase"},
+      {"object a; end\nconstraint object2 a; screw 0 0 0 1 0 0 0 0 0 1 0 0 pitch 1 right; end", 2,
+       61, "expected 'left', 'phase' or ';' in screw, found 'right'"},
+      {"object a; end\nconstraint object2 a; gear 1 0 0 0 0 1 0 0 0 0 0 1 ratio 2;\n"
+       "  belt 1 0 0 0 0 1 0 0 0 0 0 1 ratio 2; end",
+       3, 3, "at most one coupling: 'belt' after 'gear' at line 2"},
+      // Concentric gears: the line of centres, from which turns are measured, lies on the axis.
+      {"object a; end\nconstraint object2 a; gear 0 0 0 0 0 1 0 0 0 0 0 1 ratio 2; end", 2, 1,
+       "gear: the turn has no reference"},
   };
   for (const Bad& c : cases) {
     SCOPED_TRACE(c.text);
@@ -268,6 +284,11 @@ constraint object1 slider; object2 pin; sphere min 1 max 1; end
 constraint object1 slider; object2 crank; circle 0 0 1 0.75; end
 constraint object1 pin; object2 crank; cylinder 1 0 0 0.3 max 4; end
 constraint object1 pin; object2 slider; polyline 0 0 0 1 0 0 1 1 0; end
+constraint object1 crank; object2 pin; gear 0.5 0 0 0 0 1 0 0 0 0 0 1 ratio 1.5; end
+constraint object1 pin; object2 crank; belt 0 0 0 0 0 1 0 0 0 0 0 1 ratio 0.25 phase 0.125; end
+constraint object1 pin; object2 slider; rack 0 0 0 0 0 1 0 0 0 1 0 0 radius 0.3; end
+constraint object1 slider; object2 crank; hinge 0 0 0 0 0 0; axial 1 0 0;
+  screw 0 0 0 1 0 0 0 0 0 1 0 0 pitch 0.2 left; end
 )";
   const ParseResult a = parse_dcl(text);
   ASSERT_TRUE(a.ok()) << a.messages();
@@ -324,6 +345,17 @@ constraint object1 pin; object2 slider; polyline 0 0 0 1 0 0 1 1 0; end
       EXPECT_EQ(x.twist->b1, y.twist->b1);
       EXPECT_EQ(x.twist->min, y.twist->min);
       EXPECT_EQ(x.twist->max, y.twist->max);
+    }
+    ASSERT_EQ(x.coupling.has_value(), y.coupling.has_value());
+    if (x.coupling) {
+      EXPECT_EQ(x.coupling->kind, y.coupling->kind);
+      EXPECT_EQ(x.coupling->c1, y.coupling->c1);
+      EXPECT_EQ(x.coupling->a1, y.coupling->a1);
+      EXPECT_EQ(x.coupling->c2, y.coupling->c2);
+      EXPECT_EQ(x.coupling->a2, y.coupling->a2);
+      EXPECT_EQ(x.coupling->value, y.coupling->value);
+      EXPECT_EQ(x.coupling->left, y.coupling->left);
+      EXPECT_EQ(x.coupling->phase, y.coupling->phase);
     }
     EXPECT_EQ(x.move, y.move);
     EXPECT_EQ(x.t0, y.t0);
