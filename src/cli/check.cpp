@@ -19,6 +19,7 @@ int run_check(const Common& c) {
     doc["redundant"] = joint_list(r.redundant);
     doc["conflicting"] = joint_list(r.conflicting);
     doc["limits_active"] = joint_list(r.limits_active);
+    doc["locking"] = joint_list(r.locking);
     doc["advice"] = r.advice;
     doc["diagnosis"] = r.message;
     for (int i = 1; i < m->body_count(); ++i) {
@@ -41,6 +42,7 @@ int run_check(const Common& c) {
     names("redundant", r.redundant);
     names("conflicting", r.conflicting);
     names("limits in contact", r.limits_active);
+    names("locking couplings", r.locking);
     for (const std::string& a : r.advice) std::cout << a << "\n";
   }
   return r.solve.converged && r.conflicting.empty() ? kOk : kViolated;

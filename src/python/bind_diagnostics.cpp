@@ -10,7 +10,7 @@ struct PyCheck {
   bool converged = true;
   int dof = 0;
   std::map<std::string, int> body_dof;
-  std::vector<int> redundant, conflicting, limits_active;
+  std::vector<int> redundant, conflicting, limits_active, locking;
   std::vector<std::string> advice;
   std::string message;
   PySolveResult solve;
@@ -40,6 +40,8 @@ void bind_diagnostics(pyb::module_& m, ModelClass& model) {
       .def_readonly("redundant", &PyCheck::redundant)
       .def_readonly("conflicting", &PyCheck::conflicting)
       .def_readonly("limits_active", &PyCheck::limits_active)
+      .def_readonly("locking", &PyCheck::locking,
+                    "couplings of a locked mechanism whose removal frees it")
       .def_readonly("advice", &PyCheck::advice)
       .def_readonly("message", &PyCheck::message)
       .def_readonly("solve", &PyCheck::solve)
@@ -71,6 +73,7 @@ void bind_diagnostics(pyb::module_& m, ModelClass& model) {
             out.redundant = indices(r.redundant);
             out.conflicting = indices(r.conflicting);
             out.limits_active = indices(r.limits_active);
+            out.locking = indices(r.locking);
             out.advice = r.advice;
             out.message = r.message;
             out.solve = convert(self, r.solve);

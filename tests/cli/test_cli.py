@@ -143,6 +143,17 @@ class Drag(unittest.TestCase):
         self.assertEqual(r.returncode, 3)
         self.assertFalse(json.loads(r.stdout)["converged"])
 
+    def test_drag_a_gear_train(self):
+        r = run("drag", os.path.join(SRC, "samples", "three-gears.dcl"), "--body", "g1",
+                "--to", "0", "0", "0", "--rotation", "0", "0", "3", "--steps", "30",
+                "--tolerance", "1e-12", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        bodies = json.loads(r.stdout)["bodies"]
+        turn = {name: math.atan2(bodies[name]["rotation"][1][0], bodies[name]["rotation"][0][0])
+                for name in ("g2", "g3")}
+        self.assertAlmostEqual(turn["g2"], -1.5, delta=1e-11)  # -1/2 of g1's 3 rad
+        self.assertAlmostEqual(turn["g3"], 2.0, delta=1e-11)  # 2/3 of it
+
 
 class Check(unittest.TestCase):
     def test_pendulum_has_one_degree_of_freedom(self):
@@ -161,6 +172,13 @@ class Check(unittest.TestCase):
         self.assertFalse(doc["converged"])
         self.assertEqual(len(doc["conflicting"]), 1)
         self.assertIn(doc["conflicting"][0], (0, 1))
+
+    def test_planetary_set_has_two_degrees_of_freedom(self):
+        r = run("check", os.path.join(SRC, "samples", "planetary.dcl"), "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertEqual(doc["dof"], 2)
+        self.assertEqual(doc["locking"], [])
 
 
 class Animate(unittest.TestCase):
