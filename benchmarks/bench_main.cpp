@@ -140,6 +140,33 @@ void BM_DragStep_FourBarGrid(benchmark::State& state) {
 }
 BENCHMARK(BM_DragStep_FourBarGrid)->Arg(3)->Arg(7)->Arg(10)->Unit(benchmark::kMicrosecond);
 
+// One drag step of a train of n gears (issue 11): the first gear turned 0.01 rad further each
+// frame, every other gear following through its mesh; the last gear's turn is checked against
+// the ratio (r_0 / r_(n-1)) at the end.
+void BM_DragStep_GearTrain(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Model m = bench::gear_train(n);
+  Dragger drag(m, BodyId{1});
+  int k = 0, iterations = 0;
+  for (auto _ : state) {
+    const SolveResult r = drag.move_to(Pose::from(Vec3::Zero(), Vec3(0, 0, 0.01 * ++k)));
+    if (!r.converged) state.SkipWithError(r.message.c_str());
+    iterations = std::max(iterations, r.iterations);
+  }
+  // The last gear turns (-1)^(n-1) r_0 / r_(n-1) times the first, to within what the meshes'
+  // tolerance lets add up along the train (each ratio is 2 or 1/2: at most 2 n tolerances).
+  const double expected = (n % 2 ? 1 : -2) * 0.01 * k;
+  const Vec3 e = m.body(BodyId{n}).pose.q * Vec3::UnitX();
+  const double error = std::abs(std::remainder(std::atan2(e.y(), e.x()) - expected, 2 * M_PI));
+  state.counters["ratio_error"] = error;
+  if (error > 2 * n * SolveOptions{}.tolerance) {
+    state.SkipWithError("the last gear is off its ratio");
+  }
+  state.counters["iterations"] = iterations;
+  state.counters["bodies"] = n;
+}
+BENCHMARK(BM_DragStep_GearTrain)->Arg(10)->Arg(100)->Unit(benchmark::kMicrosecond);
+
 // Both solvers must agree on the four-bars before their times are compared.
 bool same_answer() {
   for (int n : {1, 10}) {

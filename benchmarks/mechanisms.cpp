@@ -185,4 +185,33 @@ Model fourbar_grid(int rows, int cols) {
   return m;
 }
 
+Model gear_train(int n) {
+  Model m;
+  auto radius = [](int i) { return i % 2 ? 0.5 : 1.0; };
+  double x = 0;
+  BodyId last{};
+  for (int i = 0; i < n; ++i) {
+    if (i > 0) x += radius(i - 1) + radius(i);
+    const BodyId g = body(m, "g" + std::to_string(i), Vec3(x, 0, 0), 0);
+    Joint axle;
+    axle.body2 = g;
+    axle.has_hinge = true;
+    axle.p1 = Vec3(x, 0, 0);
+    axle.angle = AngleSpec{Vec3::UnitZ(), Vec3::UnitZ(), 0, 0};
+    m.add_joint(axle);
+    if (i > 0) {
+      Joint mesh;
+      mesh.body1 = last;
+      mesh.body2 = g;
+      dispcon::CouplingSpec c;
+      c.kind = dispcon::CouplingKind::Gear;
+      c.value = radius(i - 1) / radius(i);
+      mesh.coupling = c;
+      m.add_joint(mesh);
+    }
+    last = g;
+  }
+  return m;
+}
+
 }  // namespace bench

@@ -35,4 +35,8 @@ dispcon::Model closed_chain(int n);
 // A grid of coupled four-bars: rows x cols cells; neighbours share links (many closed loops).
 dispcon::Model fourbar_grid(int rows, int cols);
 
+// A train of n gears on axles fixed to the frame, along x, pitch radii alternating 1 and 0.5,
+// each meshing the next (a gear coupling of ratio r_i / r_(i+1)); all at turn 0.
+dispcon::Model gear_train(int n);
+
 }  // namespace bench

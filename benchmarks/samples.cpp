@@ -59,6 +59,15 @@ constexpr SampleCase kSamples[] = {
     {"otary", "head", 0.5},
     // The monocycle pedalled: the wheel turns fully about its axle (the paper's demonstration).
     {"monocycle", "wheel", 0},
+    // Couplings (issue 11). The first gear of the train turns on and on.
+    {"three-gears", "g1", 0},
+    // The sun of the planetary set turns on and on (the ring and carrier share the other
+    // freedom as the solver finds them).
+    {"planetary", "sun", 0},
+    // The steering pinion swings +-0.6 rad (the rack +-0.18; the tie rods are far from toggle).
+    {"steering", "pinion", 0.6},
+    // The vice's input is the jaw's travel, not a turn: assembled only.
+    {"vice", nullptr, 0},
 };
 
 Model load(const SampleCase& c) {
