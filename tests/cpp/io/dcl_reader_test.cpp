@@ -176,7 +176,7 @@ TEST(DclReader, EveryErrorNamesItsPlace) {
        "  belt 1 0 0 0 0 1 0 0 0 0 0 1 ratio 2; end",
        3, 3, "at most one coupling: 'belt' after 'gear' at line 2"},
       // Concentric gears: the line of centres, from which turns are measured, lies on the axis.
-      {"object a; end\nconstraint object2 a; gear 0 0 0 0 0 1 0 0 0 0 0 1 ratio 2; end", 2, 1,
+      {"object a; end\nconstraint object2 a; gear 0 0 0 0 0 1 0 0 0 0 0 1 ratio 2; end", 2, 23,
        "gear: the turn has no reference"},
   };
   for (const Bad& c : cases) {
