@@ -223,6 +223,16 @@ class Parser {
              : k == "rack" ? CouplingKind::Rack
                            : CouplingKind::Screw;
     const bool rack = c.kind == CouplingKind::Rack;
+    // An axis: three numbers, not all zero (the model normalises it).
+    auto direction = [&](const std::string& what) {
+      const Token& first = peek();
+      const Vec3 v = vec3(what);
+      if (v == Vec3::Zero()) {
+        error(at(first), what + " is a zero vector");
+        throw StatementError{};
+      }
+      return v;
+    };
     c.c1 = vec3(k + (rack ? " pinion centre" : " centre1"));
     c.a1 = direction(k + (rack ? " pinion axis" : " axis1"));
     c.c2 = vec3(k + (rack ? " rack point" : " centre2"));
