@@ -1,4 +1,4 @@
-"""The workbench's task panels. Their forms are Qt Designer files in Resources/ui, loaded when a
+"""The workbench's task panels. Their forms are Qt Designer files in ui/ (Resources/ui once installed), loaded when a
 panel opens, so the layout can change without touching the code."""
 import FreeCADGui as Gui
 
@@ -8,7 +8,7 @@ last_panel = None  # the panel shown last (scripts and tests reach its form thro
 
 
 def load_ui(name):
-    """The form of Resources/ui/<name>."""
+    """The form ui/<name> (Resources/ui/<name> once installed)."""
     return Gui.PySideUic.loadUi(ui_path(name))
 
 

@@ -1,4 +1,4 @@
-"""The check panel: the report of `operations.check` and of interference (Resources/ui/check.ui),
+"""The check panel: the report of `operations.check` and of interference (ui/check.ui),
 also shown by a Solve that failed, headed by what went wrong."""
 import FreeCADGui as Gui
 
