@@ -11,7 +11,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,16 +25,6 @@ using namespace dispcon;
 void finding(const char* kind) {
   std::fprintf(stderr, "oracle: %s\n", kind);
   if (!std::getenv("DISPCON_ORACLE_COUNT")) std::abort();
-}
-
-bool same_bits(const std::vector<Pose>& a, const std::vector<Pose>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (std::memcmp(a[i].q.coeffs().data(), b[i].q.coeffs().data(), 4 * sizeof(double)) != 0 ||
-        std::memcmp(a[i].x.data(), b[i].x.data(), 3 * sizeof(double)) != 0)
-      return false;
-  }
-  return true;
 }
 
 bool finite(const std::vector<Pose>& poses) {

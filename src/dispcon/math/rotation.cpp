@@ -1,6 +1,7 @@
 #include "dispcon/math/rotation.hpp"
 
 #include <cmath>
+#include <cstring>
 
 namespace dispcon {
 
@@ -29,6 +30,16 @@ Mat3 skew(const Vec3& w) {
   Mat3 m;
   m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
   return m;
+}
+
+bool same_bits(const std::vector<Pose>& a, const std::vector<Pose>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (std::memcmp(a[i].q.coeffs().data(), b[i].q.coeffs().data(), 4 * sizeof(double)) != 0 ||
+        std::memcmp(a[i].x.data(), b[i].x.data(), 3 * sizeof(double)) != 0)
+      return false;
+  }
+  return true;
 }
 
 }  // namespace dispcon

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 namespace dispcon {
 
@@ -34,5 +35,9 @@ struct Pose {
     return Pose{quat_from_rotation_vector(rotation_vector), position};
   }
 };
+
+// True when both lists hold the same poses bit for bit: what a failed solve, drag step or
+// animation frame promises to leave behind (checked by the tests and by the fuzz oracle).
+bool same_bits(const std::vector<Pose>& a, const std::vector<Pose>& b);
 
 }  // namespace dispcon

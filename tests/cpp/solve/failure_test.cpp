@@ -2,7 +2,6 @@
 // leaves every pose bit for bit as it was; a session follows the model's revision.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -16,16 +15,6 @@ namespace dispcon {
 namespace {
 
 using test_support::sample;
-
-bool same_bits(const std::vector<Pose>& a, const std::vector<Pose>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (std::memcmp(a[i].q.coeffs().data(), b[i].q.coeffs().data(), 4 * sizeof(double)) != 0 ||
-        std::memcmp(a[i].x.data(), b[i].x.data(), 3 * sizeof(double)) != 0)
-      return false;
-  }
-  return true;
-}
 
 // The reproducer of issue 13: this one-step drag fails and used to leave link5 turned.
 TEST(Failure, BricardFailedDragChangesNothing) {
