@@ -27,7 +27,8 @@ using nlohmann::json;
 bool ends_with_fcstd(const std::string& s) {
   if (s.size() < 6) return false;
   std::string tail = s.substr(s.size() - 6);
-  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(tail.begin(), tail.end(), tail.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return tail == ".fcstd";
 }
 
@@ -54,7 +55,8 @@ std::string temp_file(const char* tag) {
   std::vector<char> buf(pattern.begin(), pattern.end());
   buf.push_back('\0');
   const int fd = mkstemp(buf.data());
-  if (fd < 0) throw std::runtime_error(std::string("cannot make a temporary file: ") + std::strerror(errno));
+  if (fd < 0)
+    throw std::runtime_error(std::string("cannot make a temporary file: ") + std::strerror(errno));
   close(fd);
   return buf.data();
 }
@@ -84,7 +86,8 @@ int hand_to_freecad(json request) {
   if (pid == 0) {
     setenv("DISPCON_FC_REQUEST", request_path.c_str(), 1);
     setenv("DISPCON_FC_WORKBENCH", workbench.c_str(), 1);
-    setenv("DISPCON_PYTHONPATH", env_or("DISPCON_PYTHONPATH", DISPCON_PYTHON_MODULE_DIR).c_str(), 1);
+    setenv("DISPCON_PYTHONPATH", env_or("DISPCON_PYTHONPATH", DISPCON_PYTHON_MODULE_DIR).c_str(),
+           1);
     // FreeCAD's banner and log on standard output would spoil the JSON: only stderr passes.
     const int null = open("/dev/null", O_WRONLY);
     if (null >= 0) dup2(null, STDOUT_FILENO);
@@ -120,7 +123,8 @@ struct Args {
 void add_document_options(CLI::App* sub, Args& a) {
   sub->add_option("FILE", a.file, "the FreeCAD document (.FCStd)")->required();
   sub->add_option("--assembly", a.assembly, "the assembly's Label, when the document has several");
-  sub->add_option("--tolerance", a.tolerance, "largest violation accepted (default: the assembly's)")
+  sub->add_option("--tolerance", a.tolerance,
+                  "largest violation accepted (default: the assembly's)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--max-iterations", a.max_iterations, "iteration cap (default: the assembly's)")
       ->check(CLI::PositiveNumber);
@@ -179,18 +183,21 @@ int run_fcstd(int argc, char** argv) {
   CLI::App app{"dispcon on FreeCAD documents: checks, sweeps and drags of their assemblies"};
   app.require_subcommand(1);
   Args a;
-  CLI::App* check = app.add_subcommand("check", "does it assemble, degrees of freedom, "
-                                                "redundant and conflicting joints, overlaps");
+  CLI::App* check = app.add_subcommand("check",
+                                       "does it assemble, degrees of freedom, "
+                                       "redundant and conflicting joints, overlaps");
   add_document_options(check, a);
   check->add_flag("--no-interference", a.no_interference, "do not test the parts for overlaps");
-  CLI::App* sweep = app.add_subcommand("sweep", "drive a joint through a range: lock-ups, "
-                                                "limits, joint values, interference");
+  CLI::App* sweep = app.add_subcommand("sweep",
+                                       "drive a joint through a range: lock-ups, "
+                                       "limits, joint values, interference");
   add_document_options(sweep, a);
   sweep->add_option("--joint", a.joint, "the Label of the joint to drive (revolute or slider)")
       ->required();
   sweep->add_option("--from", a.from, "start value (radians or length; default: where it is)");
   sweep->add_option("--to", a.to_value, "end value (default: a full turn further)");
-  sweep->add_option("--steps", a.steps, "number of steps (default 360)")->check(CLI::PositiveNumber);
+  sweep->add_option("--steps", a.steps, "number of steps (default 360)")
+      ->check(CLI::PositiveNumber);
   sweep->add_option("--csv", a.csv, "write every sample");
   sweep->add_option("--plot", a.plot, "write an SVG plot of every joint's value");
   sweep->add_flag("--no-interference", a.no_interference, "do not test the parts for collisions");
@@ -199,7 +206,8 @@ int run_fcstd(int argc, char** argv) {
   add_document_options(drag, a);
   drag->add_option("--body", a.body, "the Label of the part to move")->required();
   drag->add_option("--to", a.to, "target position X Y Z")->expected(3)->required();
-  drag->add_option("--rotation", a.rotation, "target rotation vector RX RY RZ (radians)")->expected(3);
+  drag->add_option("--rotation", a.rotation, "target rotation vector RX RY RZ (radians)")
+      ->expected(3);
   drag->add_option("--steps", a.steps, "number of steps (default 50)")->check(CLI::PositiveNumber);
   drag->add_option("--csv", a.csv, "write every step's poses");
   add_picture_options(drag, a);

@@ -1,5 +1,6 @@
-// `dispcon`: the command line over .dcl files (cli.md) and FreeCAD documents (fcstd.cpp). Parsing arguments and printing only; all
-// the work is the engine's. Each subcommand lives in its own file (commands.hpp).
+// `dispcon`: the command line over .dcl files (cli.md) and FreeCAD documents (fcstd.cpp). Parsing
+// arguments and printing only; all the work is the engine's. Each subcommand lives in its own file
+// (commands.hpp).
 #include <iostream>
 #include <stdexcept>
 #include <vector>

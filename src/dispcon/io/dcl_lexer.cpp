@@ -189,7 +189,8 @@ std::vector<Token> lex_dcl(std::string_view text, LexErrors& errors) {
           continue;
         }
         if ((b < 0x20 && b != '\t') || b == 0x7f) {
-          errors.add({line, column, "byte " + describe_byte(b) + " in a string: write it as \\xHH"});
+          errors.add(
+              {line, column, "byte " + describe_byte(b) + " in a string: write it as \\xHH"});
           bad = true;
         } else {
           t.text += static_cast<char>(b);

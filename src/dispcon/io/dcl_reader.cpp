@@ -123,8 +123,7 @@ class Parser {
     if (errors_++ < kErrorCap) diagnostics_.push_back({file_, p.line, p.column, true, message});
   }
   void warning(Place p, const std::string& message) {
-    if (warnings_++ < kErrorCap)
-      diagnostics_.push_back({file_, p.line, p.column, false, message});
+    if (warnings_++ < kErrorCap) diagnostics_.push_back({file_, p.line, p.column, false, message});
   }
 
   // Skips to just after the next ';', or to (not past) `end`, `object`, `constraint`.
@@ -259,10 +258,10 @@ class Parser {
       c.phase = number(k + " phase");
     }
     if (peek().kind != Token::Semicolon) {
-      error(at(peek()), std::string("expected ") +
-                            (c.kind == CouplingKind::Screw && !c.left && !c.phase ? "'left', " : "") +
-                            (c.phase ? "" : "'phase' or ") + "';' in " + k + ", found " +
-                            quote(peek()));
+      error(at(peek()),
+            std::string("expected ") +
+                (c.kind == CouplingKind::Screw && !c.left && !c.phase ? "'left', " : "") +
+                (c.phase ? "" : "'phase' or ") + "';' in " + k + ", found " + quote(peek()));
       throw StatementError{};
     }
     next();
@@ -438,7 +437,8 @@ class Parser {
         const ComponentRow* row = find_component(k);
         if (row && row->guide && !cb.guide.empty()) {
           error(at(t), "a constraint has at most one translation guide: '" + k + "' after '" +
-                           cb.guide + "' at line " + std::to_string(place(cb.seen, cb.guide, cb.at).line));
+                           cb.guide + "' at line " +
+                           std::to_string(place(cb.seen, cb.guide, cb.at).line));
           throw StatementError{};
         }
         if (row) {
@@ -469,8 +469,8 @@ class Parser {
         } else if (k == "label") {
           if (peek().kind != Token::String) {
             if (peek().kind != Token::Bad)
-              error(at(peek()), "expected a string in double quotes for label, found " +
-                                    quote(peek()));
+              error(at(peek()),
+                    "expected a string in double quotes for label, found " + quote(peek()));
             throw StatementError{};
           }
           j.label = next().text;
@@ -561,8 +561,9 @@ class Parser {
     const Place end = at(tokens_.back());
     if (errors_ > kErrorCap) {
       diagnostics_.push_back({file_, end.line, end.column, true,
-                              std::to_string(errors_ - kErrorCap) + " more errors (only the first " +
-                                  std::to_string(kErrorCap) + " are listed)"});
+                              std::to_string(errors_ - kErrorCap) +
+                                  " more errors (only the first " + std::to_string(kErrorCap) +
+                                  " are listed)"});
     }
     if (warnings_ > kErrorCap) {
       diagnostics_.push_back({file_, end.line, end.column, false,

@@ -71,10 +71,9 @@ std::string write_dcl(const Model& model) {
     if (j.coupling) {
       const CouplingSpec& c = *j.coupling;
       static const char* value_name[] = {"ratio", "ratio", "radius", "pitch"};
-      out << "  " << to_string(c.kind) << " " << vec(c.c1) << "  " << vec(c.a1) << "  "
-          << vec(c.c2) << "  " << vec(c.a2) << " " << value_name[static_cast<int>(c.kind)] << " "
-          << num(c.value) << (c.left ? " left" : "") << " phase " << num(c.phase.value_or(0))
-          << ";\n";
+      out << "  " << to_string(c.kind) << " " << vec(c.c1) << "  " << vec(c.a1) << "  " << vec(c.c2)
+          << "  " << vec(c.a2) << " " << value_name[static_cast<int>(c.kind)] << " " << num(c.value)
+          << (c.left ? " left" : "") << " phase " << num(c.phase.value_or(0)) << ";\n";
     }
     if (j.move) out << "  move " << num(*j.move) << ";\n";
     if (j.t0 != -kInf || j.t1 != kInf) out << "  time " << num(j.t0) << " " << num(j.t1) << ";\n";
