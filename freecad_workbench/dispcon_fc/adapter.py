@@ -7,7 +7,7 @@ import re
 
 import FreeCAD as App
 
-from . import engine, geometry
+from . import engine, geometry, subassembly
 from .objects import joints, parts, shape_of
 
 
@@ -37,7 +37,8 @@ def live_curve(j, count=64):
 
 
 def missing_part(j, parts_by_name):
-    """Why the joint cannot be solved for want of a part ("" when both are there)."""
+    """Why the joint cannot be solved for want of a part ("" when both are there); the parts are
+    those of the assembly and of its sub-assemblies."""
     for ref in (j.Reference1, j.Reference2):
         if ref is None or ref[0] is None:
             return "one of its parts was deleted"
@@ -83,6 +84,20 @@ def joint_kwargs(dispcon, j):
     return kw
 
 
+def _in_body(kw, side, local):
+    """add_joint's arguments with side 1's or 2's anchors carried from its part's frame into its
+    body's (a part of a rigid sub-assembly: `local` is the part's placement in the instance)."""
+    if local is None:
+        return kw
+    for key in ("point", "axis", "across"):
+        if key + side in kw:
+            v = App.Vector(*kw[key + side])
+            kw[key + side] = _vec(local.multVec(v) if key == "point" else local.Rotation.multVec(v))
+    if side == "1" and "curve" in kw:
+        kw["curve"] = [_vec(local.multVec(App.Vector(*p))) for p in kw["curve"]]
+    return kw
+
+
 class Adapter:
     """One assembly as a dispcon.Model: bodies are the parts (their Placement is the pose), with
     mass and inertia from their shapes; joints are the joint objects, in order."""
@@ -90,33 +105,20 @@ class Adapter:
     def __init__(self, asm, physics=False):
         self.dispcon = engine.load()
         self.asm = asm
-        self.parts = parts(asm)
-        self.joints = joints(asm)
         self.model = self.dispcon.Model()
-        self.names = {}
-        for k, p in enumerate(self.parts):
-            name = "p%d_%s" % (k, "".join(c if c.isalnum() else "_" for c in p.Name))
-            self.names[p.Name] = name
-            pl = p.Placement
-            kw = dict(position=_vec(pl.Base), rotation=_rotvec(pl.Rotation),
-                      fixed=bool(getattr(p, "Grounded", False)))
-            props = geometry.mass_properties(shape_of(p))
-            if props is not None:
-                volume, com, inertia = props
-                density = getattr(p, "Density", 1.0) or 1.0
-                kw["center"] = _vec(geometry.to_local(pl, point=com))
-                if physics:
-                    R = pl.Rotation.toMatrix()
-                    kw["mass"] = density * volume
-                    kw["inertia"] = self._local_inertia(R, inertia, density)
-            if getattr(p, "AbilityToRotate", 0) > 0:
-                kw["rotate"] = p.AbilityToRotate
-            self.model.add_body(name, **kw)
+        # names: the objects that are bodies (parts, rigid sub-assemblies, the parts of flexible
+        # ones) -> body name; frames: every object a joint can hold -> (body name, its placement
+        # in the body's frame, None when it is the body); rigid: instance -> {link: that placement}.
+        self.names, self.frames, self.rigid = {}, {}, {}
+        self.parts = []
+        for p in parts(asm):
+            self.add_body(p, shape_of(p), physics)
+        instance_joints = subassembly.add_instances(self, physics)
         # A joint that lost a part is left out of the model and reported, by its label.
         self.skipped = []
         active = []
-        for j in self.joints:
-            why = missing_part(j, self.names)
+        for j in joints(asm) + instance_joints:
+            why = missing_part(j, self.frames)
             if why:
                 self.skipped.append((j, why))
             else:
@@ -124,9 +126,38 @@ class Adapter:
         self.joints = active
         with self.engine_errors():
             for j in self.joints:
-                o1, o2 = j.Reference1[0], j.Reference2[0]
-                self.model.add_joint(self.names[o2.Name], object1=self.names[o1.Name], label=j.Label,
-                                     **joint_kwargs(self.dispcon, j))
+                (b1, l1), (b2, l2) = self.frames[j.Reference1[0].Name], self.frames[j.Reference2[0].Name]
+                kw = _in_body(_in_body(joint_kwargs(self.dispcon, j), "1", l1), "2", l2)
+                self.model.add_joint(b2, object1=b1, label=j.Label, **kw)
+
+    def add_body(self, owner, shape, physics):
+        """A body for `owner` (a part, or a rigid sub-assembly with the compound of its parts
+        placed): its Placement is the pose; returns the body's name."""
+        name = "p%d_%s" % (len(self.parts), "".join(c if c.isalnum() else "_" for c in owner.Name))
+        self.names[owner.Name] = name
+        self.frames[owner.Name] = (name, None)
+        self.parts.append(owner)
+        pl = owner.Placement
+        kw = dict(position=_vec(pl.Base), rotation=_rotvec(pl.Rotation),
+                  fixed=bool(getattr(owner, "Grounded", False)))
+        props = geometry.mass_properties(shape)
+        if props is not None:
+            volume, com, inertia = props
+            density = getattr(owner, "Density", 1.0) or 1.0
+            kw["center"] = _vec(geometry.to_local(pl, point=com))
+            if physics:
+                R = pl.Rotation.toMatrix()
+                kw["mass"] = density * volume
+                kw["inertia"] = self._local_inertia(R, inertia, density)
+        if getattr(owner, "AbilityToRotate", 0) > 0:
+            kw["rotate"] = owner.AbilityToRotate
+        self.model.add_body(name, **kw)
+        return name
+
+    def body_of(self, obj):
+        """(body name, `obj`'s placement in the body's frame or None) of a part or a part of a
+        sub-assembly; KeyError when the assembly has no such part."""
+        return self.frames[obj.Name]
 
     def labelled(self, text):
         """`text` with the model's internal body names (p0_Base) as the parts' labels."""
@@ -164,18 +195,24 @@ class Adapter:
         raise KeyError(name)
 
     def placement_of(self, part):
-        b = self.model.body(self.names[part.Name])
+        """Where the model has `part` now (a part of a rigid sub-assembly: where its body puts it)."""
+        body, local = self.frames[part.Name]
+        b = self.model.body(body)
         q = b.quaternion  # w, x, y, z
-        return App.Placement(App.Vector(*b.position), App.Rotation(q[1], q[2], q[3], q[0]))
+        pl = App.Placement(App.Vector(*b.position), App.Rotation(q[1], q[2], q[3], q[0]))
+        return pl if local is None else pl.multiply(local)
 
     def write_back(self):
         for p in self.parts:
             if getattr(p, "Grounded", False):
                 continue
             p.Placement = self.placement_of(p)
+        subassembly.write_back(self)
 
     def mark(self, result):
         for report, j in zip(result.constraints, self.joints):
+            if isinstance(j, subassembly.InstanceJoint):
+                continue  # a joint of the placed assembly: its document is not written to
             j.Residual = report.residual
             j.Violated = not report.satisfied
 

@@ -14,10 +14,13 @@ mouse can be done from here under freecadcmd.
 """
 from . import engine, geometry  # noqa: F401  (scripts reach the engine as da.engine)
 from .adapter import Adapter, Result, live_curve  # noqa: F401
-from .objects import (JOINT_TYPES, AssemblyProxy, JointProxy, adopt, adopt_document,  # noqa: F401
-                      is_assembly, is_joint, joints, part_properties, parts, preferences, shape_of)
+from .objects import (JOINT_TYPES, AssemblyProxy, JointProxy, SubAssemblyProxy, adopt,  # noqa: F401
+                      adopt_document, instance_parts, is_assembly, is_joint, is_sub_assembly, joints,
+                      part_properties, parts, placed_parts, preferences, shape_of, sub_assemblies,
+                      top_assemblies)
 from .operations import (Drag, PointDrag, Transaction, add_joint, add_part, check,  # noqa: F401
                          create_assembly, drag, drive, driven_side, edit_joint, export_dcl,
                          import_dcl, import_part, interference, interference_along,
                          link_part, linkable_objects, set_grounded, set_limits, solve,
                          transaction)
+from .subassembly import insert_sub_assembly, set_rigid  # noqa: F401

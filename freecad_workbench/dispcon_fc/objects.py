@@ -138,6 +138,47 @@ class JointProxy(_Proxy):
         self.attach(obj)
 
 
+class SubAssemblyProxy(_Proxy):
+    """An App::DocumentObjectGroupPython in a parent assembly: an assembly placed inside it (of
+    this document or, through an XLink, of another .FCStd), as FreeCAD 1.x's AssemblyLink. Its
+    Group holds one App::Link per part of that assembly, each with its placement in the instance's
+    frame (LocalPlacement) stored here, in the parent's document: the linked file is never
+    changed. Rigid: the instance moves as one part; flexible: its parts and joints join the
+    parent's solve (subassembly.py)."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.attach(obj)
+
+    def attach(self, obj):
+        _mark(obj, "SubAssembly")
+        sub_assembly_properties(obj)
+
+    def onDocumentRestored(self, obj):
+        self.attach(obj)
+
+    def onChanged(self, obj, prop):
+        # Moving the instance carries its parts along (their placements in its frame stay).
+        if prop == "Placement":
+            for link in getattr(obj, "Group", []):
+                if "LocalPlacement" in link.PropertiesList:
+                    placed = obj.Placement.multiply(link.LocalPlacement)
+                    if (tuple(placed.Base), tuple(placed.Rotation.Q)) != (tuple(link.Placement.Base),
+                                                                          tuple(link.Placement.Rotation.Q)):
+                        link.Placement = placed
+
+
+def sub_assembly_properties(obj):
+    """The stored properties of a sub-assembly (kept when the file is opened without the
+    workbench): the assembly it places, Rigid, its Placement and Grounded."""
+    _add(obj, "App::PropertyXLink", "Assembly", "Sub-assembly", "the assembly placed here (this or another document)")
+    _add(obj, "App::PropertyBool", "Rigid", "Sub-assembly",
+         "moves as one part (its own joints solved inside it); off: its parts and joints join this assembly's solve",
+         True)
+    _add(obj, "App::PropertyPlacement", "Placement", "Sub-assembly", "where the instance's frame is")
+    _add(obj, "App::PropertyBool", "Grounded", "Dispcon", "never moves")
+
+
 def joint_extras(obj):
     """Reversed and Offset (the joint panel's), which joints made before them lack: a joint
     without them reads as not reversed, offset 0."""
@@ -164,6 +205,8 @@ def _kind(obj):
         return "Assembly"
     if isinstance(proxy, JointProxy):
         return "Joint"
+    if isinstance(proxy, SubAssemblyProxy):
+        return "SubAssembly"
     props = getattr(obj, "PropertiesList", ())
     if "DispconType" in props:
         return obj.DispconType or None
@@ -183,11 +226,15 @@ def is_assembly(obj):
     return _kind(obj) == "Assembly"
 
 
+def is_sub_assembly(obj):
+    return _kind(obj) == "SubAssembly"
+
+
 def adopt(obj):
     """Gives a recognised assembly or joint whose Python proxy was lost (opened where the
     workbench was missing) its proxy back, with any property it lacks; returns whether it did."""
     kind = _kind(obj)
-    proxy = {"Assembly": AssemblyProxy, "Joint": JointProxy}.get(kind)
+    proxy = {"Assembly": AssemblyProxy, "Joint": JointProxy, "SubAssembly": SubAssemblyProxy}.get(kind)
     if proxy is None:
         return False
     _view(obj, kind)
@@ -220,8 +267,30 @@ def shape_of(obj):
 
 
 def parts(asm):
-    return [o for o in asm.Group
-            if not is_joint(o) and (hasattr(o, "Shape") or o.TypeId == "App::Link")]
+    """The assembly's own parts (not those inside its sub-assemblies)."""
+    return [o for o in asm.Group if not is_joint(o) and not is_sub_assembly(o)
+            and (hasattr(o, "Shape") or o.TypeId == "App::Link")]
+
+
+def sub_assemblies(asm):
+    return [o for o in asm.Group if is_sub_assembly(o)]
+
+
+def instance_parts(sub):
+    """The links of a sub-assembly instance, one per part of the assembly it places."""
+    return [o for o in sub.Group if o.TypeId == "App::Link" and "LocalPlacement" in o.PropertiesList]
+
+
+def top_assemblies(doc):
+    """The assemblies of `doc` that are not placed inside another assembly of `doc` (those placed
+    in other documents' assemblies still count: each file has its own top)."""
+    return [o for o in doc.Objects if is_assembly(o)
+            and not any(is_sub_assembly(i) and i.Document == doc for i in o.InList)]
+
+
+def placed_parts(asm):
+    """Every part a joint of `asm` can hold: its own and those of its sub-assemblies."""
+    return parts(asm) + [p for s in sub_assemblies(asm) for p in instance_parts(s)]
 
 
 def joints(asm):
@@ -232,6 +301,13 @@ def new_assembly(doc, name):
     obj = doc.addObject("App::DocumentObjectGroupPython", name)
     AssemblyProxy(obj)
     _view(obj, "Assembly")
+    return obj
+
+
+def new_sub_assembly(doc, name):
+    obj = doc.addObject("App::DocumentObjectGroupPython", name)
+    SubAssemblyProxy(obj)
+    _view(obj, "SubAssembly")
     return obj
 
 

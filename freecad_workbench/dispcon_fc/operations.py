@@ -8,9 +8,9 @@ import os
 
 import FreeCAD as App
 
-from . import engine, geometry, objects
+from . import engine, geometry, objects, subassembly
 from .adapter import Adapter, Result, _vec
-from .objects import joints, parts
+from .objects import joints, parts, placed_parts
 
 
 class Transaction:
@@ -194,11 +194,12 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
     _assembly(asm)
     if joint_type not in objects.JOINT_TYPES:
         raise ValueError("unknown joint type %r (expected one of %s)" % (joint_type, ", ".join(objects.JOINT_TYPES)))
-    (o1, s1), (o2, s2) = ref1, ref2
+    # A part inside a sub-assembly: (instance, "Crank.Edge3") or (asm, "Leg1.Crank.Edge3").
+    (o1, s1), (o2, s2) = subassembly.resolve(asm, *ref1), subassembly.resolve(asm, *ref2)
     if o1 == o2:
         raise ValueError("a joint needs two different parts (both references are on %s)" % o1.Label)
     for o in (o1, o2):
-        if o not in asm.Group:
+        if o not in placed_parts(asm):
             raise ValueError("%s is not a part of %s" % (o.Label, asm.Label))
     if joint_type == "PointOnCurve" and not s1.startswith("Edge"):
         raise ValueError("a PointOnCurve joint needs an edge of %s as its first reference, not %s"
@@ -321,11 +322,15 @@ def _holding(asm, adapter):
 
 
 def _movable(adapter, part):
-    if part.Name not in adapter.names:
+    """The body that moves when `part` is dragged (a rigid sub-assembly for one of its parts)
+    and `part`'s placement in it (None: the part is the body)."""
+    if part.Name not in adapter.frames:
         raise ValueError("%s is not a part of %s" % (part.Label, adapter.asm.Label))
-    if getattr(part, "Grounded", False):
-        raise ValueError("%s is grounded: it cannot be moved" % part.Label)
-    return adapter.names[part.Name]
+    name, local = adapter.body_of(part)
+    owner = adapter.part_of(name)
+    if getattr(owner, "Grounded", False):
+        raise ValueError("%s is grounded: it cannot be moved" % owner.Label)
+    return name, local
 
 
 class _Motion:
@@ -354,7 +359,7 @@ class Drag(_Motion):
         self.asm = _assembly(asm)
         self.adapter = Adapter(asm)
         self.part = part
-        self.name = _movable(self.adapter, part)
+        self.name, self.local = _movable(self.adapter, part)
         _holding(asm, self.adapter)
         with self.adapter.engine_errors():
             self.dragger = self.adapter.model.dragger(self.name, tolerance=tolerance(asm))
@@ -362,6 +367,8 @@ class Drag(_Motion):
         self.last = None
 
     def move(self, placement):
+        if self.local is not None:  # a part of a rigid sub-assembly: the instance goes where it takes the part
+            placement = placement.multiply(self.local.inverse())
         rot = placement.Rotation.toMatrix()
         R = [[rot.A[4 * i + j] for j in range(3)] for i in range(3)]
         with self.adapter.engine_errors():
@@ -385,10 +392,11 @@ class PointDrag(_Motion):
         self.asm = _assembly(asm)
         self.adapter = Adapter(asm)
         self.part = part
-        name = _movable(self.adapter, part)
+        name, local = _movable(self.adapter, part)
         model = self.adapter.model
         _holding(asm, self.adapter)
-        grab_local = geometry.to_local(part.Placement, point=grab_world)
+        body = part.Placement if local is None else part.Placement.multiply(local.inverse())
+        grab_local = geometry.to_local(body, point=grab_world)
         tol = tolerance(asm)
         with self.adapter.engine_errors():
             # The mouse joint is active at time 0 only: `pull` sees it, `settle` does not.
@@ -516,7 +524,7 @@ def interference(asm, clearance=None):
     what it learnt from one pose to the next."""
     from .studies import Clearance, local_shapes
 
-    ps = parts(asm)
+    ps = placed_parts(asm)
     if clearance is None:
         clearance = Clearance(local_shapes(ps), [p.Label for p in ps])
     return [(ps[i], ps[k], v) for i, k, v in clearance.at([p.Placement for p in ps])]
@@ -530,12 +538,12 @@ def interference_along(asm, joint, angles_deg, ignore=()):
     axis_world = part.Placement.Rotation.multVec(axis)
     pivot = part.Placement.multVec(point)
     start = part.Placement
-    before = {p.Name: p.Placement for p in parts(asm)}
+    put_back = subassembly.snapshot(asm)
     skip = {frozenset((a.Name, b.Name)) for a, b in ignore}
     hits = []
     from .studies import Clearance, local_shapes
 
-    ps = parts(asm)
+    ps = placed_parts(asm)
     clearance = Clearance(local_shapes(ps), [p.Label for p in ps])
     d = Drag(asm, part)
     try:
@@ -547,8 +555,7 @@ def interference_along(asm, joint, angles_deg, ignore=()):
                 if frozenset((pa.Name, pb.Name)) not in skip:
                     hits.append((a, pa, pb, volume))
     finally:
-        for p in parts(asm):
-            p.Placement = before[p.Name]
+        put_back()
         d.finish()
     return hits
 

@@ -52,9 +52,10 @@ def open_assembly(path, label=None):
         doc = App.openDocument(os.path.abspath(path))
     except Exception as e:  # FreeCAD raises plain exceptions for unreadable documents
         raise StudyError("%s: error: FreeCAD cannot open it (%s)" % (path, e))
-    found = [o for o in doc.Objects if da.is_assembly(o)]
+    # Without a label, the top assemblies: not those placed inside another (sub-assemblies).
+    found = da.top_assemblies(doc)
     if label is not None:
-        found = [o for o in found if o.Label == label]
+        found = [o for o in doc.Objects if da.is_assembly(o) and o.Label == label]
         if not found:
             raise StudyError("%s: error: no assembly labelled '%s' (assemblies: %s)"
                              % (path, label, _labels(o for o in doc.Objects if da.is_assembly(o))))
@@ -74,7 +75,11 @@ def _labels(objs):
 
 
 def _check_references(path, asm):
-    for p in da.parts(asm):
+    for sub in da.sub_assemblies(asm):
+        if sub.Assembly is None or not da.is_assembly(sub.Assembly):
+            raise StudyError("%s: error: sub-assembly '%s' places an assembly that is gone (its file was moved?)"
+                             % (path, sub.Label))
+    for p in da.placed_parts(asm):
         if p.TypeId == "App::Link" and p.getLinkedObject(True) in (None, p):
             raise StudyError("%s: error: part '%s' links an object that is gone (%s)"
                              % (path, p.Label, _link_target(p)))
@@ -82,7 +87,7 @@ def _check_references(path, asm):
         if shape is None or shape.isNull() or not shape.Solids:
             what = (" (its link %s is missing)" % _link_target(p)) if p.TypeId == "App::Link" else ""
             raise StudyError("%s: error: part '%s' has no solid shape%s" % (path, p.Label, what))
-    parts = set(p.Name for p in da.parts(asm))
+    parts = set(p.Name for p in da.placed_parts(asm))
     for j in da.joints(asm):
         for ref in (j.Reference1, j.Reference2):
             if ref is None or ref[0] is None or ref[0].Name not in parts:

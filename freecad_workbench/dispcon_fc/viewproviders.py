@@ -48,6 +48,22 @@ class ViewProviderAssembly(_ViewProxy):
                     o.ViewObject.Visibility = vobj.Visibility
 
 
+class ViewProviderSubAssembly(_ViewProxy):
+    """A sub-assembly in the tree: its icon says whether it moves as one part (rigid) or not."""
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def getIcon(self):
+        obj = getattr(self, "Object", None)
+        flexible = obj is not None and "Rigid" in obj.PropertiesList and not obj.Rigid
+        return icon("SubAssemblyFlexible" if flexible else "SubAssembly")
+
+    def updateData(self, obj, prop):
+        if prop == "Rigid" and hasattr(obj.ViewObject, "signalChangeIcon"):
+            obj.ViewObject.signalChangeIcon()
+
+
 class ViewProviderJoint(_ViewProxy):
     """A joint's marker in the 3D view, its type's icon in the tree, its panel on double-click."""
 
@@ -196,9 +212,12 @@ def attach(obj, kind=None):
     saved before the view providers existed); `kind` ("Assembly", "Joint") when known."""
     if not App.GuiUp or obj.ViewObject is None:
         return
-    if isinstance(getattr(obj.ViewObject, "Proxy", None), (ViewProviderJoint, ViewProviderAssembly)):
+    if isinstance(getattr(obj.ViewObject, "Proxy", None),
+                  (ViewProviderJoint, ViewProviderAssembly, ViewProviderSubAssembly)):
         return
     if kind == "Joint" or (kind is None and is_joint(obj)):
         ViewProviderJoint(obj.ViewObject)
+    elif kind == "SubAssembly":
+        ViewProviderSubAssembly(obj.ViewObject)
     elif kind == "Assembly" or (kind is None and hasattr(obj, "Group")):
         ViewProviderAssembly(obj.ViewObject)

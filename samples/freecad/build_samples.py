@@ -6,7 +6,9 @@ snapped into place. Run with freecadcmd:
 
 Writes fourbar.FCStd, slider-crank.FCStd, rssr.FCStd, fourbar-clash.FCStd (a post in the
 crank's way: a design that collides) and side-rods.FCStd (twenty parts), and prints the time of
-each snap."""
+each snap. Then the reused sub-assembly: leg.FCStd (a four-bar leg on its hip plate) placed four
+times on a frame, linked from that file, in walker.FCStd (flexible: each leg moves, here each at
+another crank angle) and walker-rigid.FCStd (rigid: each leg moves as one part)."""
 import math
 import os
 import sys
@@ -144,6 +146,69 @@ def side_rods(doc, cranks=18, pitch=3.0):
     return asm
 
 
+def leg(doc):
+    """The leg: the four-bar on its hip plate (the plate grounded in this file)."""
+    asm = fourbar(doc)
+    asm.Label = "Leg"
+    next(p for p in da.parts(asm) if p.Label == "Ground").Label = "Hip"
+    return asm
+
+
+LEGS = ((0, 0), (6, 0), (0, 6), (6, 6))
+
+
+def walker(doc, leg_path, rigid):
+    """A frame with four bosses and the leg of `leg_path` placed on each, linked from that file:
+    each leg's hip bolted to the frame (a Fixed joint from the boss's top to the hip's pin, 0.1
+    above it so the plates touch). Flexible: 4 degrees of freedom (a crank per leg); rigid: 0."""
+    asm = da.create_assembly(doc, "Walker")
+    frame = da.import_part(asm, step("frame-4", lambda: parts.frame(LEGS)), "Frame", grounded=True)
+    for k, (x, y) in enumerate(LEGS):
+        sub = da.insert_sub_assembly(asm, leg_path, placement=App.Placement(App.Vector(x, y, 0.2), App.Rotation()),
+                                     rigid=rigid, name="Leg%d" % (k + 1))
+        hip = next(p for p in da.instance_parts(sub) if p.LinkedObject.Label == "Hip")
+        edge = parts.circle_edge(hip.LinkedObject.Shape, App.Vector(0, 0, 0))
+        da.add_joint(asm, "Fixed", pin(frame, (x, y, 0), top=True), (sub, "Hip." + edge), offset=0.1)
+    return asm
+
+
+def crank_phases(asm, degrees=(0, 90, 180, 270)):
+    """Turns each flexible leg's crank by its own angle about its hip pin: the legs in four poses."""
+    for sub, deg in zip(da.sub_assemblies(asm), degrees):
+        crank = next(p for p in da.instance_parts(sub) if p.LinkedObject.Label == "Crank")
+        pivot = crank.Placement.multVec(App.Vector(0, 0, 0))
+        turn = App.Rotation(App.Vector(0, 0, 1), deg)
+        start = crank.Placement
+        da.drag(asm, crank, App.Placement(pivot + turn.multVec(start.Base - pivot), turn.multiply(start.Rotation)),
+                steps=max(2, int(deg / 10)))
+
+
+def build_walkers(out):
+    """leg.FCStd, then walker.FCStd (flexible legs in four poses) and walker-rigid.FCStd."""
+    doc = App.newDocument("leg")
+    r = da.solve(leg(doc))
+    leg_path = os.path.join(out, "leg.FCStd")
+    doc.saveAs(leg_path)
+    print("leg: %s" % r.message)
+    made = []
+    for name, rigid in (("walker", False), ("walker-rigid", True)):
+        d = App.newDocument(name.replace("-", "_"))
+        d.saveAs(os.path.join(out, name + ".FCStd"))  # linking from another file needs a saved document
+        asm = walker(d, leg_path, rigid)
+        t0 = time.perf_counter()
+        r = da.solve(asm)
+        elapsed = time.perf_counter() - t0
+        if r.converged and not rigid:
+            crank_phases(asm)
+        print("%s: %s, snap %.1f ms, %d degrees of freedom" % (name, r.message, 1000 * elapsed, da.check(asm)["dof"]))
+        if not r.converged:
+            sys.exit(1)
+        d.save()
+        made.append(d)
+    for d in made + [doc]:
+        App.closeDocument(d.Name)
+
+
 SAMPLES = (("fourbar", fourbar), ("slider-crank", slider_crank), ("rssr", rssr),
            ("fourbar-clash", fourbar_clash), ("side-rods", side_rods))
 
@@ -162,6 +227,7 @@ def main():
             sys.exit(1)
         doc.saveAs(os.path.join(out, name + ".FCStd"))
         App.closeDocument(doc.Name)
+    build_walkers(out)
 
 
 main()

@@ -24,6 +24,16 @@ def ground(pins, thickness=0.1, boss=0.15):
     return plate.fuse(bosses).removeSplitter()
 
 
+def frame(pins, thickness=0.1, boss=0.15, margin=0.6):
+    """A base plate covering the pin points (x, y) with a margin, and a boss under each (bottom
+    circles at z = 0, tops at z = thickness): the common frame the walker's legs are bolted to."""
+    xs, ys = [p[0] for p in pins], [p[1] for p in pins]
+    plate = Part.makeBox(max(xs) - min(xs) + 2 * margin, max(ys) - min(ys) + 2 * margin, thickness,
+                         App.Vector(min(xs) - margin, min(ys) - margin, -thickness))
+    bosses = [Part.makeCylinder(boss, thickness, App.Vector(x, y, 0)) for x, y in pins]
+    return plate.fuse(bosses).removeSplitter()
+
+
 def ground_with_rail(pins, rail, thickness=0.1, boss=0.15):
     """A base plate under pins, and a rail beside x in [rail[0], rail[1]], y in [-0.6, -0.3],
     as high as the bosses: its top inner edge (y = -0.3, z = 0.1) is a slider's guide."""
