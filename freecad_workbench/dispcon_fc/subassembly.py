@@ -146,9 +146,16 @@ def insert_sub_assembly(asm, source, label=None, placement=None, rigid=True, nam
 
 
 def instance_link_properties(link):
+    """A link's own part properties. An App::Link reads a property it lacks from the object it
+    links (hasattr would see the placed part's Grounded): each is added by name, and a part
+    grounded in the placed assembly is free here (the parent's joints hold the instance)."""
     objects._add(link, "App::PropertyPlacement", "LocalPlacement", "Sub-assembly",
                  "this part's placement in its instance's frame (stored here, per instance)")
-    objects.part_properties(link)
+    objects._add(link, "App::PropertyBool", "Grounded", "Dispcon", "never moves", False)
+    objects._add(link, "App::PropertyFloat", "AbilityToRotate", "Dispcon",
+                 "no-physics ability to rotate (0: from the part's size)")
+    objects._add(link, "App::PropertyFloat", "Density", "Dispcon", "mass per unit volume",
+                 getattr(link.LinkedObject, "Density", 1.0))
 
 
 def set_rigid(sub, rigid=True):

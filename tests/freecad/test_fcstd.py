@@ -64,6 +64,15 @@ class Check(unittest.TestCase):
                 self.assertIn(key, r)
             self.assertTrue(all(c["satisfied"] for c in r["constraints"]))
             self.assertEqual(r["constraints"][0]["label"], "Revolute")
+        # The leg used four times, linked from leg.FCStd: each flexible leg a four-bar (1 DOF
+        # each), each rigid one bolted on (6 - 6 = 0); the legs touch the frame, not each other.
+        for name, dof, parts in (("walker", 4, {"Frame": 0, "Leg1.Crank": 1, "Leg4.Rocker": 1}),
+                                 ("walker-rigid", 0, {"Frame": 0, "Leg1": 0, "Leg4": 0})):
+            code, r, err = run_json("check", doc(name))
+            self.assertEqual((code, r["dof"], r["interference"]), (0, dof, []), (name, err))
+            for label, d in parts.items():
+                self.assertEqual(r["bodies"][label]["dof"], d, (name, label))
+            self.assertEqual(r["constraints"][-1]["label"], "Leg4.Revolute003" if dof else "Fixed003")
         # The side rods repeat the first crank's constraints: every further crank's second pin.
         code, r, _ = run_json("check", doc("side-rods"))
         self.assertEqual(len(r["redundant"]), 17)
