@@ -241,6 +241,32 @@ def icons():
     box(ic, 28, 34, 20, 20, 10, "blue")
     straight_arrow(ic, 22, 46, 28, 46, "orange")
 
+    # Sub-assemblies: a small assembly (two links on a pin) inside a frame; rigid has a padlock
+    # (it moves as one part), flexible an orange turn arrow (its parts still move).
+    def sub_assembly(ic):
+        c = PALETTE["grey"]
+        ic.add('<rect x="4" y="10" width="50" height="44" rx="4" style="fill:%s;stroke:%s;stroke-width:2;'
+               'stroke-dasharray:5,3"/>' % (ic.grad("grey", 4, 10, 54, 54, 0, 1), c[3]))
+        link(ic, 12, 44, 28, 26, 5, "blue")
+        link(ic, 28, 26, 46, 36, 5, "yellow")
+        pin(ic, 28, 26, 4)
+
+    ic = icon("Dispcon_SubAssembly", "Rigid sub-assembly: an assembly placed here, moving as one part")
+    sub_assembly(ic)
+    # A padlock: locked together.
+    ic.path("M 45,46 v-5 a6,6 0 0 1 12,0 v5", "none", PALETTE["dark"][3], 5)
+    ic.path("M 45,46 v-5 a6,6 0 0 1 12,0 v5", "none", PALETTE["grey"][1], 2.5)
+    ic.add('<rect x="41" y="45" width="20" height="15" rx="2" style="fill:%s;stroke:%s;stroke-width:2"/>'
+           % (ic.grad("yellow", 41, 45, 61, 60, 0, 2), PALETTE["yellow"][3]))
+
+    ic = icon("Dispcon_SubAssemblyFlexible", "Flexible sub-assembly: its parts and joints join this assembly's solve")
+    sub_assembly(ic)
+    arc_arrow(ic, 28, 26, 14, 14, 200, 320, "orange", width=3)
+
+    ic = icon("Dispcon_InsertSubAssembly", "Insert an assembly (of this or another file) as a sub-assembly")
+    sub_assembly(ic)
+    plus(ic, 52, 12)
+
     ic = icon("Dispcon_Ground", "Ground: the selected parts never move")
     box(ic, 16, 24, 24, 22, 12, "yellow")
     ground_hatch(ic, 4, 48, 56)

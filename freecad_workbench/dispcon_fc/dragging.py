@@ -8,7 +8,7 @@ modal tools: `_active` is that one."""
 import FreeCAD as App
 import FreeCADGui as Gui
 
-from .objects import parts
+from .objects import placed_parts
 from .operations import PointDrag
 
 _active = None
@@ -81,10 +81,15 @@ class DragMode:
         if event.getState() == self.coin.SoMouseButtonEvent.DOWN:
             info = self.view.getObjectInfo((int(pos[0]), int(pos[1])))
             part = App.ActiveDocument.getObject(info["Object"]) if info else None
-            if part is None or part not in parts(self.asm) or getattr(part, "Grounded", False):
+            # A part of the assembly or of one of its sub-assemblies (a rigid one moves whole).
+            if part is None or part not in placed_parts(self.asm) or getattr(part, "Grounded", False):
                 return
             self.grab = App.Vector(info["x"], info["y"], info["z"])
-            self.drag = PointDrag(self.asm, part, self.grab)
+            try:
+                self.drag = PointDrag(self.asm, part, self.grab)
+            except ValueError as e:  # a rigid sub-assembly that is grounded: nothing to drag
+                App.Console.PrintMessage("Dispcon: %s\n" % e)
+                return
             self.part = part
             self.normal = self.view.getViewDirection()
             event_cb.setHandled()

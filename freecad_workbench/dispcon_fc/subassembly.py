@@ -84,6 +84,8 @@ def _places(src, asm):
 def _open_assembly(path, label):
     from .operations import _doc_name
 
+    # Absolute: FreeCAD stores the link relative to the parent's file, from the path it is given.
+    path = os.path.abspath(path)
     if os.path.splitext(path)[1].lower() != ".fcstd":
         raise ValueError("%s: expected a FreeCAD document (.FCStd)" % path)
     if not os.path.isfile(path):

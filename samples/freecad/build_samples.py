@@ -187,7 +187,7 @@ def build_walkers(out):
     """leg.FCStd, then walker.FCStd (flexible legs in four poses) and walker-rigid.FCStd."""
     doc = App.newDocument("leg")
     r = da.solve(leg(doc))
-    leg_path = os.path.join(out, "leg.FCStd")
+    leg_path = os.path.abspath(os.path.join(out, "leg.FCStd"))
     doc.saveAs(leg_path)
     print("leg: %s" % r.message)
     made = []
@@ -205,6 +205,10 @@ def build_walkers(out):
             sys.exit(1)
         d.save()
         made.append(d)
+        # Saved twice (before linking, and done): FreeCAD kept the first as a backup, walker.FCStd1.
+        backup = d.FileName + "1"
+        if os.path.exists(backup):
+            os.remove(backup)
     for d in made + [doc]:
         App.closeDocument(d.Name)
 

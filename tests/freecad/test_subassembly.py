@@ -330,7 +330,21 @@ class Refused(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, "no such file"):
                 da.insert_sub_assembly(asm, os.path.join(tmp, "nowhere.FCStd"))
             leg = make_leg(tmp)
-            sub = da.insert_sub_assembly(asm, leg, name="Leg1")
+            # A relative path works from here, and is stored so that it works from anywhere.
+            cwd = os.getcwd()
+            os.chdir(os.path.dirname(tmp))
+            try:
+                sub = da.insert_sub_assembly(asm, os.path.join(os.path.basename(tmp), "leg.FCStd"), name="Leg1")
+            finally:
+                os.chdir(cwd)
+            doc.save()
+            App.closeDocument(doc.Name)
+            App.closeDocument("leg")
+            doc = App.openDocument(os.path.join(tmp, "refused.FCStd"))
+            asm = doc.getObject("Top")
+            sub = da.sub_assemblies(asm)[0]
+            self.assertEqual(sub.Assembly.Label, "Leg")
+            self.assertTrue(all(p.LinkedObject is not None for p in da.instance_parts(sub)))
             with self.assertRaisesRegex(ValueError, "Leg1 has no part Foot"):
                 da.add_joint(asm, "Fixed", (sub, "Foot.Edge1"), (sub, "Hip.Edge1"))
             count = len(doc.Objects)
@@ -341,7 +355,7 @@ class Refused(unittest.TestCase):
                 App.closeDocument(name)
 
 
-if __name__ == "__main__" or True:
+if not os.environ.get("DISPCON_SUB_IMPORT_ONLY"):  # gui_subassembly.py imports the helpers only
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
                                for c in (Flexible, Rigid, SameDocument, Refused))
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)

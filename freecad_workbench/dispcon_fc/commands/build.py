@@ -46,6 +46,35 @@ def _insert_link():
     operations.link_part(asm, path, name)
 
 
+def _insert_sub_assembly():
+    """An assembly placed in the active one: the second assembly selected (of this document), or
+    one of a saved .FCStd file chosen in a dialog (linked, as FreeCAD 1.x's Insert component)."""
+    from PySide2 import QtWidgets
+
+    from .. import subassembly
+    from ..objects import is_assembly, top_assemblies
+
+    asm = active_assembly()
+    chosen = [o for o in Gui.Selection.getSelection() if is_assembly(o) and o is not asm]
+    if chosen:
+        subassembly.insert_sub_assembly(asm, chosen[0])
+        return
+    path, _ = QtWidgets.QFileDialog.getOpenFileName(None, "Insert a sub-assembly", "", "FreeCAD (*.FCStd)")
+    if not path:
+        return
+    name = operations._doc_name(path)
+    doc = App.getDocument(name) if name else App.openDocument(path)
+    found = top_assemblies(doc)
+    label = None
+    if len(found) > 1:
+        labels = [o.Label for o in found]
+        label, ok = QtWidgets.QInputDialog.getItem(None, "Insert a sub-assembly", "Assembly of %s:" % path,
+                                                   labels, 0, False)
+        if not ok:
+            return
+    subassembly.insert_sub_assembly(asm, path, label)
+
+
 def _ground():
     for o in Gui.Selection.getSelection():
         if hasattr(o, "Grounded"):
@@ -75,6 +104,11 @@ def commands():
                                        "document (.FCStd) and one of its solids; it is linked into the assembly "
                                        "(App::Link) and follows that file's changes. Save this document first.",
                                        _insert_link)),
+        ("Dispcon_InsertSubAssembly", Command(
+            "Insert sub-assembly", "Insert sub-assembly: select the assembly to insert into, then (Ctrl+click) "
+            "another assembly of this document to place in it; or select only the first and choose a saved "
+            "FreeCAD document (.FCStd) whose assembly is linked in. It comes in rigid (it moves as one part): "
+            "untick Rigid in its properties to let its own joints move in this assembly.", _insert_sub_assembly)),
         ("Dispcon_Ground", Command("Ground", "Ground: select one or more parts; they never move (run again "
                                    "to free them).", _ground, active=_can_ground)),
     ]

@@ -93,9 +93,15 @@ void analyse(const Block& b, const ConstraintJacobian& cj, const Rows& rows,
   } else if (dof > 0) {
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
     const Eigen::MatrixXd N = svd.matrixV().rightCols(dof);
+    // N's columns are orthonormal, so its singular values are at most 1: a body's rows count
+    // against that scale, not against their own largest value (a body that does not move has
+    // rows of rounding noise, which a relative test would count as a motion).
     for (size_t k = 0; k < b.bodies.size(); ++k) {
-      out.body_dof[static_cast<size_t>(b.bodies[k])] =
-          rank_of(N.middleRows(6 * static_cast<Eigen::Index>(k), 6));
+      Eigen::JacobiSVD<Eigen::MatrixXd> rows_svd(N.middleRows(6 * static_cast<Eigen::Index>(k), 6));
+      const auto& s = rows_svd.singularValues();
+      int motions = 0;
+      for (Eigen::Index i = 0; i < s.size(); ++i) motions += s(i) > kRankTolerance;
+      out.body_dof[static_cast<size_t>(b.bodies[k])] = motions;
     }
   }
 

@@ -55,6 +55,31 @@ TEST(Check, PlanarFourBarIn3DHasThreeRedundantEquationsOnItsClosingJoint) {
   }
 }
 
+// A four-bar whose base is welded to the world (a leg bolted to a frame): the base has no motion
+// of its own, although its rows of the nullspace are rounding noise rather than zeros.
+TEST(Check, APartWeldedInsideALoopHasNoMotion) {
+  const ParseResult r = parse_dcl(R"(
+object hip;     position 0 0 0.2;    rotation 0 0 0;    end
+object crank;   position 0 0 0.2;    rotation 0 0 0.5;  end
+object coupler; position 0.88 0.48 0.2; rotation 0 0 0.1; end
+object rocker;  position 3 0 0.2;    rotation 0 0 1.9;  end
+constraint object2 hip; hinge 0 0 0.2  0 0 0; angle 0 0 1 0 0 1 max 0; twist 1 0 0 1 0 0; end
+constraint object1 hip;     object2 crank;   hinge 0 0 0  0 0 0;    angle 0 0 1 0 0 1 max 0; end
+constraint object1 crank;   object2 coupler; hinge 1 0 0  0 0 0;    angle 0 0 1 0 0 1 max 0; end
+constraint object1 coupler; object2 rocker;  hinge 3 0 0  2.5 0 0;  angle 0 0 1 0 0 1 max 0; end
+constraint object1 hip;     object2 rocker;  hinge 3 0 0  0 0 0;    angle 0 0 1 0 0 1 max 0; end
+)");
+  ASSERT_TRUE(r.ok()) << r.messages();
+  Model m = *r.model;
+  ASSERT_TRUE(assemble(m).converged);
+  const CheckResult c = check(m);
+  EXPECT_EQ(c.dof, 1) << c.message;
+  EXPECT_EQ(c.body_dof[static_cast<size_t>(m.find("hip")->value)], 0);
+  for (const char* body : {"crank", "coupler", "rocker"}) {
+    EXPECT_EQ(c.body_dof[static_cast<size_t>(m.find(body)->value)], 1) << body;
+  }
+}
+
 Model chain(int n, bool revolute) {
   Model m;
   BodyId prev = Model::kWorld;
@@ -119,9 +144,9 @@ Model side_by_side(const std::vector<std::string>& files) {
 }
 
 TEST(Check, GroupByGroupGivesTheWholeJacobiansAnswers) {
-  const std::vector<std::string> files = {"fourbar.dcl",     "bennett.dcl", "sarrus.dcl",
-                                          "welded.dcl",      "peaucellier.dcl",
-                                          "slider-crank.dcl", "double-rocker.dcl", "robot-arm.dcl"};
+  const std::vector<std::string> files = {
+      "fourbar.dcl",     "bennett.dcl",      "sarrus.dcl",        "welded.dcl",
+      "peaucellier.dcl", "slider-crank.dcl", "double-rocker.dcl", "robot-arm.dcl"};
   Model m = side_by_side(files);
   Body free_body;  // a group without joints
   free_body.name = "loose";

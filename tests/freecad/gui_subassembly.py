@@ -1,0 +1,166 @@
+"""Sub-assemblies in real FreeCAD under Xvfb (1280x900): the Insert sub-assembly command in the
+Assembly toolbar with its icon and tooltip, the tree icons of rigid and flexible instances, the
+Rigid toggle in the property editor, a leg of a flexible walker dragged with the mouse while the
+other legs stay, and a screenshot of the four legs (walker.png). Quits FreeCAD itself; writes 0 to
+<out>/status-subassembly when every test passed."""
+import math
+import os
+import sys
+import tempfile
+import traceback
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+os.environ["DISPCON_GUI_IMPORT_ONLY"] = "1"
+os.environ["DISPCON_SUB_IMPORT_ONLY"] = "1"
+
+import FreeCAD as App  # noqa: E402
+import FreeCADGui as Gui  # noqa: E402
+from PySide2 import QtGui, QtWidgets  # noqa: E402
+
+import gui_workbench as gw  # noqa: E402
+import test_subassembly as ts  # noqa: E402
+
+
+def coloured(icon, size=32):
+    image = icon.pixmap(size, size).toImage()
+    return sum(1 for x in range(0, size, 2) for y in range(0, size, 2) if QtGui.QColor(image.pixel(x, y)).alpha() > 0)
+
+
+class Walker(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        import dispcon_fc.assembly as da
+
+        cls.da = da
+        cls.tmp = tempfile.TemporaryDirectory()
+        leg = ts.make_leg(cls.tmp.name)
+        cls.doc, cls.asm, cls.frame, cls.subs = ts.make_walker(cls.tmp.name, leg, rigid=False)
+        # Each leg's crank at its own angle: the four places move independently.
+        for sub, deg in zip(cls.subs, (0, 90, 180, 270)):
+            crank = ts.part(sub, "Crank")
+            if deg:
+                assert da.drag(cls.asm, crank, ts.turned_about_pin(crank, deg), steps=max(2, deg // 10)).converged
+        App.setActiveDocument(cls.doc.Name)
+        Gui.ActiveDocument = Gui.getDocument(cls.doc.Name)
+        cls.view = Gui.getDocument(cls.doc.Name).ActiveView
+        cls.view.viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        gw.settle()
+
+    @classmethod
+    def tearDownClass(cls):
+        Gui.Selection.clearSelection()
+        for name in list(App.listDocuments()):
+            App.closeDocument(name)
+        cls.tmp.cleanup()
+        gw.settle()
+
+    def test_command_in_the_assembly_toolbar_with_icon_and_tooltip(self):
+        a = gw.action("Dispcon_InsertSubAssembly")
+        self.assertIsNotNone(a)
+        self.assertEqual(gw.toolbar_of("Dispcon_InsertSubAssembly").objectName(), "Dispcon Assembly")
+        self.assertGreater(coloured(a.icon()), 20)
+        os.makedirs(gw.OUT, exist_ok=True)
+        a.icon().pixmap(64, 64).save(os.path.join(gw.OUT, "icon-insert-sub-assembly.png"))
+        self.assertIn("select the assembly to insert into", a.toolTip())
+        self.assertIn(".FCStd", a.toolTip())
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(self.asm)
+        gw.settle()
+        self.assertTrue(a.isEnabled())
+
+    def test_tree_icons_and_the_rigid_toggle(self):
+        from dispcon_fc import viewproviders
+
+        sub = self.subs[3]
+        proxy = sub.ViewObject.Proxy
+        self.assertIsInstance(proxy, viewproviders.ViewProviderSubAssembly)
+        self.assertTrue(proxy.getIcon().endswith("Dispcon_SubAssemblyFlexible.svg"))
+        self.assertGreater(coloured(QtGui.QIcon(proxy.getIcon())), 20)
+        QtGui.QIcon(proxy.getIcon()).pixmap(64, 64).save(os.path.join(gw.OUT, "icon-sub-assembly-flexible.png"))
+        # Rigid is a checkbox of the property editor (a visible, editable bool).
+        self.assertEqual(sub.getTypeIdOfProperty("Rigid"), "App::PropertyBool")
+        self.assertEqual(sub.getEditorMode("Rigid"), [])
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(sub)
+        gw.settle()
+        shown = set()
+        for tree in gw.mw().findChildren(QtWidgets.QTreeView):
+            model = tree.model()
+            if model is None:
+                continue
+            stack = [model.index(r, 0) for r in range(model.rowCount())]
+            while stack:
+                index = stack.pop()
+                shown.add(model.data(index))
+                stack += [model.index(r, 0, index) for r in range(model.rowCount(index))]
+        self.assertIn("Rigid", shown)
+        sub.Rigid = True
+        self.assertTrue(proxy.getIcon().endswith("Dispcon_SubAssembly.svg"))
+        QtGui.QIcon(proxy.getIcon()).pixmap(64, 64).save(os.path.join(gw.OUT, "icon-sub-assembly-rigid.png"))
+        sub.Rigid = False
+        Gui.Selection.clearSelection()
+
+    def test_drag_a_leg_with_the_mouse_and_screenshot(self):
+        from dispcon_fc import dragging
+
+        da = self.da
+        leg2 = self.subs[1]
+        coupler, crank, hip = ts.part(leg2, "Coupler"), ts.part(leg2, "Crank"), ts.part(leg2, "Hip")
+        others = ts.poses(self.subs[:1] + self.subs[2:])
+        Gui.runCommand("Dispcon_Drag", 1)
+        mode = dragging._active
+        self.assertIsNotNone(mode)
+        try:
+            x0, y0 = (int(v) for v in self.view.getPointOnScreen(coupler.Placement.multVec(App.Vector(1.5, 0, 0.1))))
+            info = self.view.getObjectInfo((x0, y0))
+            self.assertTrue(info and info["Object"] == coupler.Name, info)
+            before = ts.angle_in(crank, hip)
+            gw.mouse(self.view, "press", x0, y0)
+            self.assertIsNotNone(mode.drag, "pressing on leg 2's coupler did not start a drag")
+            for k in range(1, 21):
+                gw.mouse(self.view, "move", x0 + 2 * k, y0 - 2 * k)
+                Gui.updateGui()
+            gw.mouse(self.view, "release", x0 + 40, y0 - 40)
+        finally:
+            Gui.runCommand("Dispcon_Drag", 0)
+        self.assertGreater(abs(ts.angle_in(crank, hip) - before), 0.02, "leg 2's crank did not follow")
+        for n, pl in ts.poses(self.subs[:1] + self.subs[2:]).items():
+            self.assertTrue(ts.th.same(pl, others[n], 1e-12), "%s moved with leg 2" % n)
+        for gap, tilt, label in ts.gaps(self.asm):
+            self.assertLess(gap, 1e-9, label)
+        self.assertEqual(da.check(self.asm)["dof"], 4)
+        # Leg 2 selected: the tree shows the instances, the property editor its Rigid toggle.
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(leg2)
+        Gui.SendMsgToActiveView("ViewFit")
+        path = gw.shot("walker", self.view)
+        Gui.Selection.clearSelection()
+        self.assertTrue(os.path.getsize(path) > 10000)
+
+
+def main():
+    status = 1
+    try:
+        exec(open(os.path.join(gw.WB, "InitGui.py")).read(), {"__file__": os.path.join(gw.WB, "InitGui.py")})
+        Gui.activateWorkbench("DispconWorkbench")
+        gw.mw().setGeometry(0, 0, 1280, 900)
+        gw.settle()
+        suite = unittest.TestLoader().loadTestsFromTestCase(Walker)
+        result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
+        failed = len(result.failures) + len(result.errors)
+        print("%d passed, %d failed" % (result.testsRun - failed, failed))
+        status = 0 if result.wasSuccessful() else 1
+    except Exception:
+        traceback.print_exc()
+        print("0 passed, 1 failed")
+    finally:
+        os.makedirs(gw.OUT, exist_ok=True)
+        with open(os.path.join(gw.OUT, "status-subassembly"), "w") as f:
+            f.write(str(status))
+        QtWidgets.QApplication.instance().quit()
+
+
+main()
