@@ -155,8 +155,7 @@ class Flexible(unittest.TestCase):
         c = da.check(self.asm)
         self.assertEqual(c["dof"], 4, c["message"])
         self.assertEqual(c["part_dof"]["Leg2.Crank"], 1)
-        # (Not part_dof of the hip: the engine gives a body held by a Fixed joint inside a planar
-        # loop with a redundant revolute 1, not 0; the drag test shows the hip stays.)
+        self.assertEqual(c["part_dof"]["Leg2.Hip"], 0)
         # Only each leg's loop repeats equations; the hips are held by the Fixed joints alone (the
         # leg's file grounds its hip plate: here it is free, as FreeCAD 1.x has it).
         self.assertEqual(sorted(j.Label for j in c["redundant"]), ["Leg%d.Revolute003" % k for k in (1, 2, 3, 4)])
