@@ -10,7 +10,7 @@ import FreeCAD as App
 
 from . import engine, geometry, objects, subassembly
 from .adapter import Adapter, Result, _vec
-from .objects import joints, parts, placed_parts
+from .objects import joints, placed_parts
 
 
 class Transaction:

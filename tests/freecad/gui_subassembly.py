@@ -3,7 +3,6 @@ Assembly toolbar with its icon and tooltip, the tree icons of rigid and flexible
 Rigid toggle in the property editor, a leg of a flexible walker dragged with the mouse while the
 other legs stay, and a screenshot of the four legs (walker.png). Quits FreeCAD itself; writes 0 to
 <out>/status-subassembly when every test passed."""
-import math
 import os
 import sys
 import tempfile

@@ -328,7 +328,7 @@ class Refused(unittest.TestCase):
             doc.saveAs(os.path.join(tmp, "refused.FCStd"))
             with self.assertRaisesRegex(ValueError, "no such file"):
                 da.insert_sub_assembly(asm, os.path.join(tmp, "nowhere.FCStd"))
-            leg = make_leg(tmp)
+            make_leg(tmp)
             # A relative path works from here, and is stored so that it works from anywhere.
             cwd = os.getcwd()
             os.chdir(os.path.dirname(tmp))
