@@ -251,6 +251,24 @@ class Rigid(unittest.TestCase):
             self.assertTrue(th.same(p.LocalPlacement, leg_doc.getObject(p.LinkedObject.Name).Placement, 1e-9))
         self.assertEqual(digest(self.leg), self.before)
 
+    def test_a_mouse_drag_on_a_rigid_legs_part_turns_the_leg(self):
+        # What drag mode does with the mouse: the grabbed point of the rocker pulled round the hip pin.
+        leg1 = self.subs[0]
+        ps = da.instance_parts(leg1)
+        inside = [relative(ps[0], p) for p in ps[1:]]
+        rocker = part(leg1, "Rocker")
+        grab = rocker.Placement.multVec(App.Vector(1.25, 0, 0.1))
+        pivot = leg1.Placement.Base
+        d = da.PointDrag(self.asm, rocker, grab)
+        for k in range(1, 11):
+            d.move(pivot + App.Rotation(App.Vector(0, 0, 1), 3 * k).multVec(grab - pivot))
+        d.finish()
+        self.assertAlmostEqual(math.degrees(leg1.Placement.Rotation.Angle), 30, delta=0.5)
+        for rel, p in zip(inside, ps[1:]):
+            self.assertTrue(th.same(relative(ps[0], p), rel, 1e-12), p.Label)
+        for gap, tilt, label in gaps(self.asm):
+            self.assertLess(gap, 1e-9, label)
+
     def test_dof_six_minus_what_holds_it(self):
         # Leg 1: 6 - 5 (a revolute) = 1; legs 2-4: 6 - 6 = 0.
         c = da.check(self.asm)
