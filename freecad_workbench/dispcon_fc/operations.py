@@ -582,4 +582,5 @@ def import_dcl(asm, path):
                 b = m.body(name)
                 q = b.quaternion
                 p.Placement = App.Placement(App.Vector(*b.position), App.Rotation(q[1], q[2], q[3], q[0]))
+        subassembly.write_back(adapter)  # the sub-assemblies' parts follow
     asm.Document.recompute()

@@ -102,6 +102,19 @@ class Check(unittest.TestCase):
 
 
 class Sweep(unittest.TestCase):
+    def test_one_leg_of_the_walker_turns_the_others_stay(self):
+        # A joint of a flexible sub-assembly, named as its instance's: leg 3's crank, a full turn.
+        code, r, err = run_json("sweep", doc("walker"), "--joint", "Leg3.Revolute", "--steps", 24)
+        self.assertEqual(code, 0, err)
+        self.assertFalse(r["locked"])
+        self.assertTrue(all(sample["converged"] for sample in r["samples"]))
+        labels = [j["label"] for j in r["joints"]]
+        column = lambda label: [sample["joint_values"][labels.index(label)] for sample in r["samples"]]  # noqa: E731
+        self.assertGreater(max(column("Leg3.Revolute")) - min(column("Leg3.Revolute")), 6.0)
+        for other in ("Leg1.Revolute", "Leg2.Revolute001", "Leg4.Revolute003"):
+            values = column(other)
+            self.assertLess(max(values) - min(values), 1e-9, other)
+
     def test_lock_up_of_a_double_rocker_against_the_closure(self):
         f = FACTS["double-rocker"]
         code, r, err = run_json("sweep", doc("double-rocker"), "--joint", "CrankPivot")

@@ -149,6 +149,26 @@ class Flexible(unittest.TestCase):
                 self.assertTrue(th.same(s.Placement.multiply(p.LocalPlacement), p.Placement, 1e-12), p.Label)
         self.assertEqual(digest(self.leg), self.before, "solving the walker wrote to leg.FCStd")
 
+    def test_moving_an_instance_carries_its_parts_and_dcl_round_trip(self):
+        leg4 = self.subs[3]
+        local = {p.Name: p.LocalPlacement for p in da.instance_parts(leg4)}
+        dcl = os.path.join(self.tmp.name, "walker.dcl")
+        da.export_dcl(self.asm, dcl)
+        before = poses(self.subs)
+        # The instance's Placement moved in the property editor: its parts come along.
+        leg4.Placement = App.Placement(App.Vector(9, 9, 1), App.Rotation(App.Vector(0, 0, 1), 30))
+        for p in da.instance_parts(leg4):
+            self.assertTrue(th.same(p.Placement, leg4.Placement.multiply(local[p.Name]), 1e-12), p.Label)
+        leg4.Placement = App.Placement(App.Vector(6, 6, 0.2), App.Rotation())
+        crank = part(self.subs[0], "Crank")
+        self.assertTrue(da.drag(self.asm, crank, turned_about_pin(crank, 50), steps=5).converged)
+        # Back from the .dcl: every leg's parts where they were, kept in their instances' frames too.
+        da.import_dcl(self.asm, dcl)
+        for s in self.subs:
+            for p in da.instance_parts(s):
+                self.assertTrue(th.same(p.Placement, before[p.Name], 1e-9), p.Label)
+                self.assertTrue(th.same(s.Placement.multiply(p.LocalPlacement), p.Placement, 1e-12), p.Label)
+
     def test_dof_counted_by_hand(self):
         # Each leg: 4 bodies (24) - Fixed (6) - 4 revolutes of a planar loop (20, 3 of them
         # redundant: 17) = 1; four legs: 4.
