@@ -98,6 +98,21 @@ def _in_body(kw, side, local):
     return kw
 
 
+def local_mass(shape, placement):
+    """Volume, centre of mass and inertia (unit density, about the centre of mass) of a shape's
+    solids in the frame of `placement`; () when it has no solid."""
+    props = geometry.mass_properties(shape)
+    if props is None:
+        return ()
+    volume, com, inertia = props
+    # The inertia is in global axes of the shape as placed: to local axes.
+    R = placement.Rotation.toMatrix()
+    rows = [[R.A[4 * i + j] for j in range(3)] for i in range(3)]
+    local = [[sum(rows[i][a] * inertia[i][j] * rows[j][b] for i in range(3) for j in range(3)) for b in range(3)]
+             for a in range(3)]
+    return volume, geometry.to_local(placement, point=com), local
+
+
 class Adapter:
     """One assembly as a dispcon.Model: bodies are the parts (their Placement is the pose), with
     mass and inertia from their shapes; joints are the joint objects, in order."""
@@ -130,9 +145,11 @@ class Adapter:
                 kw = _in_body(_in_body(joint_kwargs(self.dispcon, j), "1", l1), "2", l2)
                 self.model.add_joint(b2, object1=b1, label=j.Label, **kw)
 
-    def add_body(self, owner, shape, physics):
+    def add_body(self, owner, shape, physics, local=None):
         """A body for `owner` (a part, or a rigid sub-assembly with the compound of its parts
-        placed): its Placement is the pose; returns the body's name."""
+        placed): its Placement is the pose; returns the body's name. `local`: the shape's mass
+        properties in the owner's frame when known (local_mass; the same leg placed four times
+        is measured once)."""
         name = "p%d_%s" % (len(self.parts), "".join(c if c.isalnum() else "_" for c in owner.Name))
         self.names[owner.Name] = name
         self.frames[owner.Name] = (name, None)
@@ -140,15 +157,14 @@ class Adapter:
         pl = owner.Placement
         kw = dict(position=_vec(pl.Base), rotation=_rotvec(pl.Rotation),
                   fixed=bool(getattr(owner, "Grounded", False)))
-        props = geometry.mass_properties(shape)
-        if props is not None:
-            volume, com, inertia = props
+        props = local if local is not None else local_mass(shape, pl)
+        if props:
+            volume, centre, inertia = props
             density = getattr(owner, "Density", 1.0) or 1.0
-            kw["center"] = _vec(geometry.to_local(pl, point=com))
+            kw["center"] = _vec(centre)
             if physics:
-                R = pl.Rotation.toMatrix()
                 kw["mass"] = density * volume
-                kw["inertia"] = self._local_inertia(R, inertia, density)
+                kw["inertia"] = [[density * v for v in row] for row in inertia]
         if getattr(owner, "AbilityToRotate", 0) > 0:
             kw["rotate"] = owner.AbilityToRotate
         self.model.add_body(name, **kw)
@@ -177,16 +193,6 @@ class Adapter:
 
     def skipped_message(self):
         return "; ".join("skipped %s (%s)" % (j.Label, why) for j, why in self.skipped)
-
-    @staticmethod
-    def _local_inertia(R, inertia, density):
-        # inertia is about the centre of mass in global axes of the shape as placed: to local axes.
-        rows = [[R.A[4 * i + j] for j in range(3)] for i in range(3)]
-        out = [[0.0] * 3 for _ in range(3)]
-        for a in range(3):
-            for b in range(3):
-                out[a][b] = density * sum(rows[i][a] * inertia[i][j] * rows[j][b] for i in range(3) for j in range(3))
-        return out
 
     def part_of(self, name):
         for p in self.parts:

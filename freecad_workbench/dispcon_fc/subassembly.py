@@ -203,9 +203,17 @@ def solved_locals(sub):
 
 def add_instances(adapter, physics):
     """The parent's adapter gets the bodies of `adapter.asm`'s sub-assemblies (one per rigid
-    instance, one per part of a flexible one) and returns the flexible instances' joints."""
+    instance, one per part of a flexible one) and returns the flexible instances' joints. What
+    does not depend on where an instance is (the placed assembly solved in its frame, the mass
+    properties of its parts in their own frames) is computed once per placed assembly."""
     import Part
 
+    from .adapter import local_mass
+
+    def key(obj):
+        return (obj.Document.Name, obj.Name)
+
+    rigid_once, part_once = {}, {}
     extra = []
     for sub in objects.sub_assemblies(adapter.asm):
         src = source_of(sub)
@@ -215,23 +223,27 @@ def add_instances(adapter, physics):
             raise ValueError("%s: %s has parts this instance lacks (%s): insert it again"
                              % (sub.Label, src.Label, ", ".join(missing)))
         if sub.Rigid:
-            local = solved_locals(sub)
-            shapes = []
-            placed = {}
-            for name, link in links.items():
-                if name not in local:  # a part since removed from the placed assembly
-                    continue
-                placed[link.Name] = local[name]
-                s = objects.shape_of(link).copy()
-                s.Placement = sub.Placement.multiply(local[name]).multiply(link.Placement.inverse()).multiply(s.Placement)
-                shapes.append(s)
-            body = adapter.add_body(sub, Part.makeCompound(shapes), physics)
+            if key(src) not in rigid_once:
+                local = solved_locals(sub)
+                shapes = []
+                for name, link in links.items():
+                    if name in local:  # else a part since removed from the placed assembly
+                        s = objects.shape_of(link).copy()
+                        s.Placement = local[name].multiply(link.Placement.inverse()).multiply(s.Placement)
+                        shapes.append(s)
+                rigid_once[key(src)] = (local, local_mass(Part.makeCompound(shapes), App.Placement()))
+            local, mass = rigid_once[key(src)]
+            placed = {link.Name: local[name] for name, link in links.items() if name in local}
+            body = adapter.add_body(sub, None, physics, local=mass)
             for link_name, pl in placed.items():
                 adapter.frames[link_name] = (body, pl)
             adapter.rigid[sub.Name] = placed
         else:
             for link in links.values():
-                adapter.add_body(link, objects.shape_of(link), physics)
+                source = link.LinkedObject
+                if key(source) not in part_once:
+                    part_once[key(source)] = local_mass(objects.shape_of(link), link.Placement)
+                adapter.add_body(link, None, physics, local=part_once[key(source)])
             for j in objects.joints(src):
                 refs = []
                 for ref in (j.Reference1, j.Reference2):
