@@ -70,6 +70,31 @@ class Walker(unittest.TestCase):
         gw.settle()
         self.assertTrue(a.isEnabled())
 
+    def test_the_command_places_the_second_assembly_selected(self):
+        import dispcon_fc.assembly as da
+
+        doc = App.newDocument("insert")
+        try:
+            leg = ts.th.fourbar(doc, self.tmp.name)[0]
+            top = da.create_assembly(doc, "Top")
+            Gui.Selection.clearSelection()
+            Gui.Selection.addSelection(top)
+            Gui.Selection.addSelection(leg)
+            Gui.runCommand("Dispcon_InsertSubAssembly")
+            gw.settle()
+            subs = da.sub_assemblies(top)
+            self.assertEqual(len(subs), 1)
+            self.assertTrue(subs[0].Rigid)
+            self.assertEqual(subs[0].Assembly, leg)
+            self.assertEqual(sorted(p.LinkedObject.Name for p in da.instance_parts(subs[0])),
+                             sorted(p.Name for p in da.parts(leg)))
+            self.assertIsNotNone(subs[0].ViewObject.Proxy)
+        finally:
+            Gui.Selection.clearSelection()
+            App.closeDocument(doc.Name)
+            App.setActiveDocument(self.doc.Name)
+            Gui.ActiveDocument = Gui.getDocument(self.doc.Name)
+
     def test_tree_icons_and_the_rigid_toggle(self):
         from dispcon_fc import viewproviders
 
