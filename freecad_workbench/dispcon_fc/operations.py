@@ -300,6 +300,9 @@ def solve(asm, undo_step=True):
     assembly), grounded parts still. One undo step; a failed solve moves nothing and marks the
     joints still violated. A joint that lost a part is skipped and named in the message."""
     _assembly(asm)
+    if subassembly.out_of_step(asm):  # a placed assembly gained or lost parts since
+        with _step(asm.Document, "Update sub-assemblies", undo_step):
+            subassembly.bring_in_step(asm)
     adapter = Adapter(asm)
     with adapter.engine_errors():
         r = adapter.model.assemble(tolerance=tolerance(asm), max_iterations=asm.MaxIterations)

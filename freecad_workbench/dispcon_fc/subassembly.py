@@ -136,15 +136,52 @@ def insert_sub_assembly(asm, source, label=None, placement=None, rigid=True, nam
         sub.Rigid = bool(rigid)
         sub.Placement = placement
         for p in src_parts:
-            link = doc.addObject("App::Link", "%s_%s" % (sub.Name, p.Name))
-            link.Label = "%s.%s" % (sub.Label, p.Label)
-            link.LinkedObject = p
-            instance_link_properties(link)
-            link.LocalPlacement = p.Placement
-            link.Placement = placement.multiply(p.Placement)
-            sub.addObject(link)
+            _new_link(sub, p)
         asm.addObject(sub)
     return sub
+
+
+def _new_link(sub, part):
+    """The instance's link to `part` of the placed assembly, where that assembly has it."""
+    doc = sub.Document
+    link = doc.addObject("App::Link", "%s_%s" % (sub.Name, part.Name))
+    link.Label = "%s.%s" % (sub.Label, part.Label)
+    link.LinkedObject = part
+    instance_link_properties(link)
+    link.LocalPlacement = part.Placement
+    link.Placement = sub.Placement.multiply(part.Placement)
+    sub.addObject(link)
+    return link
+
+
+def out_of_step(asm):
+    """The instances of `asm` whose placed assembly gained or lost parts since they were made."""
+    out = []
+    for sub in objects.sub_assemblies(asm):
+        src = sub.Assembly if "Assembly" in sub.PropertiesList else None
+        if src is None or not objects.is_assembly(src):
+            continue  # gone: source_of says so where it matters
+        linked = set(links_by_source(sub))
+        now = {p.Name for p in objects.parts(src)}
+        if linked != now or any(l.LinkedObject is None for l in objects.instance_parts(sub)):
+            out.append(sub)
+    return out
+
+
+def bring_in_step(asm):
+    """Each instance of `asm` gets a link for a part its placed assembly gained, and loses the
+    link of a part it lost (a joint of the parent on it is then skipped and named)."""
+    for sub in out_of_step(asm):
+        src = source_of(sub)
+        now = {p.Name: p for p in objects.parts(src)}
+        for link in objects.instance_parts(sub):
+            if link.LinkedObject is None or link.LinkedObject.Name not in now:
+                sub.removeObject(link)
+                sub.Document.removeObject(link.Name)
+        linked = links_by_source(sub)
+        for name, part in now.items():
+            if name not in linked:
+                _new_link(sub, part)
 
 
 def instance_link_properties(link):
@@ -220,7 +257,7 @@ def add_instances(adapter, physics):
         links = links_by_source(sub)
         missing = [p.Label for p in objects.parts(src) if p.Name not in links]
         if missing:
-            raise ValueError("%s: %s has parts this instance lacks (%s): insert it again"
+            raise ValueError("%s: %s has parts this instance lacks (%s): Solve brings them in"
                              % (sub.Label, src.Label, ", ".join(missing)))
         if sub.Rigid:
             if key(src) not in rigid_once:

@@ -344,6 +344,23 @@ class SameDocument(unittest.TestCase):
             for p in da.parts(leg):  # the placed assembly itself never moves with its instances
                 self.assertTrue(th.same(p.Placement, source[p.Name], 0), p.Label)
             self.assertEqual(da.check(asm)["dof"], 2)
+            # The leg gains a part (a pedal on its crank's far pin): Check says Solve brings it in,
+            # and Solve does, in each instance.
+            pedal = doc.addObject("Part::Feature", "Pedal")
+            pedal.Shape = parts.link(0.5)
+            pedal.Placement = crank.Placement.multiply(App.Placement(App.Vector(1, 0, 0.1), App.Rotation()))
+            da.add_part(leg, pedal)
+            da.add_joint(leg, "Fixed", (crank, parts.circle_edge(crank.Shape, App.Vector(1, 0, 0.1))),
+                         (pedal, parts.circle_edge(pedal.Shape, App.Vector(0, 0, 0))))
+            with self.assertRaisesRegex(ValueError, "Leg1: .* lacks \\(Pedal\\): Solve brings them in"):
+                da.check(asm)
+            self.assertTrue(da.solve(asm).converged)
+            self.assertEqual([len(da.instance_parts(s)) for s in subs], [5, 5])
+            self.assertEqual(da.check(asm)["dof"], 2)
+            c2 = part(subs[1], "Crank")
+            self.assertTrue(da.drag(asm, c2, turned_about_pin(c2, 30), steps=5).converged)
+            for gap, tilt, label in gaps(asm):
+                self.assertLess(gap, 1e-9, label)
             path = os.path.join(tmp, "both.FCStd")
             doc.saveAs(path)
             App.closeDocument(doc.Name)
