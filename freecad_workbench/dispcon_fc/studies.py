@@ -152,6 +152,18 @@ class Study:
         """Every part's placement in the model now (not in the document)."""
         return [self.adapter.placement_of(p) for p in self.parts]
 
+    def placement_in(self, placements, obj):
+        """`obj`'s placement among `placements` (the parts', in order): a part of a rigid
+        sub-assembly is where its instance's placement puts it."""
+        body, local = self.adapter.body_of(obj)
+        pl = placements[self.parts.index(self.adapter.part_of(body))]
+        return pl if local is None else pl.multiply(local)
+
+    def in_body(self, obj, point):
+        """A point in `obj`'s frame, in its body's (a part of a rigid sub-assembly: its instance's)."""
+        local = self.adapter.body_of(obj)[1]
+        return point if local is None else tuple(local.multVec(App.Vector(*point)))
+
     def local_shapes(self):
         if self._local is None:
             self._local = local_shapes(self.parts)
@@ -366,27 +378,29 @@ class _Driver:
             raise StudyError("%s: error: joint '%s' is a %s: sweep drives a Revolute, Cylindrical, "
                              "Slider or PointOnLine joint"
                              % (study.asm.Document.FileName, joint.Label, joint.JointType))
-        names = study.adapter.names
-        o1, o2 = joint.Reference1[0], joint.Reference2[0]
-        self.parts = (study.parts.index(o1), study.parts.index(o2))
+        o1, o2 = self.ends = joint.Reference1[0], joint.Reference2[0]
         box = da.shape_of(o2).BoundBox
         self.radius = max(0.5 * box.DiagonalLength, 1e-6)
-        self.index = study.model.add_joint(names[o2.Name], object1=names[o1.Name],
-                                           hinge=(self._p1(self.value()), self._p2()),
+        # The hinge's points are in the parts' frames: in their bodies' (a rigid sub-assembly's).
+        self.index = study.model.add_joint(study.adapter.body_of(o2)[0], object1=study.adapter.body_of(o1)[0],
+                                           hinge=(study.in_body(o1, self._p1(self.value())),
+                                                  study.in_body(o2, self._p2())),
                                            label="sweep driver")
 
     def value(self, placements=None):
         pls = placements or self.study.placements()
-        return joint_value(self.j, pls[self.parts[0]], pls[self.parts[1]])
+        return joint_value(self.j, self.study.placement_in(pls, self.ends[0]), self.study.placement_in(pls, self.ends[1]))
 
     def _p1(self, v):
         j = self.j
+        # The joint's point on part 1 is its Offset along the axis from Point1 (joint_kwargs).
+        base = j.Point1 + App.Vector(j.Axis1).normalize() * (j.Offset.Value if "Offset" in j.PropertiesList else 0.0)
         if self.kind == "angle":
             a, b = App.Vector(j.Axis1).normalize(), App.Vector(j.Perp1).normalize()
             c = a.cross(b)
-            p = j.Point1 + (b * math.cos(v) + c * math.sin(v)) * self.radius
+            p = base + (b * math.cos(v) + c * math.sin(v)) * self.radius
         else:
-            p = j.Point1 + App.Vector(j.Axis1).normalize() * v
+            p = base + App.Vector(j.Axis1).normalize() * v
         return (p.x, p.y, p.z)
 
     def _p2(self):
@@ -395,7 +409,7 @@ class _Driver:
         return (p.x, p.y, p.z)
 
     def set(self, v):
-        self.study.model.set_hinge(self.index, p1=self._p1(v))
+        self.study.model.set_hinge(self.index, p1=self.study.in_body(self.ends[0], self._p1(v)))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -412,8 +426,8 @@ class Sample:
         self.max_residual = result.max_residual
         self.limits_active = [c.index for c in result.constraints if c.at_limit and c.index < n_joints]
         self.placements = placements
-        self.joint_values = [joint_value(j, placements[study.parts.index(j.Reference1[0])],
-                                         placements[study.parts.index(j.Reference2[0])])
+        self.joint_values = [joint_value(j, study.placement_in(placements, j.Reference1[0]),
+                                         study.placement_in(placements, j.Reference2[0]))
                              for j in study.joints]
         if previous is not None:
             for n, j in enumerate(study.joints):

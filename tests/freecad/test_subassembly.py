@@ -289,6 +289,20 @@ class Rigid(unittest.TestCase):
         for gap, tilt, label in gaps(self.asm):
             self.assertLess(gap, 1e-9, label)
 
+    def test_a_sweep_turns_a_rigid_leg_about_its_hip(self):
+        import dispcon_fc.studies as st
+
+        before = poses(self.subs)
+        r = st.sweep(self.asm, "Revolute", steps=24, interference=False).to_json()
+        self.assertFalse(r["locked"], r["message"])
+        self.assertTrue(all(sample["converged"] for sample in r["samples"]))
+        labels = [j["label"] for j in r["joints"]]
+        turn = [sample["joint_values"][labels.index("Revolute")] for sample in r["samples"]]
+        self.assertGreater(max(turn) - min(turn), 6.0)
+        # A study changes nothing in the document.
+        for n, pl in poses(self.subs).items():
+            self.assertTrue(th.same(pl, before[n], 0), n)
+
     def test_dof_six_minus_what_holds_it(self):
         # Leg 1: 6 - 5 (a revolute) = 1; legs 2-4: 6 - 6 = 0.
         c = da.check(self.asm)
