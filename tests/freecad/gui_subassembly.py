@@ -89,6 +89,12 @@ class Walker(unittest.TestCase):
             self.assertEqual(sorted(p.LinkedObject.Name for p in da.instance_parts(subs[0])),
                              sorted(p.Name for p in da.parts(leg)))
             self.assertIsNotNone(subs[0].ViewObject.Proxy)
+            # With no part of its own yet, Top can still join the leg's parts and be solved.
+            Gui.Selection.clearSelection()
+            Gui.Selection.addSelection(top)
+            gw.settle()
+            self.assertTrue(gw.action("Dispcon_JointRevolute").isEnabled())
+            self.assertTrue(gw.action("Dispcon_Solve").isEnabled())
         finally:
             Gui.Selection.clearSelection()
             App.closeDocument(doc.Name)

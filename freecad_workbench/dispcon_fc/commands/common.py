@@ -4,7 +4,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from ..feedback import report
-from ..objects import is_assembly, joints, parts
+from ..objects import is_assembly, joints, placed_parts, sub_assemblies
 
 
 def active_assembly():
@@ -68,13 +68,16 @@ def status(text, msecs=8000):
 # When commands can run (FreeCAD asks often: these stay cheap).
 
 def has_parts(n=1):
+    """Whether the assembly has `n` parts, counting those of its sub-assemblies (a joint may
+    hold a leg's hip to the frame)."""
     asm = active_assembly()
-    return asm is not None and len(parts(asm)) >= n
+    return asm is not None and len(placed_parts(asm)) >= n
 
 
 def has_joints():
+    """Whether the assembly has a joint to solve: its own, or a sub-assembly's."""
     asm = active_assembly()
-    return asm is not None and bool(joints(asm))
+    return asm is not None and (bool(joints(asm)) or bool(sub_assemblies(asm)))
 
 
 def no_task_dialog():
