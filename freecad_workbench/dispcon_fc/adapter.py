@@ -157,7 +157,13 @@ class Adapter:
         pl = owner.Placement
         kw = dict(position=_vec(pl.Base), rotation=_rotvec(pl.Rotation),
                   fixed=bool(getattr(owner, "Grounded", False)))
-        props = local if local is not None else local_mass(shape, pl)
+        if local is None and not physics:
+            # The centre only: the integrations for the mass and inertia were most of the time
+            # a drag's press took (it builds the model from every part).
+            com = geometry.center_of_mass(shape)
+            props = (None, geometry.to_local(pl, point=com), None) if com is not None else ()
+        else:
+            props = local if local is not None else local_mass(shape, pl)
         if props:
             volume, centre, inertia = props
             density = getattr(owner, "Density", 1.0) or 1.0

@@ -1,6 +1,13 @@
 """Drag mode: press on a part in the 3D view, move the mouse, release. The grabbed point follows
 the mouse in the plane through it facing the viewer; the rest of the linkage follows through
-dispcon, every mouse event; the whole drag is one undo step.
+dispcon, every mouse event; the whole drag is one undo step. Esc during a drag puts every part
+back and leaves no undo step.
+
+During the drag only what is drawn moves: each moving part's Coin3D transform (the one FreeCAD
+sets from its Placement) and the joints' markers take the solved poses every frame, and the
+Placements are written once, at release. Writing a Placement goes through FreeCAD's document
+(change signals, the undo record, the tree, the observers): for a hundred parts that cost more
+than the solve and the redraw together (docs/performance.md).
 
 The mode shows: the Drag command's button stays pressed, the status bar says so, and Esc in the 3D
 view (or the button again) leaves it. One drag mode at a time in a session, as FreeCAD's own
@@ -14,6 +21,113 @@ from .operations import PointDrag
 _active = None
 
 
+def _transform_of(part):
+    """The SoTransform FreeCAD sets from `part`'s Placement (the first child of its view's root),
+    or None when the part's view is drawn some other way (then its Placement is written)."""
+    from pivy import coin
+
+    vobj = getattr(part, "ViewObject", None)
+    root = getattr(vobj, "RootNode", None) if vobj is not None else None
+    if root is None or root.getNumChildren() == 0:
+        return None
+    t = root.getChild(0)
+    if not isinstance(t, coin.SoTransform):
+        return None
+    pl = part.Placement
+    x = t.translation.getValue().getValue()
+    q = t.rotation.getValue().getValue()  # x, y, z, w as App.Rotation.Q
+    same_q = sum((a - b) ** 2 for a, b in zip(q, pl.Rotation.Q)) < 1e-10 or \
+        sum((a + b) ** 2 for a, b in zip(q, pl.Rotation.Q)) < 1e-10
+    if (App.Vector(*x) - pl.Base).Length > 1e-5 * max(1.0, pl.Base.Length) or not same_q:
+        return None
+    return t
+
+
+class Shown:
+    """What a drag moves on screen: the Coin3D transforms of the objects that can move (parts,
+    and the parts of sub-assemblies: every object the adapter has a body frame for) and the
+    markers of the joints they carry, set from the engine's poses (`update()`, each frame), or
+    back from the Placements (`restore()`, after a cancelled drag). The document is not touched;
+    a part whose view has no transform that mirrors its Placement gets its Placement written,
+    outside any undo step, and put back before the drag's one undo step writes them all
+    (`put_back()`), so that undo returns it where it was."""
+
+    def __init__(self, adapter):
+        from . import viewproviders
+
+        model = adapter.model
+        self.adapter = adapter
+        doc = adapter.asm.Document
+        moving = {n: model.body(n) for n in {adapter.names[p.Name] for p in adapter.parts
+                                             if not getattr(p, "Grounded", False)}}
+        self.transforms = []  # (engine body, placement in its frame or None, translation, rotation, object)
+        self.written = []  # (part, its Placement before the drag): written each frame
+        for name, (body, local) in adapter.frames.items():
+            obj = doc.getObject(name)
+            if body not in moving or obj is None:
+                continue
+            t = _transform_of(obj)
+            if t is not None:
+                # The fields, found once: pivy looks a field up by name at every access.
+                self.transforms.append((moving[body], local, t.translation, t.rotation, obj))
+            elif hasattr(obj, "Shape") or obj.TypeId == "App::Link":  # drawn some other way
+                self.written.append((obj, obj.Placement))
+        # The markers as viewproviders' follow() places them: at part 1's point and axis.
+        self.markers = []  # (engine body, part 1 in its frame or None, marker, local point, local axis, joint)
+        for j in adapter.joints:
+            proxy = viewproviders.joint_view(j)
+            ref = getattr(j, "Reference1", None)
+            part1 = ref[0] if ref else None
+            if proxy is None or part1 is None or part1.Name not in adapter.frames:
+                continue
+            body, local = adapter.frames[part1.Name]
+            if body in moving:
+                self.markers.append((moving[body], local, proxy.marker, App.Vector(j.Point1),
+                                     App.Vector(j.Axis1), j))
+
+    @staticmethod
+    def _pose(body, local):
+        x = body.position
+        q = body.quaternion  # w, x, y, z
+        pl = App.Placement(App.Vector(x[0], x[1], x[2]), App.Rotation(q[1], q[2], q[3], q[0]))
+        return pl if local is None else pl.multiply(local)
+
+    def update(self):
+        for body, local, translation, rotation, _ in self.transforms:
+            if local is None:  # a body's own part: straight from the engine
+                x = body.position
+                q = body.quaternion  # w, x, y, z
+                translation.setValue(x[0], x[1], x[2])
+                rotation.setValue(q[1], q[2], q[3], q[0])
+            else:
+                pl = self._pose(body, local)
+                translation.setValue(pl.Base.x, pl.Base.y, pl.Base.z)
+                rotation.setValue(*pl.Rotation.Q)
+        for p, _ in self.written:
+            p.Placement = self.adapter.placement_of(p)
+        for body, local, marker, point, axis, _ in self.markers:
+            pl = self._pose(body, local)
+            marker.place(pl.multVec(point), pl.Rotation.multVec(axis))
+
+    def put_back(self):
+        for p, start in self.written:
+            p.Placement = start
+
+    def restore(self):
+        """Everything drawn back where the document has it (the Placements were never written)."""
+        from . import markers
+
+        self.put_back()
+        for _, _, translation, rotation, obj in self.transforms:
+            pl = obj.Placement
+            translation.setValue(pl.Base.x, pl.Base.y, pl.Base.z)
+            rotation.setValue(*pl.Rotation.Q)
+        for _, _, marker, _, _, j in self.markers:
+            frame = markers.joint_frame(j)
+            if frame is not None:
+                marker.place(*frame)
+
+
 class DragMode:
     def __init__(self, asm):
         from pivy import coin
@@ -22,8 +136,13 @@ class DragMode:
         self.asm = asm
         self.view = Gui.ActiveDocument.ActiveView
         self.drag = None
+        self.shown = None
+        # What the frames cost, from the first drag of this mode (a test reads them): the
+        # solver, the writes (transforms and markers; the Placements at release) and how many.
         self.frames = 0
         self.solver_seconds = 0.0
+        self.write_seconds = 0.0
+        self.release_seconds = 0.0
         self.callbacks = [
             self.view.addEventCallbackPivy(coin.SoMouseButtonEvent.getClassTypeId(), self.button),
             self.view.addEventCallbackPivy(coin.SoLocation2Event.getClassTypeId(), self.motion),
@@ -36,8 +155,7 @@ class DragMode:
         for cb, kind in zip(self.callbacks, kinds):
             self.view.removeEventCallbackPivy(kind.getClassTypeId(), cb)
         if self.drag:
-            self.drag.finish()
-            self.drag = None
+            self.release()
         self._show_state(False)
 
     def _show_state(self, on):
@@ -71,7 +189,26 @@ class DragMode:
         event = event_cb.getEvent()
         if event.getKey() == self.coin.SoKeyboardEvent.ESCAPE and event.getState() == self.coin.SoButtonEvent.DOWN:
             event_cb.setHandled()
-            stop(self.view)
+            if self.drag:  # Esc during a drag: everything back, no undo step; the mode stays
+                self.cancel()
+            else:
+                stop(self.view)
+
+    def release(self):
+        """The drag ends: the last solved poses become the parts' Placements, one undo step."""
+        import time
+
+        t0 = time.perf_counter()
+        drag, shown, self.drag, self.shown = self.drag, self.shown, None, None
+        shown.put_back()
+        drag.finish()
+        self.release_seconds += time.perf_counter() - t0
+
+    def cancel(self):
+        """The drag is given up: the document was never written; what is drawn goes back."""
+        drag, shown, self.drag, self.shown = self.drag, self.shown, None, None
+        drag.cancel()
+        shown.restore()
 
     def button(self, event_cb):
         event = event_cb.getEvent()
@@ -86,16 +223,16 @@ class DragMode:
                 return
             self.grab = App.Vector(info["x"], info["y"], info["z"])
             try:
-                self.drag = PointDrag(self.asm, part, self.grab)
+                self.drag = PointDrag(self.asm, part, self.grab, live=False)
             except ValueError as e:  # a rigid sub-assembly that is grounded: nothing to drag
                 App.Console.PrintMessage("Dispcon: %s\n" % e)
                 return
+            self.shown = Shown(self.drag.adapter)
             self.part = part
             self.normal = self.view.getViewDirection()
             event_cb.setHandled()
         elif event.getState() == self.coin.SoMouseButtonEvent.UP and self.drag:
-            self.drag.finish()
-            self.drag = None
+            self.release()
             event_cb.setHandled()
 
     def motion(self, event_cb):
@@ -113,8 +250,12 @@ class DragMode:
         t = (self.grab - point).dot(self.normal) / d
         hit = point + direction * t
         t0 = time.perf_counter()
-        self.drag.move(hit)
-        self.solver_seconds += time.perf_counter() - t0
+        moved = self.drag.move(hit)
+        t1 = time.perf_counter()
+        if moved:
+            self.shown.update()
+        self.solver_seconds += t1 - t0
+        self.write_seconds += time.perf_counter() - t1
         self.frames += 1
         event_cb.setHandled()
 

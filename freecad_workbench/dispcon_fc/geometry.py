@@ -62,6 +62,20 @@ def to_local(placement, point=None, axis=None):
     return inverse.Rotation.multVec(axis)
 
 
+def center_of_mass(shape):
+    """The centre of mass of a shape's solids (None when it has none, or no volume): what a
+    model without physics needs of a part. One solid, the common part, costs two of
+    OpenCascade's integrations instead of mass_properties' six: pressing on a part of a
+    100-part assembly to drag it builds the model from every part."""
+    solids = shape.Solids
+    if len(solids) != 1:
+        props = mass_properties(shape)
+        return props[1] if props is not None else None
+    if not solids[0].Volume > 0:
+        return None
+    return solids[0].CenterOfMass
+
+
 def mass_properties(shape):
     """Volume, centre of mass and inertia tensor (about the centre of mass, global axes) of a
     shape's solids, as FreeCAD computes them; None when it has no solid."""

@@ -202,6 +202,11 @@ class Marker:
         self.root.setName(name)
         self.transform = coin.SoTransform()
         self.root.addChild(self.transform)
+        # The fields, found once: pivy looks a field up by name at every access (tens of
+        # microseconds), and a drag places the markers at every frame.
+        self._translation = self.transform.translation
+        self._rotation = self.transform.rotation
+        self._vec = coin.SbVec3f
         # The look: an override material and line width (ignoring the pieces' own colours)
         # when selected or in error; nothing overridden when normal.
         self.look_switch = coin.SoSwitch()
@@ -243,11 +248,9 @@ class Marker:
             self.set_type(joint_type)
 
     def place(self, point, axis):
-        self.transform.translation.setValue(point.x, point.y, point.z)
+        self._translation.setValue(point.x, point.y, point.z)
         (a, angle) = _turn_z_to((axis.x, axis.y, axis.z))
-        from pivy import coin
-
-        self.transform.rotation.setValue(coin.SbVec3f(*a), angle)
+        self._rotation.setValue(self._vec(*a), angle)
 
     def set_look(self, look):
         if look not in LOOKS:

@@ -338,19 +338,43 @@ def _movable(adapter, part):
 
 class _Motion:
     """What the drags share: one undo step from the start to finish(), or cancel() to put every
-    part back where it was."""
+    part back where it was. A live motion writes the Placements at every step; one that is not
+    (live=False: the GUI's drag, which moves what is drawn instead) leaves the document alone
+    until finish() writes the last solved poses, once, in an undo step of its own (opened
+    there: FreeCAD may close a transaction left open across the GUI's events); its cancel()
+    has nothing to undo. Writing a hundred Placements costs FreeCAD far more than the solve
+    (each change goes through the document, the undo record, the tree and the observers)."""
 
-    def _begin(self, asm, part):
+    def _begin(self, asm, part, live=True):
         self.doc = asm.Document
-        self.transaction = Transaction(self.doc, "Drag %s" % part.Label)
+        self.live = live
+        self.name = "Drag %s" % part.Label
+        self.unwritten = False
+        self.transaction = Transaction(self.doc, self.name) if live else None
+
+    def _solved(self):
+        """A step converged: its poses go to the document now, or at finish()."""
+        if self.live:
+            self.adapter.write_back()
+        else:
+            self.unwritten = True
 
     def finish(self):
-        self.transaction.commit()
+        if self.live:
+            self.transaction.commit()
+        elif self.unwritten:
+            with transaction(self.doc, self.name):
+                self.adapter.write_back()
+            self.unwritten = False
+        else:
+            return
         self.doc.recompute()
 
     def cancel(self):
-        self.transaction.abort()
-        self.doc.recompute()
+        if self.live:
+            self.transaction.abort()
+            self.doc.recompute()
+        self.unwritten = False
 
 
 class Drag(_Motion):
@@ -377,7 +401,7 @@ class Drag(_Motion):
         with self.adapter.engine_errors():
             r = self.dragger.move_to(position=_vec(placement.Base), rotation=R)
         if r.converged:
-            self.adapter.write_back()
+            self._solved()
         self.last = r
         return r
 
@@ -389,9 +413,10 @@ class PointDrag(_Motion):
     Each event: first solve with a joint from the cursor to the grabbed point; when the linkage
     cannot put the point there (a 1-DOF linkage's point moves on a curve), keep the compromise
     that pull reached and solve again without it, so the linkage goes as near as it can, joints
-    exact, by continuity (no jump to another branch). One undo step for the whole drag."""
+    exact, by continuity (no jump to another branch). One undo step for the whole drag; with
+    live=False the Placements are written once, by finish() (the model holds the poses)."""
 
-    def __init__(self, asm, part, grab_world):
+    def __init__(self, asm, part, grab_world, live=True):
         self.asm = _assembly(asm)
         self.adapter = Adapter(asm)
         self.part = part
@@ -403,11 +428,15 @@ class PointDrag(_Motion):
         tol = tolerance(asm)
         with self.adapter.engine_errors():
             # The mouse joint is active at time 0 only: `pull` sees it, `settle` does not.
+            # Where the cursor is out of reach (a 1-DOF linkage's point moves on a curve), the
+            # pull never converges and runs to its cap: 20 iterations find the same compromise
+            # as 60 (within 0.5 % of the gap to the cursor, 40 frames of a 100-part chain) in
+            # 0.4 of the time; 5 fall behind the cursor (docs/performance.md).
             self.handle = model.add_joint(name, hinge=(_vec(grab_world), _vec(grab_local)),
                                           time=(-1.0, 0.5), label="mouse")
-            self.pull = model.session(tolerance=tol, max_iterations=60, time=0.0)
+            self.pull = model.session(tolerance=tol, max_iterations=20, time=0.0)
             self.settle = model.session(tolerance=tol, max_iterations=500, time=1.0)
-        self._begin(asm, part)
+        self._begin(asm, part, live)
         self.frames = 0
         self.solver_seconds = 0.0
 
@@ -425,7 +454,7 @@ class PointDrag(_Motion):
             for n, (x, r) in before.items():
                 model.set_pose(n, position=x, rotation=r)
         else:
-            self.adapter.write_back()
+            self._solved()
         self.frames += 1
         self.solver_seconds += time.perf_counter() - t0
         return ok
