@@ -90,9 +90,11 @@ def same_placement(p, q, tol=1e-12):
     return (p.Base - q.Base).Length <= tol and turn <= tol
 
 
-def drag_timed(doc, asm, part, local_grab, step, frames, check=False):
-    """Drags `part` by its point `local_grab` with `frames` mouse moves of `step` pixels in the
-    document's own maximised window, each frame's redraw waited for (the view's frames swapped);
+def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
+    """Drags `part` by its point `local_grab` along `path` (a function of the frame k = 1, 2 ...
+    giving the cursor: pixels from the grab point on the screen, or a 3D point to put the grab
+    point at; path(None) is the number of frames) in the document's own maximised window (seen
+    isometric, or from the top), each frame's redraw waited for (the view's frames swapped);
     returns the split per frame. With check: Esc cancels a first drag (everything back, no undo
     step), the drawn parts and markers follow the engine during the drag while the document
     stays unchanged, and after release the Placements are the engine's poses, every joint holds
@@ -108,7 +110,7 @@ def drag_timed(doc, asm, part, local_grab, step, frames, check=False):
             sub.showMaximized()
     Gui.updateGui()
     view = Gui.getDocument(doc.Name).ActiveView
-    view.viewIsometric()
+    view.viewTop() if top else view.viewIsometric()
     Gui.SendMsgToActiveView("ViewFit")
     Gui.updateGui()
     swapped = [0]
@@ -138,11 +140,19 @@ def drag_timed(doc, asm, part, local_grab, step, frames, check=False):
     moving = [p for p in da.parts(asm) if not p.Grounded]
     start = {p.Name: p.Placement for p in moving}
     undo = doc.UndoNames  # (FreeCAD keeps the last 20 steps: compare the names)
+    frames = path(None)
+
+    def cursor(k):
+        to = path(k)
+        if isinstance(to, App.Vector):
+            return tuple(int(round(c)) for c in view.getPointOnScreen(to))
+        return x + to[0], y + to[1]
+
     if check:
         # Esc during a drag: everything drawn goes back, the document never changed.
         mouse(view, "press", x, y)
         for k in range(1, 6):
-            mouse(view, "move", x + k * step[0], y + k * step[1])
+            mouse(view, "move", *cursor(k))
         mouse(view, "esc", 0, 0)
         assert dragging._active is mode and mode.drag is None, "Esc did not cancel the drag alone"
         assert doc.UndoNames == undo, "a cancelled drag left an undo step: %s" % doc.UndoNames[:2]
@@ -161,7 +171,7 @@ def drag_timed(doc, asm, part, local_grab, step, frames, check=False):
     handled = 0.0
     for k in range(1, frames + 1):
         t0 = time.perf_counter()
-        mouse(view, "move", x + k * step[0], y + k * step[1])
+        mouse(view, "move", *cursor(k))
         handled += time.perf_counter() - t0
         redraws.append(redraw())
     assert None not in redraws, "a frame of the drag was not drawn"
@@ -190,7 +200,7 @@ def drag_timed(doc, asm, part, local_grab, step, frames, check=False):
             followed += 1
         assert followed > 0, "no marker to follow"
     t0 = time.perf_counter()
-    mouse(view, "release", x + frames * step[0], y + frames * step[1])
+    mouse(view, "release", *cursor(frames))
     released = time.perf_counter() - t0
     release_redraw = redraw() or 0.0
     Gui.runCommand("Dispcon_Drag", 0)
@@ -374,7 +384,7 @@ try:
             asm2.addObject(j)
         couplers2.append(cp2)
     assert da.solve(asm2).converged
-    twenty = drag_timed(doc2, asm2, couplers2[4], App.Vector(1.5, 0, 0.1), (-2, 3), 60)
+    twenty = drag_timed(doc2, asm2, couplers2[4], App.Vector(1.5, 0, 0.1), lambda k: 60 if k is None else (-2 * k, 3 * k))
     report("20-part", twenty)
     Gui.getDocument(doc2.Name).ActiveView.saveImage(os.path.join(OUT, "twenty.png"), 1280, 900, "White")
 
@@ -383,7 +393,23 @@ try:
     assert len(da.parts(asm4)) == 100, len(da.parts(asm4))
     assert da.solve(asm4).converged
     grabbed = couplers4[25]  # a coupler of the upper layer: nothing above it
-    hundred = drag_timed(doc4, asm4, grabbed, App.Vector(0.75, 0, 0.1), (-1, 2), 60, check=True)
+    # The cursor where the grabbed point goes when the cranks turn from 60 to 150 degrees (the
+    # coupler translates on a circle), away from the chain's change point at 180 degrees,
+    # where the parallelograms could fold into crossed ones.
+    grab = grabbed.Placement.multVec(App.Vector(0.75, 0, 0.1))
+
+    def along(k):
+        if k is None:
+            return 60
+        a, a0 = math.radians(60 + 1.5 * k), math.radians(60)
+        return grab + App.Vector(math.cos(a) - math.cos(a0), math.sin(a) - math.sin(a0), 0)
+
+    # Seen from the top, the cursor's plane is the chain's.
+    hundred = drag_timed(doc4, asm4, grabbed, App.Vector(0.75, 0, 0.1), along, check=True, top=True)
+    # One degree of freedom: every crank turned with the first, by about the cursor's 90.
+    turned = [math.degrees(angle_of(c)) for c in cranks4]
+    assert all(abs(t - turned[0]) < 1e-6 for t in turned), "the cranks did not turn together"
+    assert abs(turned[0] - 150) < 20, "the cranks did not follow the cursor: %.1f degrees" % turned[0]
     report("100-part", hundred)
     Gui.getDocument(doc4.Name).ActiveView.saveImage(os.path.join(OUT, "hundred.png"), 1280, 900, "White")
     print("1 passed, 0 failed")
