@@ -6,7 +6,6 @@ other legs stay, and a screenshot of the four legs (walker.png). Quits FreeCAD i
 import os
 import sys
 import tempfile
-import traceback
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -171,26 +170,4 @@ class Walker(unittest.TestCase):
         self.assertTrue(os.path.getsize(path) > 10000)
 
 
-def main():
-    status = 1
-    try:
-        exec(open(os.path.join(gw.WB, "InitGui.py")).read(), {"__file__": os.path.join(gw.WB, "InitGui.py")})
-        Gui.activateWorkbench("DispconWorkbench")
-        gw.mw().setGeometry(0, 0, 1280, 900)
-        gw.settle()
-        suite = unittest.TestLoader().loadTestsFromTestCase(Walker)
-        result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
-        failed = len(result.failures) + len(result.errors)
-        print("%d passed, %d failed" % (result.testsRun - failed, failed))
-        status = 0 if result.wasSuccessful() else 1
-    except Exception:
-        traceback.print_exc()
-        print("0 passed, 1 failed")
-    finally:
-        os.makedirs(gw.OUT, exist_ok=True)
-        with open(os.path.join(gw.OUT, "status-subassembly"), "w") as f:
-            f.write(str(status))
-        QtWidgets.QApplication.instance().quit()
-
-
-main()
+gw.run_in_gui([Walker], "status-subassembly")

@@ -545,7 +545,9 @@ class TestDragMode(Documents):
         self.assertNotIn("Drag mode", mw().statusBar().currentMessage())
 
 
-def main():
+def run_in_gui(classes, status_name):
+    """Starts the workbench in this FreeCAD at 1280x900, runs the unittest classes, writes 0 to
+    <out>/<status_name> when every test passed (1 otherwise) and quits FreeCAD."""
     status = 1
     try:
         exec(open(os.path.join(WB, "InitGui.py")).read(), {"__file__": os.path.join(WB, "InitGui.py")})
@@ -554,10 +556,7 @@ def main():
         settle()
         suite = unittest.TestSuite()
         loader = unittest.TestLoader()
-        only = os.environ.get("DISPCON_GUI_ONLY")
-        for cls in (TestCommands, TestMarkers, TestJointPanel, TestErrors, TestDragMode):
-            if only and only not in cls.__name__:
-                continue
+        for cls in classes:
             suite.addTests(loader.loadTestsFromTestCase(cls))
         result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
         failed = len(result.failures) + len(result.errors)
@@ -568,9 +567,15 @@ def main():
         print("0 passed, 1 failed")
     finally:
         os.makedirs(OUT, exist_ok=True)
-        with open(os.path.join(OUT, "status-workbench"), "w") as f:
+        with open(os.path.join(OUT, status_name), "w") as f:
             f.write(str(status))
         QtWidgets.QApplication.instance().quit()
+
+
+def main():
+    only = os.environ.get("DISPCON_GUI_ONLY")
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestJointPanel, TestErrors, TestDragMode)
+                if not only or only in cls.__name__], "status-workbench")
 
 
 if not os.environ.get("DISPCON_GUI_IMPORT_ONLY"):  # scripts/walkthrough.py imports the helpers only

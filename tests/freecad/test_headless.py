@@ -423,7 +423,8 @@ def saved_fourbar(tmp):
     return path, values
 
 
-WITHOUT_WORKBENCH = """
+# A session script's opening: the workbench must not be importable; the document named last opens.
+BARE_SESSION = """
 import sys
 import FreeCAD as App
 try:
@@ -432,7 +433,9 @@ try:
 except ImportError:
     pass
 doc = App.openDocument(sys.argv[-1])
-joints = [o for o in doc.Objects if "JointType" in o.PropertiesList]
+"""
+
+WITHOUT_WORKBENCH = BARE_SESSION + """joints = [o for o in doc.Objects if "JointType" in o.PropertiesList]
 assert len(joints) == 4, [o.Name for o in doc.Objects]
 assert all(j.Proxy is None for j in joints), [j.Proxy for j in joints]
 doc.save()

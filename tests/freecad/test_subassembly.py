@@ -107,17 +107,25 @@ def angle_in(obj, frame):
     return math.atan2(x.y, x.x)
 
 
-class Flexible(unittest.TestCase):
+class Walker(unittest.TestCase):
+    """Each test with its own leg.FCStd (and its digest) and walker, closed afterwards."""
+
+    RIGID, HIP_JOINTS = False, ("Fixed",) * 4
+
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         self.leg = make_leg(self.tmp.name)
         self.before = digest(self.leg)
-        self.doc, self.asm, self.frame, self.subs = make_walker(self.tmp.name, self.leg, rigid=False)
+        self.doc, self.asm, self.frame, self.subs = make_walker(self.tmp.name, self.leg, rigid=self.RIGID,
+                                                                hip_joints=self.HIP_JOINTS)
 
     def tearDown(self):
         for name in list(App.listDocuments()):
             App.closeDocument(name)
         self.tmp.cleanup()
+
+
+class Flexible(Walker):
 
     def test_each_leg_drags_alone_and_every_joint_holds(self):
         leg1 = self.subs[0]
@@ -217,15 +225,7 @@ class Flexible(unittest.TestCase):
         self.assertEqual(digest(self.leg), self.before, "a session wrote to leg.FCStd")
 
 
-WITHOUT_WORKBENCH = """
-import sys
-import FreeCAD as App
-try:
-    import dispcon_fc
-    raise SystemExit("the workbench was importable: this session must not have it")
-except ImportError:
-    pass
-doc = App.openDocument(sys.argv[-1])
+WITHOUT_WORKBENCH = th.BARE_SESSION + """
 subs = [o for o in doc.Objects if "DispconType" in o.PropertiesList and o.DispconType == "SubAssembly"]
 assert len(subs) == 4, [o.Name for o in doc.Objects]
 assert all(s.Proxy is None and s.Assembly is not None and len(s.Group) == 4 for s in subs)
@@ -235,19 +235,9 @@ sys.exit(0)
 """
 
 
-class Rigid(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.leg = make_leg(self.tmp.name)
-        self.before = digest(self.leg)
-        # Leg 1 turns about its hip pin (a revolute); legs 2-4 are bolted on (Fixed).
-        self.doc, self.asm, self.frame, self.subs = make_walker(
-            self.tmp.name, self.leg, rigid=True, hip_joints=("Revolute", "Fixed", "Fixed", "Fixed"))
-
-    def tearDown(self):
-        for name in list(App.listDocuments()):
-            App.closeDocument(name)
-        self.tmp.cleanup()
+class Rigid(Walker):
+    # Leg 1 turns about its hip pin (a revolute); legs 2-4 are bolted on (Fixed).
+    RIGID, HIP_JOINTS = True, ("Revolute", "Fixed", "Fixed", "Fixed")
 
     def test_a_rigid_leg_moves_as_one_part(self):
         leg1 = self.subs[0]
