@@ -183,6 +183,47 @@ def document(ic, x, y, w, h, text=None):
                'fill:%s">%s</text>' % (x + 3, y + h - 6, PALETTE["dark"][2], text))
 
 
+def gear(ic, cx, cy, r, teeth, colour, phase=0.0):
+    """A spur gear seen along its axis: `teeth` trapezoid teeth round a pitch circle of radius r,
+    a hub hole in the middle."""
+    c = PALETTE[colour]
+    pts = []
+    depth = max(2.5, r * 0.22)
+    for k in range(teeth):
+        a = phase + 2 * math.pi * k / teeth
+        w = math.pi / teeth
+        for da, rr in ((-0.5 * w, r - depth / 2), (-0.25 * w, r + depth / 2), (0.25 * w, r + depth / 2),
+                       (0.5 * w, r - depth / 2)):
+            pts.append((cx + rr * math.cos(a + da), cy + rr * math.sin(a + da)))
+    d = "M " + " L ".join("%.2f,%.2f" % p for p in pts) + " z"
+    ic.path(d, ic.grad(colour, cx - r, cy - r, cx + r, cy + r, 0, 2), c[3], 1.5)
+    ic.add('<circle cx="%g" cy="%g" r="%g" style="fill:%s;stroke:%s;stroke-width:1.5"/>'
+           % (cx, cy, max(2.0, r * 0.3), PALETTE["grey"][0], c[3]))
+
+
+def rack(ic, x, y, w, h, pitch, colour):
+    """A rack: a bar along x with teeth on its top side."""
+    c = PALETTE[colour]
+    d = "M %g,%g" % (x, y)
+    k = x
+    while k + pitch <= x + w + 1e-9:
+        d += " L %g,%g L %g,%g L %g,%g L %g,%g" % (k + pitch * 0.2, y, k + pitch * 0.35, y - 4,
+                                                  k + pitch * 0.65, y - 4, k + pitch * 0.8, y)
+        k += pitch
+    d += " L %g,%g L %g,%g L %g,%g z" % (x + w, y, x + w, y + h, x, y + h)
+    ic.path(d, ic.grad(colour, x, y - 4, x, y + h, 0, 2), c[3], 1.5)
+
+
+def thread(ic, x1, x2, y, r, turns, colour):
+    """A threaded rod along x seen from the side: its body and slanted thread lines."""
+    c = PALETTE[colour]
+    ic.path("M %g,%g H %g V %g H %g z" % (x1, y - r, x2, y + r, x1), ic.grad(colour, x1, y - r, x1, y + r, 0, 2), c[3], 2)
+    step = (x2 - x1) / turns
+    for k in range(turns):
+        xs = x1 + step * (k + 0.25)
+        ic.path("M %g,%g L %g,%g" % (xs, y + r, xs + step * 0.5, y - r), "none", c[3], 1.5)
+
+
 # ---------------------------------------------------------------------------------------------
 # The icons
 
@@ -334,6 +375,55 @@ def icons():
     link(ic, 10, 54, 44, 14, 4, "yellow", holes=False)
     arc_arrow(ic, 10, 54, 34, 34, 0, -44, "orange", width=3)
     pin(ic, 10, 54, 5, "dark")
+
+    ic = icon("Dispcon_JointDistance", "Distance joint: points, lines or planes at a set distance")
+    plate(ic, 2, 40, 44, 18, 12, "blue")
+    box(ic, 30, 10, 16, 10, 7, "yellow")
+    c = PALETTE["green"]
+    ic.path("M 22,47 V 22", "none", c[3], 5)
+    ic.path("M 22,47 V 22", "none", c[1], 2.5)
+    ic.path(arrow_head(22, 16, -math.pi / 2, 10), c[1], c[3], 1.5)
+    ic.path(arrow_head(22, 52, math.pi / 2, 10), c[1], c[3], 1.5)
+
+    ic = icon("Dispcon_JointParallel", "Parallel joint: two edges or faces kept parallel")
+    link(ic, 6, 50, 46, 30, 5, "blue", holes=False)
+    link(ic, 18, 30, 58, 10, 5, "yellow", holes=False)
+    c = PALETTE["orange"]
+    ic.path("M 28,50 L 40,26 M 36,52 L 48,28", "none", c[3], 5)
+    ic.path("M 28,50 L 40,26 M 36,52 L 48,28", "none", c[1], 2.5)
+
+    ic = icon("Dispcon_JointPerpendicular", "Perpendicular joint: two edges or faces kept at right angles")
+    link(ic, 6, 54, 58, 54, 5, "blue", holes=False)
+    link(ic, 14, 54, 14, 6, 5, "yellow", holes=False)
+    c = PALETTE["orange"]
+    ic.path("M 14,40 H 28 V 54", "none", c[3], 5)
+    ic.path("M 14,40 H 28 V 54", "none", c[1], 2.5)
+
+    ic = icon("Dispcon_JointGears", "Gears joint: two gears in mesh turn opposite ways")
+    gear(ic, 20, 36, 14, 10, "blue")
+    gear(ic, 46, 24, 10, 8, "yellow", phase=math.pi / 8)
+    arc_arrow(ic, 20, 36, 18, 18, 150, 60, "orange", width=3)
+    arc_arrow(ic, 46, 24, 14, 14, 250, 340, "orange", width=3)
+
+    ic = icon("Dispcon_JointBelt", "Belt joint: two pulleys on a belt turn the same way")
+    c = PALETTE["dark"]
+    ic.path("M 16,22 L 48,30 M 16,54 L 48,46", "none", c[3], 5)
+    ic.path("M 16,22 L 48,30 M 16,54 L 48,46", "none", c[1], 2.5)
+    pin(ic, 16, 38, 15, "blue")
+    pin(ic, 48, 38, 8, "yellow")
+    arc_arrow(ic, 16, 38, 20, 20, 120, 40, "orange", width=3)
+    arc_arrow(ic, 48, 38, 13, 13, 120, 40, "orange", width=3)
+
+    ic = icon("Dispcon_JointRackPinion", "Rack and pinion joint: the rack travels as the pinion turns")
+    rack(ic, 2, 44, 60, 10, 8, "yellow")
+    gear(ic, 30, 26, 12, 10, "blue")
+    straight_arrow(ic, 8, 60, 56, 60, "green", width=2)
+
+    ic = icon("Dispcon_JointScrew", "Screw joint: the nut travels a pitch per turn of the screw")
+    thread(ic, 4, 60, 34, 7, 7, "blue")
+    box(ic, 26, 22, 12, 22, 6, "yellow")
+    arc_arrow(ic, 12, 34, 8, 16, 250, 120, "orange", width=3)
+    straight_arrow(ic, 40, 56, 60, 56, "green", width=2)
 
     ic = icon("Dispcon_Solve", "Solve: snap the parts into place")
     link(ic, 6, 52, 26, 36, 6, "blue")

@@ -49,22 +49,75 @@ def missing_part(j, parts_by_name):
 
 def kind_of(dispcon, joint_type):
     """The row of the engine's joint table (dispcon.joint_kinds()) for a workbench joint type:
-    "PointOnLine" is the kind "point_on_line"."""
-    for row in dispcon.joint_kinds():
-        if row["name"].replace("_", "") == joint_type.lower():
-            return row
+    "PointOnLine" is the kind "point_on_line", "Gears" the kind "gear", "RackPinion" the kind
+    "rack" (FreeCAD's names are the engine's, in words run together, or plural, or cut short)."""
+    want = joint_type.lower()
+    rows = dispcon.joint_kinds()
+    for same in (lambda name: name == want, lambda name: name + "s" == want,
+                 lambda name: len(name) >= 4 and want.startswith(name)):
+        for row in rows:
+            if same(row["name"].replace("_", "")):
+                return row
     raise ValueError("joint type %r is not a kind of joint the engine knows (%s)"
                      % (joint_type, ", ".join(r["name"] for r in dispcon.joint_kinds())))
+
+
+def _feature_shape(kind):
+    from .geometry import Feature
+
+    return Feature((0, 0, 0), (0, 0, 1), kind).shape
+
+
+def distance_kwargs(j, p1, a1, p2, a2):
+    """A Distance joint on the engine's parts, by what was picked (part 1 the plane or the line):
+    two points at a distance (a sphere bound), a point at a signed distance from a plane (the
+    plane moved along its normal), two planes at a distance (a planar pair so moved), a point at
+    a distance from a line (a cylinder about it), two parallel lines at a distance (that cylinder
+    and the axes held parallel), a line parallel to a plane at a distance (the moved plane and the
+    line held across the normal)."""
+    d = j.Distance.Value
+    shapes = (_feature_shape(j.Feature1), _feature_shape(j.Feature2))
+    shifted = _vec(App.Vector(*p1) + App.Vector(*a1) * d)
+    if shapes == ("point", "point"):
+        return dict(kind="distance", point1=p1, point2=p2, distance=(d, d))
+    if shapes == ("plane", "point"):
+        return dict(kind="point_on_plane", point1=shifted, point2=p2, axis1=a1, axis2=a2)
+    if shapes == ("plane", "plane"):
+        return dict(kind="planar", point1=shifted, point2=p2, axis1=a1, axis2=a2)
+    if shapes == ("plane", "line"):
+        return dict(hinge=(shifted, p2), planar=(a1,), angle=(a1, a2, math.pi / 2, math.pi / 2))
+    if shapes == ("line", "point"):
+        return dict(hinge=(p1, p2), cylinder=(a1, d))
+    if shapes == ("line", "line"):
+        return dict(hinge=(p1, p2), cylinder=(a1, d), angle=(a1, a2, 0.0, 0.0))
+    raise ValueError("%s: a Distance joint between %s and %s is not known (pick vertices, edges or "
+                     "faces again)" % (j.Label, j.Feature1 or "?", j.Feature2 or "?"))
+
+
+def coupling_kwargs(row, j):
+    """A coupling's value under the name its row of the engine's table gives it (ratio, radius or
+    pitch), a screw's hand and the phase (part 2's turn, in radians, added to the pose the
+    coupling is made in)."""
+    values = {"ratio": j.Ratio, "radius": j.Radius.Value, "pitch": j.Pitch.Value}
+    kw = {row["value"]: values[row["value"]]}
+    if j.LeftHanded and "left" in row.get("options", ()):
+        kw["left"] = True
+    return kw
 
 
 def joint_kwargs(dispcon, j):
     """The joint as add_joint's arguments: its kind, its anchors in each part's frame, and those
     of its limits the kind takes (a revolute keeps no travel set while it was a slider)."""
-    row = kind_of(dispcon, j.JointType)
     # Offset: part 2's point sits that far along part 1's axis; Reversed: part 2's axis flipped
     # (part 2 turned over about the twist reference, which stays put).
     offset = j.Offset.Value if "Offset" in j.PropertiesList else 0.0
     flip = -1 if "Reversed" in j.PropertiesList and j.Reversed else 1
+    if j.JointType == "Distance":
+        kw = distance_kwargs(j, _vec(j.Point1), _vec(j.Axis1), _vec(j.Point2), _vec(j.Axis2 * flip))
+        if j.Move >= 0:
+            kw["move"] = j.Move
+        return kw
+    row = kind_of(dispcon, j.JointType)
     rad = math.radians
     kw = dict(kind=row["name"], point1=_vec(j.Point1 + j.Axis1 * offset), point2=_vec(j.Point2),
               axis1=_vec(j.Axis1), axis2=_vec(j.Axis2 * flip), across1=_vec(j.Perp1),
@@ -77,6 +130,8 @@ def joint_kwargs(dispcon, j):
     if j.ConeAngle.Value > 0:
         limits["cone"] = rad(j.ConeAngle.Value)
     kw.update({name: value for name, value in limits.items() if name in row["limits"]})
+    if row.get("value"):
+        kw.update(coupling_kwargs(row, j))
     if row["needs_curve"]:
         kw["curve"] = [_vec(p) for p in live_curve(j)]
     if j.Move >= 0:

@@ -3,12 +3,22 @@ import FreeCAD as App
 
 
 class Feature:
-    """A point and a unit axis in world coordinates, and where they came from."""
+    """A point and a unit axis in world coordinates, where they came from, and the radius of a
+    circular edge or a cylindrical face (None for others): a gear's pitch circle."""
 
-    def __init__(self, point, axis, kind):
+    def __init__(self, point, axis, kind, radius=None):
         self.point = App.Vector(point)
         self.axis = App.Vector(axis).normalize() if App.Vector(axis).Length > 0 else App.Vector(0, 0, 1)
         self.kind = kind
+        self.radius = radius
+
+    @property
+    def shape(self):
+        """What the feature is to a Distance, Parallel or Perpendicular joint: "point" (a vertex,
+        a sphere's or a circle's centre), "line" (a straight edge, a cylinder's axis) or "plane"
+        (a planar face); None for a curve or a face of another kind."""
+        return {"vertex": "point", "sphere": "point", "circle": "point", "line": "line",
+                "cylinder": "line", "plane": "plane"}.get(self.kind)
 
 
 def feature(obj, sub):
@@ -32,7 +42,7 @@ def feature(obj, sub):
         return Feature(element.Point, App.Vector(0, 0, 1), "vertex")
     if sub.startswith("Edge"):
         if hasattr(curve, "Radius") and hasattr(curve, "Center"):
-            return Feature(curve.Center, curve.Axis, "circle")
+            return Feature(curve.Center, curve.Axis, "circle", curve.Radius)
         if curve is not None and curve.TypeId == "Part::GeomLine":
             a, b = element.Vertexes[0].Point, element.Vertexes[-1].Point
             return Feature((a + b) * 0.5, b - a, "line")
@@ -44,7 +54,7 @@ def feature(obj, sub):
             centre = element.CenterOfMass
             base, axis = surface.Center, surface.Axis
             foot = base + axis * (centre - base).dot(axis)
-            return Feature(foot, axis, "cylinder")
+            return Feature(foot, axis, "cylinder", surface.Radius)
         if kind == "Part::GeomPlane":
             u0, u1, v0, v1 = element.ParameterRange
             return Feature(element.CenterOfMass, element.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1)), "plane")

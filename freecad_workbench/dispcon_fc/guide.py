@@ -11,7 +11,14 @@ PICK = {
     "PointOnLine": "a straight edge of the guide, then a vertex or circular edge of the other part",
     "PointOnPlane": "a planar face of the guide, then a vertex or circular edge of the other part",
     "PointOnCurve": "an edge (the curve) of the guide, then a vertex or circular edge of the other part",
+    "Distance": "a vertex, a straight or circular edge or a planar face on each part (points, lines, planes)",
+    "Parallel": "two straight edges or planar faces (their directions), one on each part",
+    "Perpendicular": "two straight edges or planar faces (their directions), one on each part",
     "Angle": "two straight edges or planar faces (their directions), one on each part",
+    "Gears": "a circular edge or cylindrical face on each gear (its pitch circle gives the ratio)",
+    "Belt": "a circular edge or cylindrical face on each pulley (their radii give the ratio)",
+    "RackPinion": "a circular edge on the pinion, then a straight edge or planar face of the rack along its travel",
+    "Screw": "a circular edge or cylindrical face on the screw, then one on the nut",
 }
 
 MOTION = {
@@ -24,7 +31,14 @@ MOTION = {
     "PointOnLine": "a point of part 2 stays on a line of part 1",
     "PointOnPlane": "a point of part 2 stays on a plane of part 1",
     "PointOnCurve": "a point of part 2 stays on a curve of part 1",
+    "Distance": "keeps two points, lines or planes at a distance",
+    "Parallel": "keeps two edges or faces parallel",
+    "Perpendicular": "keeps two edges or faces at right angles",
     "Angle": "bounds the angle between two axes",
+    "Gears": "two gears in mesh: part 2 turns the other way, ratio times part 1's turn",
+    "Belt": "two pulleys on a belt: part 2 turns the same way, ratio times part 1's turn",
+    "RackPinion": "the rack travels the pinion's radius times its turn",
+    "Screw": "the nut travels a pitch along the screw per turn (a cylindrical pair and the thread)",
 }
 
 

@@ -14,7 +14,9 @@ import FreeCAD as App
 
 # Which pieces each joint type's glyph has: ring (turn about the axis), arrows (travel along
 # it), sphere (turn about the point), square (the plane across the axis), cube (no motion),
-# line (the axis), dot (part 2's point), curve, angle (a second axis at an angle).
+# line (the axis), dot (part 2's point), curve, angle (a second axis at an angle), dimension (a
+# distance), parallel and perpendicular (a second axis so), gear (a toothed ring about the axis),
+# belt (a pulley and its belt), rack (a toothed bar across the axis), helix (a screw's thread).
 PIECES = {
     "Fixed": ("cube",),
     "Revolute": ("line", "ring"),
@@ -25,7 +27,15 @@ PIECES = {
     "PointOnLine": ("arrows", "dot"),
     "PointOnPlane": ("square", "dot"),
     "PointOnCurve": ("curve", "dot"),
+    "Distance": ("dimension", "dot"),
+    "Parallel": ("line", "parallel"),
+    "Perpendicular": ("line", "perpendicular"),
     "Angle": ("line", "angle"),
+    # Couplings: the glyph sits on part 1's axis (the driving gear, the pinion, the screw).
+    "Gears": ("line", "gear"),
+    "Belt": ("line", "belt"),
+    "RackPinion": ("gear", "rack"),
+    "Screw": ("line", "helix"),
 }
 
 ORANGE = (0.96, 0.47, 0.0)
@@ -151,6 +161,46 @@ def _piece(kind, s):
         sep.addChild(_polyline([(0, 0, 0), (1.6 * s * math.sin(tilt), 0, 1.6 * s * math.cos(tilt))], 2.0))
         pts = [(s * math.sin(a), 0, s * math.cos(a)) for a in (tilt * k / 8 for k in range(9))]
         sep.addChild(_polyline(pts, 4.0))
+    elif kind == "dimension":
+        sep.addChild(_material(GREEN))
+        sep.addChild(_polyline([(0, 0, 0), (0, 0, 1.4 * s)], 3.0))
+        sep.addChild(_polyline([(-0.5 * s, 0, 1.4 * s), (0.5 * s, 0, 1.4 * s)], 3.0))
+        sep.addChild(_at(_cone_along_z(0.4 * s, 0.16 * s), (0, 0, 1.2 * s)))
+        sep.addChild(_polyline([(-0.8 * s, 0, 0), (0.8 * s, 0, 0)], 3.0))
+    elif kind == "parallel":
+        sep.addChild(_material(ORANGE))
+        sep.addChild(_polyline([(0.6 * s, 0, -1.2 * s), (0.6 * s, 0, 1.2 * s)], 4.0))
+    elif kind == "perpendicular":
+        sep.addChild(_material(ORANGE))
+        sep.addChild(_polyline([(0, 0, 0), (1.6 * s, 0, 0)], 4.0))
+        sep.addChild(_polyline([(0, 0, 0.45 * s), (0.45 * s, 0, 0.45 * s), (0.45 * s, 0, 0)], 2.0))
+    elif kind == "gear":
+        sep.addChild(_material(ORANGE))
+        teeth, pts = 12, []
+        for k in range(teeth):
+            a, w = 2 * math.pi * k / teeth, math.pi / teeth
+            for da, r in ((-0.5 * w, 0.85), (-0.25 * w, 1.15), (0.25 * w, 1.15), (0.5 * w, 0.85)):
+                pts.append((r * s * math.cos(a + da), r * s * math.sin(a + da), 0))
+        sep.addChild(_polyline(pts + pts[:1], 3.0))
+    elif kind == "belt":
+        sep.addChild(_material(ORANGE))
+        pts = [(s * math.cos(a), s * math.sin(a), 0) for a in (math.radians(d) for d in range(90, 271, 10))]
+        pts += [(2.5 * s + 0.6 * s * math.cos(a), 0.6 * s * math.sin(a), 0)
+                for a in (math.radians(d) for d in range(-90, 91, 10))]
+        sep.addChild(_polyline(pts + pts[:1], 3.0))
+    elif kind == "rack":
+        sep.addChild(_material(GREEN))
+        pts, y = [], -1.15 * s
+        for k in range(-4, 4):
+            x = k * 0.5 * s
+            pts += [(x, y, 0), (x + 0.1 * s, y + 0.25 * s, 0), (x + 0.25 * s, y + 0.25 * s, 0), (x + 0.35 * s, y, 0)]
+        sep.addChild(_polyline(pts, 3.0))
+        sep.addChild(_at(_cone_along_z(0.4 * s, 0.16 * s), (2.1 * s, y - 0.3 * s, 0), ((0, 1, 0), math.pi / 2)))
+    elif kind == "helix":
+        sep.addChild(_material(ORANGE))
+        pts = [(0.7 * s * math.cos(t), 0.7 * s * math.sin(t), -1.4 * s + 2.8 * s * t / (8 * math.pi))
+               for t in (k * math.pi / 12 for k in range(97))]
+        sep.addChild(_polyline(pts, 3.0))
     else:
         raise ValueError("unknown marker piece %r" % kind)
     return sep

