@@ -8,7 +8,7 @@ import re
 import FreeCAD as App
 
 from . import engine, geometry, subassembly
-from .objects import joints, parts, shape_of
+from .objects import JOINT_TYPES, joints, parts, shape_of
 
 
 def _vec(v):
@@ -62,6 +62,20 @@ def kind_of(dispcon, joint_type):
                      % (joint_type, ", ".join(r["name"] for r in dispcon.joint_kinds())))
 
 
+def offered_types(dispcon):
+    """The workbench's joint types the engine can solve, each a row of its joint table (a
+    Distance: rows and statements chosen by what is picked): what the commands and the panel
+    offer."""
+    out = []
+    for joint_type in JOINT_TYPES:
+        try:
+            joint_type == "Distance" or kind_of(dispcon, joint_type)
+        except ValueError:
+            continue
+        out.append(joint_type)
+    return out
+
+
 def _feature_shape(kind):
     from .geometry import Feature
 
@@ -95,13 +109,15 @@ def distance_kwargs(j, p1, a1, p2, a2):
 
 
 def coupling_kwargs(row, j):
-    """A coupling's value under the name its row of the engine's table gives it (ratio, radius or
-    pitch), a screw's hand and the phase (part 2's turn, in radians, added to the pose the
-    coupling is made in)."""
+    """A coupling's value under the name its row of the engine's table gives it (coupling_args:
+    ratio, radius or pitch first) and a screw's hand. No phase: the engine holds the coupling at
+    the poses the parts have when the model is made (as FreeCAD 1.x's solver does), so a Phase
+    is a turn of the part itself (operations.edit_joint)."""
+    takes = row["coupling_args"]
     values = {"ratio": j.Ratio, "radius": j.Radius.Value, "pitch": j.Pitch.Value}
-    kw = {row["value"]: values[row["value"]]}
-    if j.LeftHanded and "left" in row.get("options", ()):
-        kw["left"] = True
+    kw = {takes[0]: values[takes[0]]}
+    if "left" in takes:
+        kw["left"] = bool(j.LeftHanded)
     return kw
 
 
@@ -130,7 +146,7 @@ def joint_kwargs(dispcon, j):
     if j.ConeAngle.Value > 0:
         limits["cone"] = rad(j.ConeAngle.Value)
     kw.update({name: value for name, value in limits.items() if name in row["limits"]})
-    if row.get("value"):
+    if row.get("coupling"):
         kw.update(coupling_kwargs(row, j))
     if row["needs_curve"]:
         kw["curve"] = [_vec(p) for p in live_curve(j)]

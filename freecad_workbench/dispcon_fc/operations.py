@@ -352,10 +352,27 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None,
     if move is not None:
         j.Move = move
     objects.joint_extras(j)
+    if phase is not None and abs(phase - j.Phase.Value) > 1e-12:
+        _turn_for_phase(j, phase - j.Phase.Value)
     for name, value in (("Reversed", reverse), ("Offset", offset), ("Distance", distance), ("Ratio", ratio),
                         ("Radius", radius), ("Pitch", pitch), ("LeftHanded", left), ("Phase", phase)):
         if value is not None:
             setattr(j, name, bool(value) if name in ("Reversed", "LeftHanded") else value)
+
+
+def _turn_for_phase(j, degrees):
+    """A coupling's phase changed by `degrees`: its turning part (part 2; a rack's pinion, part
+    1) turns that much about its own axis, and the coupling holds from there (the engine holds a
+    coupling at the poses the parts have when the model is made)."""
+    if j.JointType not in objects.COUPLINGS:
+        raise ValueError("%s: only a coupling (%s) has a phase" % (j.Label, ", ".join(objects.COUPLINGS)))
+    pinion = j.JointType == "RackPinion"
+    ref, point, axis = (j.Reference1, j.Point1, j.Axis1) if pinion else (j.Reference2, j.Point2, j.Axis2)
+    part = ref[0]
+    if getattr(part, "Grounded", False):
+        raise ValueError("%s: %s is grounded, it cannot turn to change the phase" % (j.Label, part.Label))
+    pl = part.Placement
+    part.Placement = _turned(pl, pl.multVec(point), pl.Rotation.multVec(axis), degrees)
 
 
 def set_limits(joint, **limits):

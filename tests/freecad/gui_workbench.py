@@ -214,7 +214,10 @@ class TestCommands(Documents):
         self.assertTrue(any(a.isSeparator() for a in acts), "no separators in the Dispcon menu")
         sub = next((a.menu() for a in acts if a.menu() is not None and "Joint" in a.text()), None)
         self.assertIsNotNone(sub, "no Joints submenu")
-        self.assertEqual(len([a for a in sub.actions() if a.objectName().startswith("Dispcon_Joint")]), 10)
+        from dispcon_fc import adapter, engine
+
+        self.assertEqual(len([a for a in sub.actions() if a.objectName().startswith("Dispcon_Joint")]),
+                         len(adapter.offered_types(engine.load())))
 
     def test_commands_greyed_out_when_they_cannot_run(self):
         # A document without an assembly: Solve, Drag, Check and the joints cannot run.
@@ -545,6 +548,94 @@ class TestDragMode(Documents):
         self.assertNotIn("Drag mode", mw().statusBar().currentMessage())
 
 
+class TestCouplings(Documents):
+    """The couplings (Gears, Belt, RackPinion, Screw) and Distance, Parallel, Perpendicular as a
+    designer meets them: their commands, the gear's panel, a gear train's markers."""
+    NEW = ("Gears", "Belt", "RackPinion", "Screw", "Distance", "Parallel", "Perpendicular")
+
+    def gears(self):
+        import couplings
+
+        asm, named = couplings.three_gears(self.doc)
+        self.view().viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        return asm, named
+
+    def test_commands_have_icons_and_sit_with_the_joints(self):
+        import shiboken2
+
+        joints_bar = toolbar_of("Dispcon_JointRevolute")
+        menus = [m for m in mw().menuBar().findChildren(QtWidgets.QMenu)
+                 if shiboken2.isValid(m) and m.title().replace("&", "") == "Dispcon"]
+        sub = next(a.menu() for a in menus[-1].actions() if a.menu() is not None and "Joint" in a.text())
+        in_menu = {a.objectName() for a in sub.actions()}
+        for kind in self.NEW:
+            n = "Dispcon_Joint" + kind
+            self.assertIs(toolbar_of(n), joints_bar, "%s is not in the Joints toolbar" % n)
+            self.assertIn(n, in_menu, "%s is not in the Joints submenu" % n)
+            self.assertFalse(action(n).icon().isNull(), "%s has no icon" % n)
+        self.assertIn("circular edge", action("Dispcon_JointGears").toolTip())
+
+    def test_gear_panel_shows_the_ratio_and_refuses_zero(self):
+        from dispcon_fc.panels import joint as jp
+        import couplings
+
+        asm, p = self.gears()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(*couplings.circle(p["G1"], (0, 0, 0), 1.0))
+        Gui.Selection.addSelection(*couplings.circle(p["G3"], (0, 0, 0), 1.5))
+        Gui.runCommand("Dispcon_JointGears")
+        settle()
+        panel = jp.current()
+        self.assertIsNotNone(panel, "the joint panel did not open")
+        self.assertEqual({n for n, g in panel.groups.items() if g.isVisibleTo(panel.form)},
+                         {"reverse", "ratio", "phase"})
+        self.assertAlmostEqual(panel.ratio.value(), 1.0 / 1.5, places=6)  # r1 / r2 of the picked circles
+        self.assertIn("°", panel.phase.text())
+        panel.ratio.setValue(0.0)
+        settle()
+        self.assertIn("Ratio 0", panel.message.text())
+        self.assertFalse(panel.ok_button().isEnabled(), "OK stays enabled with ratio 0")
+        shot("panel-gears-ratio-0")
+        panel.ratio.setValue(0.75)
+        settle()
+        self.assertTrue(panel.ok_button().isEnabled())
+        self.assertAlmostEqual(panel.joint.Ratio, 0.75)
+        panel.type_box.setCurrentText("Screw")
+        settle()
+        self.assertEqual({n for n, g in panel.groups.items() if g.isVisibleTo(panel.form)},
+                         {"reverse", "pitch", "phase", "travel"})
+        self.assertIn("mm", panel.pitch.text())
+        panel.reject()
+        settle()
+        self.assertFalse([j for j in asm.Group if getattr(j, "JointType", "") in ("Gears", "Screw")
+                          and j.Reference2[0] == p["G3"] and j.Reference1[0] == p["G1"]])
+
+    def test_gear_train_markers(self):
+        from pivy import coin
+        from dispcon_fc import operations
+
+        asm, p = self.gears()
+        self.assertTrue(operations.solve(asm).converged)
+        settle()
+        sg = self.view().getSceneGraph()
+        found = {}
+        for j in [o for o in asm.Group if hasattr(o, "JointType")]:
+            search = coin.SoSearchAction()
+            search.setName("dispcon_glyph_" + j.JointType)
+            search.setInterest(coin.SoSearchAction.ALL)
+            search.apply(sg)
+            found[j.JointType] = search.getPaths().getLength()
+        self.assertEqual(found, {"Revolute": 3, "Gears": 2})
+        self.view().viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
+        path = shot("gear-train")
+        image = QtGui.QImage(path)
+        orange = sum(1 for x in range(0, image.width(), 3) for y in range(0, image.height(), 3)
+                     if (lambda c: c.red() > 200 and 80 < c.green() < 160 and c.blue() < 60)(QtGui.QColor(image.pixel(x, y))))
+        self.assertGreater(orange, 30, "no orange marker drawn in %s" % path)
+
+
 def run_in_gui(classes, status_name):
     """Starts the workbench in this FreeCAD at 1280x900, runs the unittest classes, writes 0 to
     <out>/<status_name> when every test passed (1 otherwise) and quits FreeCAD."""
@@ -574,7 +665,7 @@ def run_in_gui(classes, status_name):
 
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestJointPanel, TestErrors, TestDragMode)
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestJointPanel, TestErrors, TestDragMode, TestCouplings)
                 if not only or only in cls.__name__], "status-workbench")
 
 

@@ -19,6 +19,7 @@ sys.path.insert(0, os.path.join(REPO, "samples", "freecad"))
 import FreeCAD as App  # noqa: E402
 import Part  # noqa: E402
 
+import couplings  # noqa: E402
 import dispcon_fc.assembly as da  # noqa: E402
 from dispcon_fc import geometry  # noqa: E402
 
@@ -196,7 +197,168 @@ class Orientation(Parts):
             da.add_joint(self.asm, "Parallel", (self.a, va), (self.b, eb))
 
 
-UNIT_TESTS = [DistanceJoints, Orientation]
+def turn_about(obj, axis):
+    """The part's rotation angle about a world axis (z or x), from its across vector."""
+    r = obj.Placement.Rotation
+    if axis == "z":
+        v = r.multVec(App.Vector(1, 0, 0))
+        return math.atan2(v.y, v.x)
+    v = r.multVec(App.Vector(0, 1, 0))
+    return math.atan2(v.z, v.y)
+
+
+class Turns:
+    """Unwrapped turns of some parts about an axis, sampled as a motion goes."""
+
+    def __init__(self, parts, axis="z"):
+        self.parts, self.axis = parts, axis
+        self.last = {n: turn_about(p, axis) for n, p in parts.items()}
+        self.total = {n: 0.0 for n in parts}
+
+    def sample(self, *_):
+        for n, p in self.parts.items():
+            a = turn_about(p, self.axis)
+            d = a - self.last[n]
+            d -= 2 * math.pi * round(d / (2 * math.pi))
+            self.total[n] += d
+            self.last[n] = a
+
+
+def joint_between(asm, a, b):
+    for j in da.joints(asm):
+        if {j.Reference1[0], j.Reference2[0]} == {a, b}:
+            return j
+    raise KeyError((a.Label, b.Label))
+
+
+class Samples(unittest.TestCase):
+    """The coupling samples as build_samples.py makes them (STEP parts imported, joints from
+    picked edges), each in a document of the test's own."""
+
+    def build(self, name, **kw):
+        self.doc = App.newDocument(name.replace("-", "_"))
+        asm, named = dict(couplings.SAMPLES)[name](self.doc, **kw)
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        return asm, named
+
+    def tearDown(self):
+        if getattr(self, "doc", None) is not None:
+            App.closeDocument(self.doc.Name)
+            self.doc = None
+
+    def test_three_gears_hold_their_ratios_through_a_full_turn(self):
+        asm, p = self.build("three-gears")
+        meshes = [j for j in da.joints(asm) if j.JointType == "Gears"]
+        # The ratios from the picked pitch circles: r1 / r2.
+        self.assertEqual([round(j.Ratio, 12) for j in meshes], [0.5, round(4 / 3, 12)])
+        self.assertEqual(da.check(asm)["dof"], 1)
+        turns = Turns({n: p[n] for n in ("G1", "G2", "G3")})
+        da.drive(asm, joint_between(asm, p["Plate"], p["G1"]), range(10, 361, 10), callback=turns.sample)
+        t = turns.total
+        self.assertAlmostEqual(t["G1"], 2 * math.pi, delta=TOL)
+        self.assertAlmostEqual(t["G2"], -0.5 * t["G1"], delta=TOL)
+        self.assertAlmostEqual(t["G3"], 2 / 3 * t["G1"], delta=TOL)
+
+    def test_planetary_obeys_willis(self):
+        asm, p = self.build("planetary")
+        self.assertEqual(da.check(asm)["dof"], 2)
+        turns = Turns({n: p[n] for n in ("Sun", "Carrier", "Ring")})
+        da.drive(asm, joint_between(asm, p["Base"], p["Sun"]), range(5, 95, 5), callback=turns.sample)
+        s, c, r = turns.total["Sun"], turns.total["Carrier"], turns.total["Ring"]
+        self.assertAlmostEqual(s, math.pi / 2, delta=TOL)
+        # (w_sun - w_carrier) / (w_ring - w_carrier) = -z_ring / z_sun = -2, as differences.
+        self.assertGreater(abs(r - c), 1e-3, "the ring and the carrier turned together: Willis untested")
+        self.assertAlmostEqual(s - c, -2 * (r - c), delta=TOL)
+
+    def test_steering_rack_travels_radius_times_the_turn(self):
+        asm, p = self.build("steering")
+        self.assertEqual(da.check(asm)["dof"], 1)
+        coupling = next(j for j in da.joints(asm) if j.JointType == "RackPinion")
+        self.assertAlmostEqual(coupling.Radius.Value, 0.3, delta=1e-12)
+        rack = p["Rack"]
+        u = rack.Placement.Rotation.multVec(coupling.Axis2)
+        start, knuckle = rack.Placement.Base, turn_about(p["KnuckleL"], "z")
+        turns = Turns({"Pinion": p["Pinion"]})
+        da.drive(asm, joint_between(asm, p["Frame"], p["Pinion"]), range(5, 45, 5), callback=turns.sample)
+        theta = turns.total["Pinion"]
+        self.assertAlmostEqual(theta, math.radians(40), delta=TOL)
+        self.assertAlmostEqual((rack.Placement.Base - start).dot(u), 0.3 * theta, delta=TOL)
+        self.assertGreater(abs(turn_about(p["KnuckleL"], "z") - knuckle), 0.05, "the wheels did not steer")
+
+    def vice_turn(self, left):
+        asm, p = self.build("vice", left=left)
+        self.assertEqual(da.check(asm)["dof"], 1)
+        jaw, screw = p["Jaw"], p["Screw"]
+        start, screw_start = jaw.Placement, screw.Placement.Base
+        turns = Turns({"Screw": screw}, "x")
+        d = da.Drag(asm, jaw)
+        for k in range(1, 21):
+            r = d.move(App.Placement(start.Base + App.Vector(0.2 * k / 20, 0, 0), start.Rotation))
+            self.assertTrue(r.converged, r.message)
+            turns.sample()
+        d.finish()
+        self.assertAlmostEqual(jaw.Placement.Base.x - start.Base.x, 0.2, delta=TOL)
+        self.assertAlmostEqual(screw.Placement.Base.x - screw_start.x, 0.2, delta=TOL)
+        return turns.total["Screw"]
+
+    def test_vice_advances_a_pitch_per_turn(self):
+        right = self.vice_turn(False)
+        self.assertAlmostEqual(abs(right), 2 * math.pi, delta=TOL)
+        self.tearDown()
+        left = self.vice_turn(True)
+        self.assertAlmostEqual(left, -right, delta=TOL)
+
+    def test_phase_turns_the_gear_and_the_ratio_holds(self):
+        asm, p = self.build("three-gears")
+        mesh = joint_between(asm, p["G1"], p["G2"])
+        before = turn_about(p["G2"], "z")
+        da.edit_joint(mesh, phase=12.0)
+        turned = turn_about(p["G2"], "z") - before
+        self.assertAlmostEqual(abs(turned), math.radians(12), delta=TOL)
+        self.assertTrue(da.solve(asm).converged)
+        turns = Turns({n: p[n] for n in ("G1", "G2")})
+        da.drive(asm, joint_between(asm, p["Plate"], p["G1"]), range(10, 100, 10), callback=turns.sample)
+        self.assertAlmostEqual(turns.total["G2"], -0.5 * turns.total["G1"], delta=TOL)
+
+    def test_bad_values_refused_changing_nothing(self):
+        asm, p = self.build("three-gears")
+        before = len(self.doc.Objects)
+        with self.assertRaisesRegex(ValueError, "ratio 0 must be above 0"):
+            da.add_joint(asm, "Gears", couplings.circle(p["G1"], (0, 0, 0), 1.0),
+                         couplings.circle(p["G3"], (0, 0, 0), 1.5), ratio=0)
+        mesh = joint_between(asm, p["G1"], p["G2"])
+        with self.assertRaisesRegex(ValueError, "ratio -2 must be above 0"):
+            da.edit_joint(mesh, ratio=-2)
+        self.assertEqual((len(self.doc.Objects), mesh.Ratio), (before, 0.5))
+        # A rack needs a straight edge or a planar face on the rack.
+        with self.assertRaisesRegex(ValueError, "RackPinion joint needs a circular edge"):
+            da.add_joint(asm, "RackPinion", couplings.circle(p["G1"], (0, 0, 0), 1.0),
+                         couplings.circle(p["G3"], (0, 0, 0), 1.5))
+
+    def test_save_and_reopen_keep_every_coupling(self):
+        tmp = tempfile.mkdtemp()
+        try:
+            for name in ("three-gears", "planetary", "steering", "vice"):
+                asm, _ = self.build(name)
+                path = os.path.join(tmp, name + ".FCStd")
+                keys = ("Label", "JointType", "Ratio", "Radius", "Pitch", "LeftHanded", "Phase", "Feature1", "Feature2")
+                saved = [tuple(str(getattr(j, k)) for k in keys) for j in da.joints(asm)]
+                self.doc.saveAs(path)
+                self.tearDown()
+                self.doc = App.openDocument(path)
+                asm = next(o for o in self.doc.Objects if da.is_assembly(o))
+                self.assertEqual([tuple(str(getattr(j, k)) for k in keys) for j in da.joints(asm)], saved)
+                self.assertTrue(any(j.JointType in da.COUPLINGS for j in da.joints(asm)))
+                r = da.solve(asm)
+                self.assertTrue(r.converged, r.message)
+                self.assertEqual(da.check(asm)["dof"], {"planetary": 2}.get(name, 1))
+                self.tearDown()
+        finally:
+            shutil.rmtree(tmp)
+
+
+UNIT_TESTS = [DistanceJoints, Orientation, Samples]
 
 
 if __name__ in ("__main__", "test_couplings") and not os.environ.get("DISPCON_IMPORT_ONLY"):

@@ -1,7 +1,8 @@
 """One command per joint type: its panel, with the references already selected or picked in it."""
 import FreeCADGui as Gui
 
-from ..objects import JOINT_TYPES
+from .. import engine
+from ..adapter import offered_types
 from ..panels.joint import open_panel
 from ..guide import tooltip
 from .common import Command, active_assembly, has_parts
@@ -19,4 +20,4 @@ def joint_command(kind):
 def commands():
     return [("Dispcon_Joint" + kind,
              Command(kind + " joint", tooltip(kind), joint_command(kind), active=lambda: has_parts(2)))
-            for kind in JOINT_TYPES]
+            for kind in offered_types(engine.load())]

@@ -10,9 +10,10 @@ spin boxes (mm, deg). A min above its max is said in the panel and disables OK."
 import FreeCAD as App
 import FreeCADGui as Gui
 
-from .. import geometry, markers, operations, panels
+from .. import engine, geometry, markers, operations, panels
 from ..guide import PICK
-from ..objects import COUPLINGS, JOINT_TYPES
+from ..adapter import offered_types
+from ..objects import COUPLINGS
 
 try:
     from PySide2 import QtCore, QtGui, QtWidgets
@@ -38,7 +39,7 @@ FIELDS = {
     "Gears": ("reverse", "ratio", "phase"),
     "Belt": ("reverse", "ratio", "phase"),
     "RackPinion": ("reverse", "radius", "phase"),
-    "Screw": ("reverse", "pitch", "phase"),
+    "Screw": ("reverse", "pitch", "phase", "travel"),
 }
 # Types whose joint is made from the picked geometry in a way of their own (which reference
 # carries the guide, a coupling's ratio or radius from the picked circles): changing to or from
@@ -92,7 +93,7 @@ class JointPanel:
         form.setRowWrapPolicy(QtWidgets.QFormLayout.WrapLongRows)
         top.addLayout(form)
         self.type_box = QtWidgets.QComboBox()
-        for t in JOINT_TYPES:
+        for t in offered_types(engine.load()):
             self.type_box.addItem(QtGui.QIcon(markers_icon(t)), t)
         self.type_box.setCurrentText(joint_type)
         form.addRow("Type", self.type_box)
