@@ -311,9 +311,17 @@ class Marker:
 
 def joint_frame(joint):
     """The joint's point and axis in world coordinates, from part 1 (the guide's part), or None
-    when a reference is missing."""
+    when a reference is missing. A Gears joint's marker sits where the pitch circles touch (the
+    centres' distance split as r1 : r2, that is ratio : 1), a Belt's half-way between the
+    pulleys, so it stands apart from the gears' own revolutes."""
     ref = joint.Reference1
     if not ref or ref[0] is None:
         return None
     pl = ref[0].Placement
-    return pl.multVec(joint.Point1), pl.Rotation.multVec(joint.Axis1)
+    point, axis = pl.multVec(joint.Point1), pl.Rotation.multVec(joint.Axis1)
+    other = joint.Reference2
+    if joint.JointType in ("Gears", "Belt") and other and other[0] is not None and "Ratio" in joint.PropertiesList:
+        centre2 = other[0].Placement.multVec(joint.Point2)
+        share = joint.Ratio / (1.0 + joint.Ratio) if joint.JointType == "Gears" and joint.Ratio > 0 else 0.5
+        point = point + (centre2 - point) * share
+    return point, axis

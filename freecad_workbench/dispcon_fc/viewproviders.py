@@ -100,7 +100,7 @@ class ViewProviderJoint(_ViewProxy):
             obj.ViewObject.signalChangeIcon() if hasattr(obj.ViewObject, "signalChangeIcon") else None
         if prop in ("Reference1", "Reference2"):
             self.marker.set_size(markers.size_for(_assembly_parts(obj)))
-        if prop in ("JointType", "Point1", "Axis1", "Reference1", "Reference2"):
+        if prop in ("JointType", "Point1", "Axis1", "Point2", "Reference1", "Reference2", "Ratio"):
             self.follow(obj)
 
     def follow(self, obj):

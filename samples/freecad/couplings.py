@@ -65,7 +65,7 @@ def line(obj, through, direction=(1, 0, 0)):
 
 def three_gears(doc):
     asm = da.create_assembly(doc, "ThreeGears")
-    plate = da.import_part(asm, step("gear-plate", lambda: parts.plate_with([(0, 0), (3, 0), (6.5, 0)], [])),
+    plate = da.import_part(asm, step("gear-plate", lambda: parts.plate_with([(0, 0), (3, 0), (6.5, 0)], [], margin=2.3)),
                            "Plate", grounded=True)
     sizes = (("G1", 1.0, 20, (0, 0)), ("G2", 2.0, 40, (3, 0)), ("G3", 1.5, 30, (6.5, 0)))
     gears = {}
@@ -96,15 +96,21 @@ def planetary(doc, arm=1.5):
     da.add_joint(asm, "Revolute", axle, circle(sun, (0, 0, 0), 1.0), offset=0.1)
     da.add_joint(asm, "Revolute", axle, circle(ring, (0, 0, 0), 2.0), offset=0.1)
     named = {"Base": base, "Carrier": carrier, "Sun": sun, "Ring": ring}
+    planets = []
     for k in range(3):
         a = 2 * math.pi * k / 3
         x, y = arm * math.cos(a), arm * math.sin(a)
         planet = da.import_part(asm, step("gear-10", lambda: parts.gear(0.5, 10)), "Planet%d" % (k + 1))
         place(planet, x + 0.04, y - 0.03, 0.22, 10 * k)
         da.add_joint(asm, "Revolute", circle(carrier, (x, y, 0.1), 0.15), circle(planet, (0, 0, 0), 0.5))
+        named[planet.Label] = planet
+        planets.append(planet)
+    # The gears on their axles first, then the meshes: three planets close three loops, whose
+    # couplings agree only when made with every gear in place (a designer solves, then meshes).
+    da.solve(asm)
+    for planet in planets:
         da.add_joint(asm, "Gears", circle(sun, (0, 0, 0), 1.0), circle(planet, (0, 0, 0), 0.5))
         da.add_joint(asm, "Belt", circle(planet, (0, 0, 0), 0.5), circle(ring, (0, 0, 0), 2.0))
-        named[planet.Label] = planet
     return asm, named
 
 
