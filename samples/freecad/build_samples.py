@@ -5,10 +5,11 @@ snapped into place. Run with freecadcmd:
     freecadcmd samples/freecad/build_samples.py --out build/samples
 
 Writes fourbar.FCStd, slider-crank.FCStd, rssr.FCStd, fourbar-clash.FCStd (a post in the
-crank's way: a design that collides) and side-rods.FCStd (twenty parts), and prints the time of
-each snap. Then the reused sub-assembly: leg.FCStd (a four-bar leg on its hip plate) placed four
-times on a frame, linked from that file, in walker.FCStd (flexible: each leg moves, here each at
-another crank angle) and walker-rigid.FCStd (rigid: each leg moves as one part)."""
+crank's way: a design that collides), side-rods.FCStd (twenty parts) and the couplings of
+couplings.py (three-gears, planetary, steering, vice), and prints the time of each snap. Then the
+reused sub-assembly: leg.FCStd (a four-bar leg on its hip plate) placed four times on a frame,
+linked from that file, in walker.FCStd (flexible: each leg moves, here each at another crank
+angle) and walker-rigid.FCStd (rigid: each leg moves as one part)."""
 import math
 import os
 import sys
@@ -24,6 +25,7 @@ sys.path.insert(0, HERE)
 
 import FreeCAD as App  # noqa: E402
 
+import couplings  # noqa: E402
 import dispcon_fc.assembly as da  # noqa: E402
 import parts  # noqa: E402
 
@@ -214,7 +216,9 @@ def build_walkers(out):
 
 
 SAMPLES = (("fourbar", fourbar), ("slider-crank", slider_crank), ("rssr", rssr),
-           ("fourbar-clash", fourbar_clash), ("side-rods", side_rods))
+           ("fourbar-clash", fourbar_clash), ("side-rods", side_rods)) + tuple(
+    # The couplings (couplings.py): gears, a planetary set, a steering rack, a vice.
+    (name, lambda doc, build=build: build(doc)[0]) for name, build in couplings.SAMPLES)
 
 
 def main():

@@ -360,7 +360,54 @@ class Samples(unittest.TestCase):
             shutil.rmtree(tmp)
 
 
-UNIT_TESTS = [DistanceJoints, Orientation, Samples]
+WITHOUT_WORKBENCH = """
+import sys
+import FreeCAD as App
+try:
+    import dispcon_fc
+    raise SystemExit("the workbench was importable: this session must not have it")
+except ImportError:
+    pass
+doc = App.openDocument(sys.argv[-1])
+joints = [o for o in doc.Objects if "JointType" in o.PropertiesList]
+assert sorted(j.JointType for j in joints) == ["Revolute", "Screw", "Slider"], [j.JointType for j in joints]
+assert all(j.Proxy is None for j in joints), [j.Proxy for j in joints]
+doc.save()
+print("SESSION OK")
+sys.exit(0)
+"""
+
+
+class NothingLostWithoutTheWorkbench(unittest.TestCase):
+    def test_a_left_handed_screw_saved_where_the_workbench_is_missing(self):
+        os.environ["DISPCON_IMPORT_ONLY"] = "1"
+        import test_headless as th
+
+        with tempfile.TemporaryDirectory() as tmp:
+            doc = App.newDocument("vice_kept")
+            asm, p = couplings.vice(doc, pitch=0.25, left=True)
+            screw = next(j for j in da.joints(asm) if j.JointType == "Screw")
+            da.edit_joint(screw, phase=15.0)
+            self.assertTrue(da.solve(asm).converged)
+            path = os.path.join(tmp, "vice.FCStd")
+            doc.saveAs(path)
+            values = th.settings_of(doc)
+            App.closeDocument(doc.Name)
+            th.freecad_session(WITHOUT_WORKBENCH, tmp, path)
+            doc = App.openDocument(path)
+            try:
+                asm = next(o for o in doc.Objects if da.is_assembly(o))
+                self.assertEqual(th.settings_of(doc), values)
+                screw = next(j for j in da.joints(asm) if j.JointType == "Screw")
+                self.assertEqual((screw.Pitch.Value, screw.LeftHanded, screw.Phase.Value), (0.25, True, 15.0))
+                self.assertEqual(list(screw.getEnumerationsOfProperty("JointType")), da.JOINT_TYPES)
+                self.assertTrue(da.solve(asm).converged)
+                self.assertEqual(da.check(asm)["dof"], 1)
+            finally:
+                App.closeDocument(doc.Name)
+
+
+UNIT_TESTS = [DistanceJoints, Orientation, Samples, NothingLostWithoutTheWorkbench]
 
 
 if __name__ in ("__main__", "test_couplings") and not os.environ.get("DISPCON_IMPORT_ONLY"):
