@@ -166,7 +166,21 @@ def _in_body(kw, side, local):
             kw[key + side] = _vec(local.multVec(v) if key == "point" else local.Rotation.multVec(v))
     if side == "1" and "curve" in kw:
         kw["curve"] = [_vec(local.multVec(App.Vector(*p))) for p in kw["curve"]]
+    # A Distance made of statements (distance_kwargs): their points and directions by side.
+    for statement, items in _STATEMENT_SIDES.items():
+        if statement in kw:
+            values = list(kw[statement])
+            for k, (s, what) in enumerate(items):
+                if s == side:
+                    v = App.Vector(*values[k])
+                    values[k] = _vec(local.multVec(v) if what == "point" else local.Rotation.multVec(v))
+            kw[statement] = tuple(values)
     return kw
+
+
+# Which side's frame each leading argument of the statements distance_kwargs writes is in.
+_STATEMENT_SIDES = {"hinge": (("1", "point"), ("2", "point")), "planar": (("1", "axis"),),
+                    "cylinder": (("1", "axis"),), "angle": (("1", "axis"), ("2", "axis"))}
 
 
 def local_mass(shape, placement):
