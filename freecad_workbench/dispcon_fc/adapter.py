@@ -111,8 +111,8 @@ def distance_kwargs(j, p1, a1, p2, a2):
 def coupling_kwargs(row, j):
     """A coupling's value under the name its row of the engine's table gives it (coupling_args:
     ratio, radius or pitch first) and a screw's hand. No phase: the engine holds the coupling at
-    the poses the parts have when the model is made (as FreeCAD 1.x's solver does), so a Phase
-    is a turn of the part itself (operations.edit_joint)."""
+    the poses the parts have when the model is made (from their placements, at every solve and
+    drag), so a Phase is a turn of the part itself (operations.edit_joint)."""
     takes = row["coupling_args"]
     values = {"ratio": j.Ratio, "radius": j.Radius.Value, "pitch": j.Pitch.Value}
     kw = {takes[0]: values[takes[0]]}

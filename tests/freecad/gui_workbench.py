@@ -577,6 +577,11 @@ class TestCouplings(Documents):
             self.assertIn(n, in_menu, "%s is not in the Joints submenu" % n)
             self.assertFalse(action(n).icon().isNull(), "%s has no icon" % n)
         self.assertIn("circular edge", action("Dispcon_JointGears").toolTip())
+        # Every type has its glyph (the tree's icon, the marker while picking and after).
+        from dispcon_fc import markers, objects
+
+        for kind in objects.JOINT_TYPES:
+            self.assertGreaterEqual(markers.glyph(kind, 1.0).getNumChildren(), 1, kind)
 
     def test_gear_panel_shows_the_ratio_and_refuses_zero(self):
         from dispcon_fc.panels import joint as jp
