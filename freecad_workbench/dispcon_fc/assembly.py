@@ -13,7 +13,7 @@ mouse can be done from here under freecadcmd.
     report = da.check(asm)
 """
 from . import engine, geometry  # noqa: F401  (scripts reach the engine as da.engine)
-from .adapter import Adapter, Result, live_curve  # noqa: F401
+from .adapter import Adapter, Result, live_curve, offered_types  # noqa: F401
 from .objects import (COUPLINGS, JOINT_TYPES, AssemblyProxy, JointProxy, SubAssemblyProxy, adopt,  # noqa: F401
                       adopt_document, instance_parts, is_assembly, is_joint, is_sub_assembly, joints,
                       part_properties, parts, placed_parts, preferences, shape_of, sub_assemblies,

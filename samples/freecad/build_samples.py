@@ -216,9 +216,13 @@ def build_walkers(out):
 
 
 SAMPLES = (("fourbar", fourbar), ("slider-crank", slider_crank), ("rssr", rssr),
-           ("fourbar-clash", fourbar_clash), ("side-rods", side_rods)) + tuple(
-    # The couplings (couplings.py): gears, a planetary set, a steering rack, a vice.
-    (name, lambda doc, build=build: build(doc)[0]) for name, build in couplings.SAMPLES)
+           ("fourbar-clash", fourbar_clash), ("side-rods", side_rods))
+if set(da.COUPLINGS) <= set(da.offered_types(da.engine.load())):
+    # The couplings (couplings.py): gears, a planetary set, a steering rack, a vice; when the
+    # engine has their rows (it says so below otherwise).
+    SAMPLES += tuple((name, lambda doc, build=build: build(doc)[0]) for name, build in couplings.SAMPLES)
+else:
+    print("%s: not built (this engine has no coupling rows)" % ", ".join(n for n, _ in couplings.SAMPLES))
 
 
 def main():
