@@ -138,10 +138,11 @@ class DragMode:
         self.drag = None
         self.shown = None
         # What the frames cost, from the first drag of this mode (a test reads them): the
-        # solver, the writes (transforms and markers; the Placements at release) and how many.
+        # solver, the writes (transforms and markers; the Placements at release) and how many;
+        # wall time, and this thread's CPU time (what they cost when the machine is shared).
         self.frames = 0
-        self.solver_seconds = 0.0
-        self.write_seconds = 0.0
+        self.solver_seconds = self.solver_cpu = 0.0
+        self.write_seconds = self.write_cpu = 0.0
         self.release_seconds = 0.0
         self.callbacks = [
             self.view.addEventCallbackPivy(coin.SoMouseButtonEvent.getClassTypeId(), self.button),
@@ -249,13 +250,15 @@ class DragMode:
             return
         t = (self.grab - point).dot(self.normal) / d
         hit = point + direction * t
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.thread_time()
         moved = self.drag.move(hit)
-        t1 = time.perf_counter()
+        t1, c1 = time.perf_counter(), time.thread_time()
         if moved:
             self.shown.update()
         self.solver_seconds += t1 - t0
+        self.solver_cpu += c1 - c0
         self.write_seconds += time.perf_counter() - t1
+        self.write_cpu += time.thread_time() - c1
         self.frames += 1
         event_cb.setHandled()
 

@@ -116,13 +116,17 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
     swapped = [0]
     view.graphicsView().viewport().frameSwapped.connect(lambda: swapped.__setitem__(0, swapped[0] + 1))
 
+    cpu = [0.0]
+
     def redraw():
-        """Processes events until the view has shown a new frame; its time, or None."""
-        before, t0 = swapped[0], time.perf_counter()
+        """Processes events until the view has shown a new frame; its time, or None. Adds the
+        process's CPU time (OpenGL's rendering threads included) to cpu[0]."""
+        before, t0, c0 = swapped[0], time.perf_counter(), time.process_time()
         while swapped[0] == before:
             if time.perf_counter() - t0 > 2:
                 return None
             Gui.updateGui()
+        cpu[0] += time.process_time() - c0
         return time.perf_counter() - t0
 
     # What a redraw of these parts costs with nothing moving.
@@ -131,6 +135,7 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
         view.getViewer().getSoRenderManager().getSceneGraph().touch()
         idle.append(redraw())
     assert None not in idle, "the view did not redraw"
+    idle_cpu, cpu[0] = cpu[0] / len(idle), 0.0
     Gui.runCommand("Dispcon_Drag", 1)
     mode = dragging._active
     x, y = view.getPointOnScreen(part.Placement.multVec(local_grab))
@@ -163,6 +168,7 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
                                   App.Rotation(*t.rotation.getValue().getValue()))
             assert same_placement(shown, p.Placement, 1e-5), "%s is not drawn back in place" % p.Label
         mode.frames, mode.solver_seconds, mode.write_seconds, mode.release_seconds = 0, 0.0, 0.0, 0.0
+        mode.solver_cpu = mode.write_cpu = cpu[0] = 0.0
     t0 = time.perf_counter()
     mouse(view, "press", x, y)
     press = time.perf_counter() - t0
@@ -175,6 +181,7 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
         handled += time.perf_counter() - t0
         redraws.append(redraw())
     assert None not in redraws, "a frame of the drag was not drawn"
+    redraw_cpu = cpu[0] / frames
     assert mode.frames == frames
     drag = mode.drag
     if check:
@@ -228,18 +235,21 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
                 solver=mode.solver_seconds / n, writes=mode.write_seconds / n,
                 event=(handled - mode.solver_seconds - mode.write_seconds) / n,
                 redraw=sum(redraws) / n, idle=sorted(idle)[len(idle) // 2],
+                solver_cpu=mode.solver_cpu / n, writes_cpu=mode.write_cpu / n, redraw_cpu=redraw_cpu,
+                idle_cpu=idle_cpu,
                 release=mode.release_seconds, release_redraw=release_redraw,
                 fps=n / (handled + sum(redraws)))
 
 
 def report(name, t):
-    print("%s drag (%d parts, %d moving), %d frames: %.1f frames/s; per frame: solver %.2f ms, "
-          "writes %.2f ms (transforms and markers), rest of the event %.2f ms, redraw %.1f ms; "
-          "a redraw with nothing moving %.1f ms; press %.0f ms; release %.0f ms (Placements, "
-          "recompute) and its redraw %.0f ms"
-          % (name, t["parts"], t["moving"], t["frames"], t["fps"], 1000 * t["solver"], 1000 * t["writes"],
-             1000 * t["event"], 1000 * t["redraw"], 1000 * t["idle"], 1000 * t["press"],
-             1000 * t["release"], 1000 * t["release_redraw"]))
+    print("%s drag (%d parts, %d moving), %d frames: %.1f frames/s; per frame, wall (CPU): solver "
+          "%.2f (%.2f) ms, writes %.2f (%.2f) ms (transforms and markers), rest of the event %.2f ms, "
+          "redraw %.1f (%.1f) ms; a redraw with nothing moving %.1f (%.1f) ms; press %.0f ms; "
+          "release %.0f ms (Placements, recompute) and its redraw %.0f ms; load %.1f"
+          % (name, t["parts"], t["moving"], t["frames"], t["fps"], 1000 * t["solver"], 1000 * t["solver_cpu"],
+             1000 * t["writes"], 1000 * t["writes_cpu"], 1000 * t["event"], 1000 * t["redraw"],
+             1000 * t["redraw_cpu"], 1000 * t["idle"], 1000 * t["idle_cpu"], 1000 * t["press"],
+             1000 * t["release"], 1000 * t["release_redraw"], os.getloadavg()[0]))
 
 
 status = 1
