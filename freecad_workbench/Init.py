@@ -19,8 +19,9 @@ class _DispconRestoreObserver:
         if any("DispconType" in o.PropertiesList or "JointType" in o.PropertiesList for o in doc.Objects):
             from dispcon_fc import objects
 
-            # (A document built headless gets its view providers here, which FreeCAD counts as
-            # a modification; 0.20 offers no way to say otherwise.)
+            # (Only a document saved where the workbench was missing gets anything here, which
+            # FreeCAD counts as a modification: it is one. A document saved by freecadcmd has
+            # its proxies; their onDocumentRestored gives the views theirs, unmodified.)
             objects.adopt_document(doc)
 
 

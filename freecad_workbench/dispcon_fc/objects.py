@@ -103,6 +103,7 @@ class AssemblyProxy(_Proxy):
 
     def onDocumentRestored(self, obj):
         self.attach(obj)
+        _view_restored(obj, "Assembly")
 
 
 class JointProxy(_Proxy):
@@ -146,6 +147,10 @@ class JointProxy(_Proxy):
 
     def onDocumentRestored(self, obj):
         self.attach(obj)
+        # A document saved by freecadcmd has no view providers' proxies (no GuiDocument.xml):
+        # given here, while FreeCAD is still restoring, they neither mark the document modified
+        # nor get overwritten by the saved view state (read before this).
+        _view_restored(obj, "Joint")
 
 
 class SubAssemblyProxy(_Proxy):
@@ -269,6 +274,23 @@ def _view(obj, kind):
         from . import viewproviders
 
         viewproviders.attach(obj, kind)
+
+
+def _view_restored(obj, kind):
+    """The view provider of an object FreeCAD is restoring (onDocumentRestored), when the GUI is
+    up and the document has none for it: one saved by freecadcmd has no view providers' proxies
+    (no GuiDocument.xml). Given while FreeCAD is still restoring, they do not mark the document
+    modified, and no saved view state overwrites them."""
+    if not App.GuiUp or obj.ViewObject is None or obj.ViewObject.Proxy not in (None, 0):
+        return
+    _view(obj, kind)
+    if kind == "Assembly":
+        # A group given its view provider while restoring hides its children (FreeCAD's views
+        # are all hidden until the restore ends); without a saved view state every object is
+        # shown, as FreeCAD shows the objects of any document saved without one.
+        for o in [obj] + list(obj.Group):
+            if o.ViewObject is not None:
+                o.ViewObject.Visibility = True
 
 
 def adopt_document(doc):

@@ -42,7 +42,7 @@ class ViewProviderAssembly(_ViewProxy):
 
     def onChanged(self, vobj, prop):
         # Hiding the assembly hides its joints' markers with it (and shows them again).
-        if prop == "Visibility":
+        if prop == "Visibility" and not vobj.Object.Document.Restoring:
             for o in getattr(vobj.Object, "Group", []):
                 if is_joint(o) and o.ViewObject is not None:
                     o.ViewObject.Visibility = vobj.Visibility

@@ -332,6 +332,68 @@ class TestMarkers(Documents):
         panel.reject()
 
 
+HEADLESS_FOURBAR = """
+import os, sys
+sys.path.insert(0, %r)
+os.environ["DISPCON_IMPORT_ONLY"] = "1"
+import FreeCAD as App
+from test_headless import fourbar, da
+doc = App.newDocument("headless")
+asm = fourbar(doc, %r)[0]
+assert da.solve(asm).converged
+doc.saveAs(%r)
+"""
+
+
+def headless_fourbar(path):
+    """A four-bar built and saved by freecadcmd (no view state in the file, as the samples)."""
+    import subprocess
+
+    script = path + ".py"
+    with open(script, "w") as f:
+        f.write(HEADLESS_FOURBAR % (HERE, os.path.dirname(path), path))
+    run = subprocess.run(["freecadcmd", script], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                         text=True, timeout=300)
+    if not os.path.isfile(path):
+        raise AssertionError("freecadcmd did not save %s:\n%s" % (path, run.stdout[-2000:]))
+    return path
+
+
+class TestRestored(unittest.TestCase):
+    """Documents saved by freecadcmd, opened in the GUI: markers drawn, nothing modified."""
+
+    def test_a_headless_document_shows_its_markers_unmodified(self):
+        from pivy import coin
+        from dispcon_fc import objects, viewproviders
+
+        close_dialog()
+        path = headless_fourbar(os.path.join(tempfile.mkdtemp(), "headless-fourbar.FCStd"))
+        doc = App.openDocument(path)
+        try:
+            settle()
+            gui_doc = Gui.getDocument(doc.Name)
+            self.assertFalse(gui_doc.Modified, "opening the document marked it modified")
+            self.assertFalse(doc.isTouched(), "opening the document touched it")
+            asm = next(o for o in doc.Objects if objects.is_assembly(o))
+            self.assertTrue(asm.ViewObject.Visibility)
+            self.assertTrue(all(p.ViewObject.Visibility for p in objects.parts(asm)), "parts hidden on open")
+            root = gui_doc.ActiveView.getSceneGraph()
+            for j in objects.joints(asm):
+                self.assertIsNotNone(viewproviders.joint_view(j), "%s has no view provider" % j.Label)
+                self.assertEqual(j.ViewObject.DisplayMode, "Marker")
+                search = coin.SoSearchAction()
+                search.setName("dispcon_marker_" + j.Name)
+                search.apply(root)
+                self.assertIsNotNone(search.getPath(), "no marker for %s in the scene" % j.Label)
+            gui_doc.ActiveView.viewIsometric()
+            gui_doc.ActiveView.fitAll()
+            shot("headless-opened")
+            self.assertFalse(gui_doc.Modified)
+        finally:
+            App.closeDocument(doc.Name)
+            settle()
+
+
 class TestJointPanel(Documents):
     def open(self, kind="Revolute"):
         from dispcon_fc.panels import joint as jp
@@ -681,7 +743,7 @@ def run_in_gui(classes, status_name):
 
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestJointPanel, TestErrors, TestDragMode, TestCouplings)
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestRestored, TestJointPanel, TestErrors, TestDragMode, TestCouplings)
                 if not only or only in cls.__name__], "status-workbench")
 
 

@@ -605,6 +605,19 @@ class RobustOperations(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "Elbow: one of its parts was deleted"):
             da.drive(asm, lost, [10])
 
+    def test_opening_a_saved_assembly_changes_nothing(self):
+        # The samples are made so: opening one must not mark it touched (nothing to save).
+        asm, g, crank, coupler, rocker = fourbar(self.doc, tempfile.mkdtemp())
+        self.assertTrue(da.solve(asm).converged)
+        path = os.path.join(tempfile.mkdtemp(), "opened.FCStd")
+        name = asm.Name
+        self.doc.saveAs(path)
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        self.assertFalse(self.doc.isTouched())
+        self.assertEqual([o.Label for o in self.doc.Objects if "Touched" in o.State], [])
+        self.assertEqual(len(da.joints(self.doc.getObject(name))), 4)
+
     def test_point_on_curve_reads_the_live_curve(self):
         # A revolute between the base's boss and the arm's tip boss, turned into a PointOnCurve:
         # the arm's tip pin must then run on the base's boss edge (radius 0.15) ...
