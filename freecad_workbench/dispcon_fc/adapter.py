@@ -274,6 +274,27 @@ class Adapter:
         pattern = re.compile(r"\b(%s)\b" % "|".join(re.escape(n) for n in sorted(labels, key=len, reverse=True)))
         return pattern.sub(lambda m: labels[m.group(1)], text)
 
+    # How the engine's diagnostics name a joint: "joint #4 (line 12) p0_Base / p3_Crank", its
+    # index in the model (the adapter's joints, in order), its .dcl line when read from one.
+    JOINT_REF = re.compile(r"joint #(\d+)(?: \(line \d+\))? (\w+) / (\w+)")
+
+    def joint_named(self, index):
+        """A joint as the person knows it: "'Crank pin' (joint between 'Ground' and 'Crank')"."""
+        j = self.joints[index]
+        return "'%s' (joint between '%s' and '%s')" % (j.Label, j.Reference1[0].Label, j.Reference2[0].Label)
+
+    def advice(self, text):
+        """One of the engine's diagnostics in the workbench's words: joints and parts by their
+        labels, and "removing <joint> makes the model consistent" as what to do about it."""
+        def joint(m):
+            k = int(m.group(1))
+            return self.joint_named(k) if 0 <= k < len(self.joints) else m.group(0)
+
+        fix = re.match(r"removing (joint #\d+.*?) makes the model consistent$", text)
+        if fix:
+            text = "remove or loosen %s: the other joints then hold" % fix.group(1)
+        return self.labelled(self.JOINT_REF.sub(joint, text))
+
     @contextlib.contextmanager
     def engine_errors(self):
         """The engine's errors as ValueErrors that name the parts by their labels."""

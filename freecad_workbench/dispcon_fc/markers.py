@@ -7,7 +7,8 @@ A marker has three looks: normal, selected (the joint is selected in the tree or
 error (the joint a failed Solve or Check points at). The look is state of the view only: nothing
 here is a document property, so nothing of it is saved into the file.
 
-The glyphs are drawn over the parts (an SoAnnotation), so a joint inside a part stays visible."""
+The glyphs are drawn over the parts (an SoAnnotation), so a joint inside a part stays visible, and
+at one size on the screen whatever the zoom."""
 import math
 
 import FreeCAD as App
@@ -222,7 +223,7 @@ def _turn_z_to(direction):
 
 
 def glyph(joint_type, size):
-    """The glyph of `joint_type`, `size` model units across, z along the joint axis."""
+    """The glyph of `joint_type`, `size` units across (its ring's radius), z along the joint axis."""
     coin = _coin()
     sep = coin.SoSeparator()
     sep.setName("dispcon_glyph_" + joint_type)
@@ -231,22 +232,32 @@ def glyph(joint_type, size):
     return sep
 
 
-def size_for(objects):
-    """A glyph size that reads well next to these parts (all the assembly's, so that its markers
-    have one size): a fifth of the smallest part's size."""
-    sizes = []
-    for o in objects:
-        shape = getattr(o, "Shape", None)
-        if shape is not None and not shape.isNull() and shape.BoundBox.isValid():
-            sizes.append(shape.BoundBox.DiagonalLength)
-    return min(sizes) / 5.0 if sizes else 1.0
+# A glyph's size on the screen, in pixels (its ring's radius): markers keep it whatever the zoom,
+# as FreeCAD's own draggers and axis crosses do, so they neither swamp a small part nor vanish
+# beside a large one.
+PIXELS = 14.0
+
+
+def _screen_scaled(child, pixels):
+    """`child` (drawn at unit size) scaled at each redraw so that one unit is `pixels` pixels on
+    the screen: FreeCAD's SoShapeScale node (a Coin node of FreeCAD's GUI, made by its type
+    name since pivy has no class for it)."""
+    coin = _coin()
+    kind = coin.SoType.fromName("SoShapeScale")
+    if kind.isBad():  # not FreeCAD's GUI: the glyph at unit size
+        return child
+    node = coin.cast(kind.createInstance(), "SoBaseKit")
+    coin.cast(node.getField("scaleFactor"), "SoSFFloat").setValue(pixels)
+    node.setPart("shape", child)
+    return node
 
 
 class Marker:
-    """A glyph placed at a world point with its z along a world axis, with the three looks. Its
-    `root` goes into a view provider's display mode or straight into a view's scene graph."""
+    """A glyph placed at a world point with its z along a world axis, the same size on the screen
+    at any zoom, with the three looks. Its `root` goes into a view provider's display mode or
+    straight into a view's scene graph."""
 
-    def __init__(self, joint_type, size, name="dispcon_marker"):
+    def __init__(self, joint_type, name="dispcon_marker", pixels=PIXELS):
         coin = _coin()
         self.root = coin.SoSeparator()
         self.root.setName(name)
@@ -278,24 +289,21 @@ class Marker:
         self.annotation = coin.SoAnnotation()
         self.root.addChild(self.annotation)
         self.annotation.addChild(self.look_switch)
+        # The glyph goes into `holder`, which the screen scale draws at `pixels` per unit.
+        self.holder = coin.SoSeparator()
+        self.holder.setName("dispcon_glyph_holder")
+        self.scaled = _screen_scaled(self.holder, pixels)
+        self.annotation.addChild(self.scaled)
         self.joint_type = None
-        self.size = size
         self.look = "normal"
         self.set_type(joint_type)
 
     def set_type(self, joint_type):
         if joint_type == self.joint_type:
             return
-        if self.annotation.getNumChildren() > 1:
-            self.annotation.removeChild(1)
-        self.annotation.addChild(glyph(joint_type, self.size))
+        self.holder.removeAllChildren()
+        self.holder.addChild(glyph(joint_type, 1.0))
         self.joint_type = joint_type
-
-    def set_size(self, size):
-        if abs(size - self.size) > 1e-12 * max(1.0, size):
-            joint_type, self.joint_type = self.joint_type, None
-            self.size = size
-            self.set_type(joint_type)
 
     def place(self, point, axis):
         self._translation.setValue(point.x, point.y, point.z)

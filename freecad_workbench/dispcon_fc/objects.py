@@ -194,6 +194,20 @@ def sub_assembly_properties(obj):
     _add(obj, "App::PropertyBool", "Grounded", "Dispcon", "never moves")
 
 
+class PartProxy(_Proxy):
+    """A part the workbench made (imported from a file): a Part::FeaturePython holding the shape
+    it was given, so that its view provider can show the part's icon, or the grounded part's.
+    Where the workbench is missing it is still a plain shape with its properties (FreeCAD keeps a
+    Part::FeaturePython's Shape without its proxy); parts made before (Part::Feature) and any
+    other object with a shape stay parts too, with FreeCAD's icons."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+
+    def onDocumentRestored(self, obj):
+        _view_restored(obj, "Part")
+
+
 def joint_extras(obj):
     """Reversed and Offset (the joint panel's), the features picked, a Distance's value and the
     couplings' values, which joints made before them lack: a joint without them reads as not
@@ -258,7 +272,10 @@ def adopt(obj):
     """Gives a recognised assembly or joint whose Python proxy was lost (opened where the
     workbench was missing) its proxy back, with any property it lacks; returns whether it did."""
     kind = _kind(obj)
-    proxy = {"Assembly": AssemblyProxy, "Joint": JointProxy, "SubAssembly": SubAssemblyProxy}.get(kind)
+    if kind is None and obj.TypeId == "Part::FeaturePython" and "Grounded" in obj.PropertiesList:
+        kind = "Part"  # one of the workbench's parts (the parts carry no DispconType)
+    proxy = {"Assembly": AssemblyProxy, "Joint": JointProxy, "SubAssembly": SubAssemblyProxy,
+             "Part": PartProxy}.get(kind)
     if proxy is None:
         return False
     _view(obj, kind)
@@ -349,6 +366,13 @@ def new_sub_assembly(doc, name):
     obj = doc.addObject("App::DocumentObjectGroupPython", name)
     SubAssemblyProxy(obj)
     _view(obj, "SubAssembly")
+    return obj
+
+
+def new_part(obj):
+    """Makes a new Part::FeaturePython one of the workbench's parts (its proxy and view)."""
+    PartProxy(obj)
+    _view(obj, "Part")
     return obj
 
 

@@ -89,8 +89,11 @@ def set_grounded(part, grounded=True):
     """Grounds a part (it never moves) or frees it, in one undo step."""
     if "Grounded" not in part.PropertiesList:
         raise ValueError("%s is not a part of an assembly" % part.Label)
+    touched = "Touched" in part.State
     with transaction(part.Document, "Ground" if grounded else "Unground"):
         part.Grounded = bool(grounded)
+    if not touched:  # its shape is as it was: nothing for a recompute to do
+        part.purgeTouched()
     return part
 
 
@@ -110,7 +113,7 @@ def import_part(asm, path, name=None, grounded=False):
     except Exception as e:
         raise ValueError("%s: not readable (%s)" % (path, e)) from None
     name = name or os.path.splitext(os.path.basename(path))[0]
-    return _new_part(asm, "Import part", "Part::Feature", name, grounded, Shape=shape)
+    return _new_part(asm, "Import part", "Part::FeaturePython", name, grounded, Shape=shape)
 
 
 def linkable_objects(path):
@@ -165,12 +168,16 @@ def _new_part(asm, action, type_id, name, grounded, **values):
     """A new object of the document made a part of the assembly, in one undo step."""
     with transaction(asm.Document, action):
         obj = asm.Document.addObject(type_id, name)
+        if type_id == "Part::FeaturePython":
+            objects.new_part(obj)
         obj.Label = name  # the name as given; the object's Name is FreeCAD's identifier for it
         for key, value in values.items():
             setattr(obj, key, value)
         objects.part_properties(obj)
         obj.Grounded = grounded
         asm.addObject(obj)
+    # Its shape is given, nothing to compute: not waiting for a recompute (the tree marks such).
+    obj.purgeTouched()
     return obj
 
 
@@ -655,7 +662,7 @@ def check(asm):
     adapter = Adapter(asm)
     with adapter.engine_errors():
         c = adapter.model.check(tolerance=tolerance(asm))
-    message = adapter.labelled(c.message)
+    message = adapter.advice(c.message)
     if adapter.skipped:
         message += "; " + adapter.skipped_message()
     return {
@@ -666,7 +673,7 @@ def check(asm):
         "conflicting": [adapter.joints[i] for i in c.conflicting],
         "limits_active": [adapter.joints[i] for i in c.limits_active],
         "skipped": [j for j, _ in adapter.skipped],
-        "advice": [adapter.labelled(a) for a in c.advice],
+        "advice": [adapter.advice(a) for a in c.advice],
         "message": message,
     }
 

@@ -31,15 +31,6 @@ class ViewProviderAssembly(_ViewProxy):
     def getIcon(self):
         return icon("Assembly")
 
-    def updateData(self, obj, prop):
-        # Parts come and go: every marker of the assembly takes the size that suits its parts.
-        if prop == "Group":
-            size = markers.size_for([o for o in obj.Group if not is_joint(o)])
-            for o in obj.Group:
-                proxy = _joint_view(o)
-                if proxy is not None:
-                    proxy.marker.set_size(size)
-
     def onChanged(self, vobj, prop):
         # Hiding the assembly hides its joints' markers with it (and shows them again).
         if prop == "Visibility" and not vobj.Object.Document.Restoring:
@@ -64,6 +55,22 @@ class ViewProviderSubAssembly(_ViewProxy):
             obj.ViewObject.signalChangeIcon()
 
 
+class ViewProviderPart(_ViewProxy):
+    """A part made by the workbench: the part's icon in the tree, the grounded part's (with the
+    ground hatch) when it is grounded. The shape is drawn as any Part's."""
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def getIcon(self):
+        obj = getattr(self, "Object", None)
+        return icon("GroundedPart" if getattr(obj, "Grounded", False) else "Part")
+
+    def updateData(self, obj, prop):
+        if prop == "Grounded" and hasattr(obj.ViewObject, "signalChangeIcon"):
+            obj.ViewObject.signalChangeIcon()
+
+
 class ViewProviderJoint(_ViewProxy):
     """A joint's marker in the 3D view, its type's icon in the tree, its panel on double-click."""
 
@@ -72,8 +79,7 @@ class ViewProviderJoint(_ViewProxy):
         self.selected = False
         self.error = False
         obj = vobj.Object
-        self.marker = markers.Marker(obj.JointType, markers.size_for(_assembly_parts(obj)),
-                                     "dispcon_marker_" + obj.Name)
+        self.marker = markers.Marker(obj.JointType, "dispcon_marker_" + obj.Name)
         vobj.addDisplayMode(self.marker.root, "Marker")
         self.follow(obj)
 
@@ -98,8 +104,6 @@ class ViewProviderJoint(_ViewProxy):
             self.marker.set_type(obj.JointType)
             # The tree shows the new type's icon.
             obj.ViewObject.signalChangeIcon() if hasattr(obj.ViewObject, "signalChangeIcon") else None
-        if prop in ("Reference1", "Reference2"):
-            self.marker.set_size(markers.size_for(_assembly_parts(obj)))
         if prop in ("JointType", "Point1", "Axis1", "Point2", "Reference1", "Reference2", "Ratio"):
             self.follow(obj)
 
@@ -213,9 +217,11 @@ def attach(obj, kind=None):
     if not App.GuiUp or obj.ViewObject is None:
         return
     if isinstance(getattr(obj.ViewObject, "Proxy", None),
-                  (ViewProviderJoint, ViewProviderAssembly, ViewProviderSubAssembly)):
+                  (ViewProviderJoint, ViewProviderAssembly, ViewProviderSubAssembly, ViewProviderPart)):
         return
-    if kind == "Joint" or (kind is None and is_joint(obj)):
+    if kind == "Part":
+        ViewProviderPart(obj.ViewObject)
+    elif kind == "Joint" or (kind is None and is_joint(obj)):
         ViewProviderJoint(obj.ViewObject)
     elif kind == "SubAssembly":
         ViewProviderSubAssembly(obj.ViewObject)

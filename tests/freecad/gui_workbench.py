@@ -247,6 +247,7 @@ class TestMarkers(Documents):
         Gui.SendMsgToActiveView("ViewFit")
         settle()
         root = view.getSceneGraph()
+        coin.SoBaseKit.setSearchingChildren(True)  # the glyphs sit in a screen-scale node kit
         for j in objects.joints(asm):
             search = coin.SoSearchAction()
             search.setName("dispcon_marker_" + j.Name)
@@ -311,6 +312,47 @@ class TestMarkers(Documents):
         settle()
         self.assertGreater(orange_pixels(), 30)
 
+    def test_markers_keep_their_size_on_the_screen_at_any_zoom(self):
+        from dispcon_fc import objects, operations
+
+        asm, g, crank, coupler, rocker = self.fourbar()
+        operations.solve(asm)
+        view = self.view()
+        view.viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        js = objects.joints(asm)
+        for j in js[1:]:  # one marker alone, to measure it
+            j.ViewObject.Visibility = False
+        settle()
+
+        def extents(name):
+            """Width of the orange (the marker) and of the grey (the parts) drawn, in pixels."""
+            path = os.path.join(OUT, name + ".png")
+            view.saveImage(path, 640, 480, "White")
+            img = QtGui.QImage(path)
+            orange, grey = [], []
+            for x in range(0, 640):
+                for y in range(0, 480, 2):
+                    c = QtGui.QColor(img.pixel(x, y))
+                    if c.red() > 200 and 60 < c.green() < 170 and c.blue() < 60:
+                        orange.append(x)
+                    elif abs(c.red() - c.green()) < 12 and abs(c.green() - c.blue()) < 12 and 60 < c.red() < 230:
+                        grey.append(x)
+            self.assertTrue(orange and grey, "nothing drawn in %s" % path)
+            return max(orange) - min(orange), max(grey) - min(grey)
+
+        marker_near, parts_near = extents("zoom-near")
+        camera = view.getCameraNode()
+        camera.height.setValue(camera.height.getValue() * 3)  # zoomed out three times
+        settle()
+        marker_far, parts_far = extents("zoom-far")
+        self.assertLess(parts_far, parts_near * 0.45, "the zoom did not shrink the parts")
+        self.assertGreater(marker_near, 15)
+        self.assertLess(abs(marker_far - marker_near), 0.15 * marker_near,
+                        "the marker changed size with the zoom: %d px, then %d px" % (marker_near, marker_far))
+        for j in js[1:]:
+            j.ViewObject.Visibility = True
+
     def test_preselection_shows_the_marker_to_come(self):
         from pivy import coin
         from dispcon_fc.panels import joint as jp
@@ -357,6 +399,68 @@ def headless_fourbar(path):
     if not os.path.isfile(path):
         raise AssertionError("freecadcmd did not save %s:\n%s" % (path, run.stdout[-2000:]))
     return path
+
+
+def tree_icon(label):
+    """The icon the model tree shows beside `label`, as a 16x16 image (None when not listed)."""
+    for tree in mw().findChildren(QtWidgets.QTreeWidget):
+        items = tree.findItems(label, QtCore.Qt.MatchExactly | QtCore.Qt.MatchRecursive, 0)
+        if items:
+            return items[0].icon(0).pixmap(16, 16).toImage()
+    return None
+
+
+class TestTreeIcons(Documents):
+    def test_parts_and_grounded_parts_have_their_icons(self):
+        from dispcon_fc import operations
+        from dispcon_fc.viewproviders import icon
+        import parts
+
+        asm = operations.create_assembly(self.doc)
+        step = parts.write_step(parts.link(1.0), os.path.join(tempfile.mkdtemp(), "link.step"))
+        link = operations.import_part(asm, step, "Crank link")
+        post = operations.import_part(asm, step, "Post", grounded=True)
+        self.assertEqual(link.TypeId, "Part::FeaturePython")
+        settle()
+
+        def shows(label, name):
+            """The tree shows icon `name` beside `label`: nearly every pixel as the icon's own
+            (the tree may scale it a little), and not the part's other icon."""
+            image = tree_icon(label)
+            self.assertIsNotNone(image, "%s is not in the tree" % label)
+
+            def differing(other):
+                want = QtGui.QIcon(icon(other)).pixmap(16, 16).toImage()
+                return sum(1 for x in range(16) for y in range(16)
+                           if max(abs(a - b) for a, b in zip(QtGui.QColor(image.pixel(x, y)).getRgb(),
+                                                             QtGui.QColor(want.pixel(x, y)).getRgb())) > 48)
+
+            other = {"Part": "GroundedPart", "GroundedPart": "Part"}[name]
+            self.assertLess(differing(name), 13, "%s does not show the %s icon" % (label, name))
+            self.assertGreater(differing(other), 25, "%s shows the %s icon" % (label, other))
+
+        shows("Crank link", "Part")
+        shows("Post", "GroundedPart")
+        operations.set_grounded(link, True)
+        settle()
+        shows("Crank link", "GroundedPart")
+        operations.set_grounded(link, False)
+        settle()
+        shows("Crank link", "Part")
+        for tree in mw().findChildren(QtWidgets.QTreeWidget):
+            tree.expandAll()
+        shot("tree-icons")
+        # The shape is drawn as any part's, and it is kept through a save and a reopen.
+        path = os.path.join(tempfile.mkdtemp(), "parts.FCStd")
+        volume = link.Shape.Volume
+        self.doc.saveAs(path)
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        settle()
+        again = self.doc.getObjectsByLabel("Crank link")[0]
+        self.assertAlmostEqual(again.Shape.Volume, volume, places=9)
+        shows("Post", "GroundedPart")
+        self.assertFalse(Gui.getDocument(self.doc.Name).Modified)
 
 
 class TestRestored(unittest.TestCase):
@@ -743,7 +847,7 @@ def run_in_gui(classes, status_name):
 
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestRestored, TestJointPanel, TestErrors, TestDragMode, TestCouplings)
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestErrors, TestDragMode, TestCouplings)
                 if not only or only in cls.__name__], "status-workbench")
 
 

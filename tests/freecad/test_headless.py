@@ -682,11 +682,18 @@ class RobustOperations(unittest.TestCase):
         far.Label = "Far post"
         far.Shape = parts.ground([(9, 0)])
         da.add_part(asm, far, grounded=True)
-        da.add_joint(asm, "Ball", pin(far, (9, 0, 0)), pin(arm, (1.5, 0, 0)))
+        bad = da.add_joint(asm, "Ball", pin(far, (9, 0, 0)), pin(arm, (1.5, 0, 0)))
+        bad.Label = "Tip pin"
         asm.MaxIterations = 300
         c = da.check(asm)
         text = " ".join([c["message"]] + c["advice"])
         self.assertIsNone(re.search(r"\bp\d+_", text), text)
+        # The advice names the joint to fix by its label and its parts', never by its index.
+        self.assertIsNone(re.search(r"joint #\d", text), text)
+        culprit = c["conflicting"][0]
+        self.assertIn(culprit, (bad, da.joints(asm)[0]))
+        self.assertEqual("remove or loosen '%s' (joint between '%s' and 'Arm'): the other joints then hold"
+                         % (culprit.Label, "Far post" if culprit == bad else "Base plate"), c["advice"][0])
 
     def test_a_refused_operation_changes_nothing(self):
         asm, base, arm = arm_on_base(self.doc)

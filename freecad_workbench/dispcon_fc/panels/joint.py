@@ -310,8 +310,7 @@ class JointPanel:
             view = Gui.ActiveDocument.ActiveView if Gui.ActiveDocument else None
             if view is None:
                 return
-            size = markers.size_for([o for o in self.asm.Group if hasattr(o, "Shape")])
-            self.preview = markers.Marker(self.type_box.currentText(), size, "dispcon_preview")
+            self.preview = markers.Marker(self.type_box.currentText(), "dispcon_preview")
             self.preview_graph = view.getSceneGraph()
             self.preview_graph.addChild(self.preview.root)
         self.preview.set_type(self.type_box.currentText())
