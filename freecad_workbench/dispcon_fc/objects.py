@@ -171,6 +171,7 @@ class SubAssemblyProxy(_Proxy):
 
     def onDocumentRestored(self, obj):
         self.attach(obj)
+        _view_restored(obj, "SubAssembly")
 
     def onChanged(self, obj, prop):
         # Moving the instance carries its parts along (their placements in its frame stay).
@@ -301,7 +302,7 @@ def _view_restored(obj, kind):
     if not App.GuiUp or obj.ViewObject is None or obj.ViewObject.Proxy not in (None, 0):
         return
     _view(obj, kind)
-    if kind == "Assembly":
+    if kind in ("Assembly", "SubAssembly"):
         # A group given its view provider while restoring hides its children (FreeCAD's views
         # are all hidden until the restore ends); without a saved view state every object is
         # shown, as FreeCAD shows the objects of any document saved without one.
