@@ -47,6 +47,58 @@ def missing_part(j, parts_by_name):
     return ""
 
 
+# Features whose axis belongs to the geometry (a circle's, a line's, a plane's normal ...): a
+# vertex, a sphere or another face gives the world's z, which says nothing of the part.
+OWN_AXIS = ("circle", "line", "curve", "cylinder", "plane")
+ANCHORS = ("Point1", "Axis1", "Perp1", "Point2", "Axis2", "Perp2")
+LIVE_TYPES = ("Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "PointOnLine", "PointOnPlane",
+              "PointOnCurve", "Angle")
+
+
+def live_anchors(j):
+    """The joint's points and axes in each part's frame, read again from the referenced edges and
+    faces as the parts' shapes are now (a Pad made longer, a hole moved): {"Point1": ..., ...}.
+    What did not change keeps its stored value exactly; an axis keeps the sense it was given
+    (part 2's flipped when the picked axes pointed apart) and the twist reference stays across
+    it. A joint on the whole part keeps what it has. ValueError, naming the joint, when a
+    referenced element is gone (FreeCAD renumbers the edges and faces of a changed shape)."""
+    out = {name: App.Vector(getattr(j, name)) for name in ANCHORS}
+    if j.JointType not in LIVE_TYPES:  # couplings and Distance keep what they were made with
+        return out
+    for k, ref in (("1", j.Reference1), ("2", j.Reference2)):
+        part, subs = ref[0], ref[1]
+        sub = subs[0] if subs else ""
+        if not sub:
+            continue
+        try:
+            f = geometry.feature(part, sub)
+        except Exception:  # FreeCAD's errors vary (no such element, an edge with no curve)
+            raise ValueError("%s: %s has no %s any more, its shape changed: pick that reference again"
+                             % (j.Label, part.Label, sub)) from None
+        point = geometry.to_local(part.Placement, point=f.point)
+        stored = out["Point" + k]
+        if (point - stored).Length > 1e-9 * max(1.0, stored.Length):
+            out["Point" + k] = point
+        if f.kind not in OWN_AXIS:
+            continue
+        axis = geometry.to_local(part.Placement, axis=f.axis)
+        stored = out["Axis" + k]
+        if axis.dot(stored) < 0:
+            axis = axis * -1
+        if (axis - stored).Length > 1e-9:
+            out["Axis" + k] = axis
+            perp = out["Perp" + k]
+            perp = perp - axis * perp.dot(axis)
+            out["Perp" + k] = perp.normalize() if perp.Length > 1e-9 else _across(axis)
+    return out
+
+
+def _across(v):
+    """A unit vector across `v`."""
+    other = App.Vector(1, 0, 0) if abs(v.x) < 0.9 else App.Vector(0, 1, 0)
+    return v.cross(other).normalize()
+
+
 def kind_of(dispcon, joint_type):
     """The row of the engine's joint table (dispcon.joint_kinds()) for a workbench joint type:
     "PointOnLine" is the kind "point_on_line", "Gears" the kind "gear", "RackPinion" the kind
@@ -121,9 +173,11 @@ def coupling_kwargs(row, j):
     return kw
 
 
-def joint_kwargs(dispcon, j):
-    """The joint as add_joint's arguments: its kind, its anchors in each part's frame, and those
-    of its limits the kind takes (a revolute keeps no travel set while it was a slider)."""
+def joint_kwargs(dispcon, j, anchors=None):
+    """The joint as add_joint's arguments: its kind, its anchors in each part's frame (`anchors`,
+    from live_anchors, or those stored), and those of its limits the kind takes (a revolute keeps
+    no travel set while it was a slider)."""
+    a = anchors or {name: getattr(j, name) for name in ANCHORS}
     # Offset: part 2's point sits that far along part 1's axis; Reversed: part 2's axis flipped
     # (part 2 turned over about the twist reference, which stays put).
     offset = j.Offset.Value if "Offset" in j.PropertiesList else 0.0
@@ -135,9 +189,9 @@ def joint_kwargs(dispcon, j):
         return kw
     row = kind_of(dispcon, j.JointType)
     rad = math.radians
-    kw = dict(kind=row["name"], point1=_vec(j.Point1 + j.Axis1 * offset), point2=_vec(j.Point2),
-              axis1=_vec(j.Axis1), axis2=_vec(j.Axis2 * flip), across1=_vec(j.Perp1),
-              across2=_vec(j.Perp2))
+    kw = dict(kind=row["name"], point1=_vec(a["Point1"] + a["Axis1"] * offset), point2=_vec(a["Point2"]),
+              axis1=_vec(a["Axis1"]), axis2=_vec(a["Axis2"] * flip), across1=_vec(a["Perp1"]),
+              across2=_vec(a["Perp2"]))
     limits = {"angle": (rad(j.AngleMin.Value), rad(j.AngleMax.Value))}
     if j.HasRotationLimits:
         limits["turn"] = (rad(j.RotationMin.Value), rad(j.RotationMax.Value))
@@ -215,10 +269,18 @@ class Adapter:
             self.add_body(p, shape_of(p), physics)
         instance_joints = subassembly.add_instances(self, physics)
         # A joint that lost a part is left out of the model and reported, by its label.
+        # So is one whose picked edge or face is gone; the others take their geometry as the
+        # parts' shapes are now (anchors).
         self.skipped = []
+        self.anchors = {}
         active = []
         for j in joints(asm) + instance_joints:
             why = missing_part(j, self.frames)
+            if not why:
+                try:
+                    self.anchors[j.Name, j.Document.Name] = live_anchors(j)
+                except ValueError as e:
+                    why = str(e).split(": ", 1)[1]
             if why:
                 self.skipped.append((j, why))
             else:
@@ -227,7 +289,8 @@ class Adapter:
         with self.engine_errors():
             for j in self.joints:
                 (b1, l1), (b2, l2) = self.frames[j.Reference1[0].Name], self.frames[j.Reference2[0].Name]
-                kw = _in_body(_in_body(joint_kwargs(self.dispcon, j), "1", l1), "2", l2)
+                kw = joint_kwargs(self.dispcon, j, self.anchors[j.Name, j.Document.Name])
+                kw = _in_body(_in_body(kw, "1", l1), "2", l2)
                 self.model.add_joint(b2, object1=b1, label=j.Label, **kw)
 
     def add_body(self, owner, shape, physics, local=None):
@@ -326,6 +389,17 @@ class Adapter:
                 continue
             p.Placement = self.placement_of(p)
         subassembly.write_back(self)
+
+    def update_joints(self):
+        """Stores the geometry the joints were solved with (read from the live shapes) in the
+        joints of this document whose parts' shapes changed, so their markers follow (the joints
+        of a linked file are never changed)."""
+        for j in self.joints:
+            if j.Document != self.asm.Document:
+                continue
+            for name, value in self.anchors[j.Name, j.Document.Name].items():
+                if getattr(j, name) != value:
+                    setattr(j, name, value)
 
     def mark(self, result):
         for report, j in zip(result.constraints, self.joints):

@@ -437,6 +437,7 @@ def solve(asm, undo_step=True):
     with _step(asm.Document, "Solve assembly", undo_step):
         if r.converged:
             adapter.write_back()
+        adapter.update_joints()
         adapter.mark(r)
         result = Result(adapter, r)
         asm.LastSolve = result.message

@@ -636,6 +636,68 @@ class TestJointPanel(Documents):
         self.assertEqual(len([o for o in asm.Group if hasattr(o, "JointType")]), 1)
 
 
+    def test_opening_a_panel_while_another_is_picking(self):
+        # Regression: the second pick schedules the joint's creation on a timer; a panel opened
+        # before it ran (a double-click, another joint command) closed the first panel's dialog
+        # only, and the timer then read the first panel's deleted spin boxes ("Internal C++
+        # object (QAbstractSpinBox) already deleted", seen under load).
+        from dispcon_fc.panels import joint as jp
+
+        asm, base, arm, e1, e2 = self.arm()
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Dispcon_JointRevolute")
+        settle()
+        first = jp.current()
+        errors = []
+        hook = sys.excepthook
+        sys.excepthook = lambda *exc: errors.append("".join(traceback.format_exception(*exc)))
+        try:
+            Gui.Selection.addSelection(*e1)
+            Gui.Selection.addSelection(*e2)  # the timer is set, not yet run
+            second = jp.open_panel(asm=asm, joint_type="Slider")
+            settle()
+        finally:
+            sys.excepthook = hook
+        self.assertEqual(errors, [])
+        self.assertTrue(first.closed)
+        self.assertIs(jp.current(), second)
+        self.assertFalse([o for o in self.doc.Objects if hasattr(o, "JointType")],
+                         "the first panel made its joint after it was closed")
+        self.assertEqual(jp.raw(second.rot_min), 0.0)  # its widgets are alive
+        self.assertTrue(second.picking)
+        second.reject()
+
+    def test_pick_again_takes_new_references(self):
+        from dispcon_fc import objects
+        import parts
+
+        panel, asm, base, arm = self.open("Revolute")
+        joint = panel.joint
+        label = joint.Label
+        far = (arm, parts.circle_edge(arm.Shape, App.Vector(1.5, 0, 0)))
+        base_pin = (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0)))
+        QtCore.QTimer.singleShot(0, panel.pick_button.click)  # clicked as a person clicks it
+        settle()
+        self.assertTrue(panel.picking)
+        self.assertEqual(panel.ref_list.count(), 0)
+        self.assertIn("circular", panel.message.text())
+        Gui.Selection.addSelection(*base_pin)
+        Gui.Selection.addSelection(*far)
+        settle()
+        self.assertFalse(panel.picking)
+        self.assertEqual(panel.ref_list.count(), 2)
+        self.assertIn(far[1], panel.ref_list.item(1).text())
+        js = objects.joints(asm)
+        self.assertEqual(len(js), 1, "Pick again kept the old joint")
+        self.assertEqual(js[0].Label, label)
+        self.assertEqual(js[0].Reference2[1], [far[1]])
+        # The preview snapped the arm's far pin onto the base's pin.
+        self.assertLess(arm.Placement.multVec(App.Vector(1.5, 0, 0)).Length, 1e-6)
+        panel.ok_button().click()
+        settle()
+        self.assertEqual(len(objects.joints(asm)), 1)
+
+
 class TestErrors(Documents):
     def test_failed_solve_names_and_marks_the_conflicting_joint(self):
         from dispcon_fc import objects, operations, viewproviders

@@ -639,6 +639,53 @@ class RobustOperations(unittest.TestCase):
         tip = arm.Placement.multVec(App.Vector(1.5, 0, 0))
         self.assertAlmostEqual(math.hypot(tip.x, tip.y), 0.3, delta=0.3 * (1 - math.cos(math.pi / 64)) + 1e-7)
 
+    def test_joints_follow_their_parts_edited_geometry(self):
+        # A post made parametric (a Part::Cylinder), an arm pinned on its top circle: making the
+        # post taller moves the pin, and the arm follows at the next solve.
+        asm = da.create_assembly(self.doc)
+        post = self.doc.addObject("Part::Cylinder", "Post")
+        post.Radius, post.Height = 0.15, 1.0
+        self.doc.recompute()
+        da.add_part(asm, post, grounded=True)
+        arm = self.doc.addObject("Part::Feature", "Arm")
+        arm.Shape = parts.link(1.5)
+        da.add_part(asm, arm)
+        top = next("Edge%d" % (k + 1) for k, e in enumerate(post.Shape.Edges)
+                   if hasattr(e.Curve, "Radius") and abs(e.Curve.Center.z - 1.0) < 1e-9)
+        pin_edge = parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))
+        j = da.add_joint(asm, "Revolute", (post, top), (arm, pin_edge))
+        j.Label = "Post pin"
+        self.assertTrue(da.solve(asm).converged)
+        self.assertAlmostEqual(arm.Placement.multVec(App.Vector(0, 0, 0)).z, 1.0, places=7)
+        post.Height = 2.5
+        self.doc.recompute()
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        self.assertAlmostEqual(arm.Placement.multVec(App.Vector(0, 0, 0)).z, 2.5, places=7)
+        self.assertAlmostEqual(j.Point1.z, 2.5, places=9)  # stored: the marker follows too
+        # The post's radius grows: its top circle's centre and axis stay, so nothing moves.
+        before = arm.Placement
+        post.Radius = 0.3
+        self.doc.recompute()
+        self.assertTrue(da.solve(asm).converged)
+        self.assertTrue(same(arm.Placement, before, 1e-9))
+        # The referenced edge gone (the post is now a sphere: no such edge): the joint is named
+        # and skipped, nothing raises.
+        import Part
+
+        plain_post = self.doc.addObject("Part::Feature", "PlainPost")
+        plain_post.Label = "Plain post"
+        plain_post.Shape = post.Shape.copy()
+        da.add_part(asm, plain_post, grounded=True)
+        k = da.add_joint(asm, "Revolute", (plain_post, top), (arm, pin_edge))
+        k.Label = "Plain pin"
+        plain_post.Shape = Part.makeSphere(0.3)
+        r = da.solve(asm)
+        self.assertIn("skipped Plain pin (Plain post has no %s any more, its shape changed: pick that "
+                      "reference again)" % top, r.message)
+        self.assertEqual(r.skipped, [k])
+        self.assertIn(k, da.check(asm)["skipped"])
+
     def test_point_on_curve_needs_an_edge_and_says_so(self):
         asm, base, arm = arm_on_base(self.doc)
         face = next("Face%d" % (i + 1) for i, f in enumerate(base.Shape.Faces) if f.Surface.TypeId == "Part::GeomPlane")

@@ -151,7 +151,8 @@ class JointPanel:
         top.addStretch(1)
 
         self.type_box.currentTextChanged.connect(self._type_changed)
-        self.pick_button.clicked.connect(self._start_picking)
+        # (clicked passes its checked state, which is no list of references to keep)
+        self.pick_button.clicked.connect(lambda *_: self._start_picking())
         self.reverse.toggled.connect(self._changed)
         for box in (self.offset, self.rot_min, self.rot_max, self.tr_min, self.tr_max, self.cone,
                     self.ang_min, self.ang_max, self.distance, self.ratio, self.radius, self.pitch, self.phase):
@@ -329,8 +330,9 @@ class JointPanel:
     # -- changes and the preview --------------------------------------------------------------
     def _replace(self):
         """The joint on the new references: the old one (if any) goes, inside the panel's
-        transaction, so Cancel brings it back."""
-        if self.closed:
+        transaction, so Cancel brings it back. (It runs from a timer: by then the panel may be
+        closed, its widgets deleted.)"""
+        if self.closed or self._gone():
             return
         self._hide_preview()
         if self.joint is not None:
@@ -407,7 +409,7 @@ class JointPanel:
         return None
 
     def _changed(self, *_):
-        if self.loading:
+        if self.loading or self._gone():
             return
         self._show_fields()
         bad = self.problem()
@@ -497,6 +499,13 @@ def markers_icon(kind):
 def open_panel(joint=None, asm=None, joint_type=None, refs=()):
     """Shows the panel for `joint`, or for a new joint of `asm` on `refs` (picked in the 3D view
     when fewer than two); returns it."""
+    # Another joint panel open: cancelled as its Cancel would (its transaction aborted, its
+    # observer and timers stopped). Closing only the dialog left that panel alive with its
+    # widgets deleted: its pending _replace then ran inside this call and read a deleted spin
+    # box ("Internal C++ object (QAbstractSpinBox) already deleted", seen under load).
+    previous = current()
+    if previous is not None:
+        previous.reject()
     if Gui.Control.activeDialog():
         Gui.Control.closeDialog()
     if joint is not None:
