@@ -739,6 +739,53 @@ class TestErrors(Documents):
         self.assertNotIn("Impossible", mw().statusBar().currentMessage())
 
 
+def answer_save_dialog(path):
+    """Types `path` into the save dialog about to open and accepts it, as a person would."""
+    def answer():
+        dialog = QtWidgets.QApplication.activeModalWidget()
+        if not isinstance(dialog, QtWidgets.QFileDialog):
+            QtCore.QTimer.singleShot(50, answer)
+            return
+        dialog.selectFile(path)
+        dialog.accept()
+
+    QtCore.QTimer.singleShot(50, answer)
+
+
+class TestCheckPanel(Documents):
+    def test_the_check_panel_exports_its_report_and_a_motion_study(self):
+        import json
+
+        asm, g, crank, coupler, rocker = self.fourbar()
+        from dispcon_fc import operations
+
+        operations.solve(asm)
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        Gui.runCommand("Dispcon_Check")
+        settle()
+        from dispcon_fc import panels
+
+        panel = panels.last_panel
+        out = tempfile.mkdtemp()
+        answer_save_dialog(os.path.join(out, "check.json"))
+        panel.form.exportReport.click()
+        settle()
+        with open(os.path.join(out, "check.json")) as f:
+            report = json.load(f)
+        self.assertEqual(report["dof"], 1)
+        self.assertIn("check.json", panel.form.report.toPlainText())
+        Gui.Selection.clearSelection()
+        answer_save_dialog(os.path.join(out, "crank.svg"))
+        panel.form.motionStudy.click()
+        settle()
+        for name in ("crank.svg", "crank-plot.svg", "crank.csv"):
+            self.assertTrue(os.path.getsize(os.path.join(out, name)) > 100, name)
+        with open(os.path.join(out, "crank.csv")) as f:
+            self.assertGreater(len(f.readlines()), 100)
+        shot("check-exports")
+
+
 def gui_text(widget):
     """Every label's and text box's text under the task view."""
     out = []
@@ -916,7 +963,7 @@ def run_in_gui(classes, status_name):
 
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestErrors, TestDragMode, TestCouplings)
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestCheckPanel, TestErrors, TestDragMode, TestCouplings)
                 if not only or only in cls.__name__], "status-workbench")
 
 

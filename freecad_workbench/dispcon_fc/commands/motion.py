@@ -47,28 +47,44 @@ def _drive():
     return reached
 
 
-def _motion_study():
-    """Drives the selected joint (or the first revolute) through a full turn, or a slider through
-    its limits, and exports the animated SVG, the plot and the CSV (dispcon_fc.studies)."""
-    from PySide import QtGui
-
-    from .. import studies
-
-    asm = active_assembly()
+def study_joint(asm):
+    """The joint a motion study sweeps: the selected one, else the assembly's first revolute."""
     js = [o for o in Gui.Selection.getSelection() if o in joints(asm)] or \
          [j for j in joints(asm) if j.JointType == "Revolute"]
     if not js:
         raise ValueError("select a revolute or slider joint for the motion study")
-    path, _ = QtGui.QFileDialog.getSaveFileName(None, "Motion study of %s" % js[0].Label,
-                                                js[0].Label + ".svg", "SVG (*.svg)")
-    if not path:
-        return None
+    return js[0]
+
+
+def save_path(title, suggested, filter_text):
+    """A path from a save dialog (Qt's own, the same under any desktop), or "" when cancelled."""
+    from PySide2 import QtWidgets
+
+    path, _ = QtWidgets.QFileDialog.getSaveFileName(Gui.getMainWindow(), title, suggested, filter_text,
+                                                    options=QtWidgets.QFileDialog.DontUseNativeDialog)
+    return path
+
+
+def export_motion_study(asm, joint, path):
+    """Sweeps `joint` and writes the animated SVG at `path`, its plot beside it (-plot.svg) and
+    the CSV (dispcon_fc.studies); reports what it wrote. Returns the study."""
+    from .. import studies
+
     base = path[:-4] if path.lower().endswith(".svg") else path
-    study = studies.export_drive_study(asm, js[0], svg_path=base + ".svg", plot_path=base + "-plot.svg",
+    study = studies.export_drive_study(asm, joint, svg_path=base + ".svg", plot_path=base + "-plot.svg",
                                        csv_path=base + ".csv")
     report("%s (written: %s.svg, %s-plot.svg, %s.csv)" % (study.message, base, base, base),
            error=study.exit_code() != 0)
     return study
+
+
+def _motion_study():
+    """Drives the selected joint (or the first revolute) through a full turn, or a slider through
+    its limits, and exports the animated SVG, the plot and the CSV (dispcon_fc.studies)."""
+    asm = active_assembly()
+    joint = study_joint(asm)
+    path = save_path("Motion study of %s" % joint.Label, joint.Label + ".svg", "SVG (*.svg)")
+    return export_motion_study(asm, joint, path) if path else None
 
 
 def commands():

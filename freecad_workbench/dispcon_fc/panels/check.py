@@ -4,6 +4,8 @@ import FreeCADGui as Gui
 
 from .. import operations
 from ..feedback import labels, mark, report, status
+from ..commands.motion import export_motion_study, save_path, study_joint
+from ..objects import joints as joints_of
 from . import load_ui
 
 
@@ -30,11 +32,43 @@ class CheckPanel:
         if headline:
             self.form.summary.setText(headline)
             self.form.summary.setStyleSheet("color: #cc0000; font-weight: bold;")
+        self.asm = asm
+        # The exports a designer wants next, without another command: the report as JSON, and
+        # the motion study (animated SVG, plot, CSV) of the selected joint or the first revolute.
+        self.form.exportReport.clicked.connect(lambda *_: self._export_report())
+        self.form.motionStudy.clicked.connect(lambda *_: self._motion_study())
+        self.form.motionStudy.setEnabled(bool(joints_of(asm)))
         mark(asm, c["conflicting"])
         if headline is None:
             report(c["message"], error=not c["converged"])
             status("Check: %d degree(s) of freedom%s" % (c["dof"], "; conflicting: " + labels(c["conflicting"])
                                                         if c["conflicting"] else ""))
+
+    def _export_report(self):
+        path = save_path("Export the check of %s" % self.asm.Label, self.asm.Label + "-check.json", "JSON (*.json)")
+        if path:
+            self.export_report(path)
+
+    def export_report(self, path):
+        """Writes the check as the command line's JSON at `path`; says so in the panel."""
+        from .. import studies
+
+        studies.export_check_report(self.asm, path)
+        self._said("Written: %s" % path)
+
+    def _motion_study(self):
+        try:
+            joint = study_joint(self.asm)
+            path = save_path("Motion study of %s" % joint.Label, joint.Label + ".svg", "SVG (*.svg)")
+            if path:
+                study = export_motion_study(self.asm, joint, path)
+                self._said("%s; written: %s and its plot and CSV" % (study.message, path))
+        except ValueError as e:
+            self._said(str(e))
+
+    def _said(self, text):
+        self.form.report.appendPlainText(text)
+        status(text)
 
     def accept(self):
         Gui.Control.closeDialog()
