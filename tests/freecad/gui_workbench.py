@@ -739,17 +739,21 @@ class TestErrors(Documents):
         self.assertNotIn("Impossible", mw().statusBar().currentMessage())
 
 
-def answer_save_dialog(path):
-    """Types `path` into the save dialog about to open and accepts it, as a person would."""
-    def answer():
-        dialog = QtWidgets.QApplication.activeModalWidget()
-        if not isinstance(dialog, QtWidgets.QFileDialog):
-            QtCore.QTimer.singleShot(50, answer)
-            return
-        dialog.selectFile(path)
+def answer_save_dialog(path, tries=100):
+    """Types `path` into the save dialog about to open and presses Save, as a person would; again
+    while that dialog stays open (under load it may not be ready for the first keystrokes)."""
+    dialog = QtWidgets.QApplication.activeModalWidget()
+    if isinstance(dialog, QtWidgets.QFileDialog) and dialog.isVisible():
+        name = dialog.findChild(QtWidgets.QLineEdit, "fileNameEdit")
+        if name is not None:
+            name.setText(path)
+        else:
+            dialog.selectFile(path)
         dialog.accept()
-
-    QtCore.QTimer.singleShot(50, answer)
+    if tries and (dialog is None or isinstance(dialog, QtWidgets.QFileDialog)):
+        if dialog is None or dialog.isVisible():
+            QtCore.QTimer.singleShot(100, lambda: answer_save_dialog(path, tries - 1) if (
+                QtWidgets.QApplication.activeModalWidget() is not None or dialog is None) else None)
 
 
 class TestCheckPanel(Documents):
@@ -768,7 +772,7 @@ class TestCheckPanel(Documents):
 
         panel = panels.last_panel
         out = tempfile.mkdtemp()
-        answer_save_dialog(os.path.join(out, "check.json"))
+        QtCore.QTimer.singleShot(50, lambda: answer_save_dialog(os.path.join(out, "check.json")))
         panel.form.exportReport.click()
         settle()
         with open(os.path.join(out, "check.json")) as f:
@@ -776,7 +780,7 @@ class TestCheckPanel(Documents):
         self.assertEqual(report["dof"], 1)
         self.assertIn("check.json", panel.form.report.toPlainText())
         Gui.Selection.clearSelection()
-        answer_save_dialog(os.path.join(out, "crank.svg"))
+        QtCore.QTimer.singleShot(50, lambda: answer_save_dialog(os.path.join(out, "crank.svg")))
         panel.form.motionStudy.click()
         settle()
         for name in ("crank.svg", "crank-plot.svg", "crank.csv"):
