@@ -55,7 +55,6 @@ double bound(const pyb::sequence& s, size_t k, double fallback) {
   return number(s[k], "a bound");
 }
 
-
 std::optional<Range> range(const pyb::handle& h, const char* what) {
   if (h.is_none()) return std::nullopt;
   const pyb::sequence s = items(pyb::reinterpret_borrow<pyb::object>(h), 2, what);
@@ -68,12 +67,25 @@ Joint joint_of_kind(const Model& model, const std::string& kind, const std::stri
   const JointKindRow* row = find_joint_kind(kind);
   if (!row) {
     std::string known;
-    for (const JointKindRow& r : joint_kinds()) known += (known.empty() ? "" : ", ") + std::string(r.name);
+    for (const JointKindRow& r : joint_kinds())
+      known += (known.empty() ? "" : ", ") + std::string(r.name);
     throw std::invalid_argument("unknown joint kind '" + kind + "' (expected " + known + ")");
   }
   Anchor at1, at2;
   JointLimits limits;
   std::vector<Vec3> curve;
+  CouplingValues coupling;
+  // A coupling kind also takes its row's value (ratio, radius or pitch), `left` and `phase`.
+  std::vector<ArgSpec> coupling_args;
+  if (row->coupling) {
+    for (const ArgSpec& a : component(*row->coupling).args)
+      if (a.kind == Arg::NamedPositive || is_optional(a.kind)) coupling_args.push_back(a);
+  }
+  auto coupling_arg = [&](const std::string& key) -> const ArgSpec* {
+    for (const ArgSpec& a : coupling_args)
+      if (key == a.name) return &a;
+    return nullptr;
+  };
   for (const auto& item : kw) {
     const std::string key = pyb::str(item.first);
     const pyb::handle v = item.second;
@@ -102,14 +114,28 @@ Joint joint_of_kind(const Model& model, const std::string& kind, const std::stri
       limits.distance = range(v, "distance (min, max)");
     } else if (key == "cone") {
       if (!v.is_none()) limits.cone = number(v, "cone");
+    } else if (const ArgSpec* a = coupling_arg(key)) {
+      if (v.is_none()) continue;
+      if (a->kind == Arg::Flag) {
+        if (!pyb::isinstance<pyb::bool_>(v))
+          throw std::invalid_argument(key + " must be True or False");
+        coupling.left = v.cast<bool>();
+      } else if (a->kind == Arg::NamedOption) {
+        coupling.phase = number(v, a->name);
+      } else {
+        coupling.value = number(v, a->name);
+      }
     } else {
-      throw std::invalid_argument(
-          "add_joint(kind='" + kind + "') takes point1, point2, axis1, axis2, across1, across2, "
-          "curve, turn, travel, cone, angle, distance; not '" + key + "'");
+      std::string extra;
+      for (const ArgSpec& a : coupling_args) extra += std::string(", ") + a.name;
+      throw std::invalid_argument("add_joint(kind='" + kind +
+                                  "') takes point1, point2, axis1, axis2, across1, across2, "
+                                  "curve, turn, travel, cone, angle, distance" +
+                                  extra + "; not '" + key + "'");
     }
   }
   return make_joint(row->kind, body_id(model, object1), at1, body_id(model, object2), at2, limits,
-                    curve);
+                    curve, coupling);
 }
 
 // A joint from the .dcl statements, each a tuple in the order the statement is written (the
@@ -134,12 +160,16 @@ Joint joint_of_components(const pyb::kwargs& kw) {
     const pyb::object o = pyb::reinterpret_borrow<pyb::object>(item.second);
     ComponentValues v;
     v.bounds = row->defaults;
-    // polyline=[p, q, ...] is its list of points; every other statement is a tuple.
+    // polyline=[p, q, ...] is its list of points; every other statement is a tuple, its
+    // optional items (a screw's left, a coupling's phase) last and None when not given.
     const bool list_only = row->args.size() == 1 && row->args[0].kind == Arg::Points;
-    const pyb::sequence s = items(o, list_only ? 2 : row->args.size(), key.c_str());
+    size_t required = 0;
+    for (const ArgSpec& a : row->args) required += !is_optional(a.kind);
+    const pyb::sequence s = items(o, list_only ? 2 : required, key.c_str());
     size_t k = 0;
     for (const ArgSpec& a : row->args) {
       const std::string what = key + " " + a.name;
+      const bool given = k < pyb::len(s) && !s[k].is_none();
       switch (a.kind) {
         case Arg::Point:
         case Arg::Direction:
@@ -147,11 +177,22 @@ Joint joint_of_components(const pyb::kwargs& kw) {
           break;
         case Arg::PositiveLength:
         case Arg::NonNegativeLength:
+        case Arg::NamedPositive:
           v.scalars.push_back(number(s[k++], what.c_str()));
           break;
         case Arg::Points:
           for (const pyb::handle p : s) v.points.push_back(vec3(p, what.c_str()));
           k = pyb::len(s);
+          break;
+        case Arg::Flag:
+          if (given && !pyb::isinstance<pyb::bool_>(s[k]))
+            throw std::invalid_argument(what + " must be True or False");
+          v.flags.push_back(given && s[k].cast<bool>());
+          ++k;
+          break;
+        case Arg::NamedOption:
+          v.options.push_back(given ? std::optional(number(s[k], what.c_str())) : std::nullopt);
+          ++k;
           break;
       }
     }
@@ -289,9 +330,10 @@ ModelClass bind_model(pyb::module_& m) {
           pyb::arg("move") = pyb::none(), pyb::arg("time") = pyb::none(), pyb::arg("label") = "",
           "Adds a joint and returns its index. Either a kind (dispcon.joint_kinds()) with\n"
           "point1, point2, axis1, axis2, across1, across2, curve and its limits (turn, travel,\n"
-          "cone, angle, distance), or the .dcl statements (hinge, axial, planar, sphere, circle,\n"
-          "cylinder, polyline, angle, twist). A bound clamped into its range warns\n"
-          "(dispcon.ModelWarning).")
+          "cone, angle, distance) or, for a coupling (gear, belt, rack, screw), its ratio,\n"
+          "radius or pitch, left and phase; or the .dcl statements (hinge, axial, planar, sphere,\n"
+          "circle, cylinder, polyline, angle, twist, gear, belt, rack, screw). A bound clamped\n"
+          "into its range warns (dispcon.ModelWarning).")
       .def("body_names",
            [](const Model& model) {
              std::vector<std::string> out;
@@ -324,8 +366,9 @@ ModelClass bind_model(pyb::module_& m) {
             if (i < 0 || i >= model.joint_count())
               throw std::invalid_argument("no joint " + std::to_string(i));
             const Joint& j = model.joint(JointId{i});
-            return JointInfo{i, j.line, model.body(j.body1).name, model.body(j.body2).name,
-                             j.label, kind_name(j)};
+            return JointInfo{
+                i,       j.line,      model.body(j.body1).name, model.body(j.body2).name,
+                j.label, kind_name(j)};
           },
           pyb::arg("index"),
           "The joint's index, object1, object2, line (0 if built in code), label, kind.")

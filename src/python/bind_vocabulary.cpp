@@ -45,6 +45,12 @@ const char* to_string(Arg a) {
       return "non-negative length";
     case Arg::Points:
       return "points";
+    case Arg::NamedPositive:
+      return "named positive number";
+    case Arg::Flag:
+      return "flag";
+    case Arg::NamedOption:
+      return "named option";
   }
   return "?";
 }
@@ -98,13 +104,22 @@ void bind_vocabulary(pyb::module_& m) {
           d["needs_axis"] = r.needs_axis();
           d["needs_across"] = r.needs_across();
           d["needs_curve"] = r.needs_curve();
+          // A coupling's statement and what add_joint takes for it beside the anchors.
+          pyb::list takes;
+          if (r.coupling) {
+            for (const ArgSpec& a : component(*r.coupling).args)
+              if (a.kind == Arg::NamedPositive || is_optional(a.kind)) takes.append(a.name);
+          }
+          d["coupling"] = r.coupling ? pyb::object(pyb::str(to_string(*r.coupling))) : pyb::none();
+          d["coupling_args"] = takes;
           out.append(d);
         }
         return out;
       },
       "The named joints, one dict per row of the engine's table: name (add_joint's kind), title,\n"
-      "meaning, what it composes (hinge, guide, angle, twist), the limits it takes, what it "
-      "needs.");
+      "meaning, what it composes (hinge, guide, angle, twist, coupling), the limits it takes,\n"
+      "what it needs, and a coupling's arguments (coupling_args: its ratio, radius or pitch,\n"
+      "left, phase).");
   m.def(
       "components",
       [] {
@@ -114,6 +129,7 @@ void bind_vocabulary(pyb::module_& m) {
           d["keyword"] = r.keyword;
           d["meaning"] = r.meaning;
           d["guide"] = r.guide.has_value();
+          d["coupling"] = r.coupling.has_value();
           pyb::list args;
           for (const ArgSpec& a : r.args) args.append(pyb::make_tuple(a.name, to_string(a.kind)));
           d["args"] = args;

@@ -359,7 +359,8 @@ class Vocabulary(unittest.TestCase):
         names = [k["name"] for k in dispcon.joint_kinds()]
         self.assertEqual(len(names), len(set(names)))
         for k in ("fixed", "revolute", "slider", "cylindrical", "ball", "planar", "point_on_line",
-                  "point_on_plane", "point_on_curve", "parallel", "perpendicular", "angle", "distance"):
+                  "point_on_plane", "point_on_curve", "parallel", "perpendicular", "angle", "distance",
+                  "gear", "belt", "rack", "screw"):
             self.assertIn(k, names)
         for row in dispcon.joint_kinds():
             with self.subTest(kind=row["name"]):
@@ -368,8 +369,12 @@ class Vocabulary(unittest.TestCase):
                 kw = {name: limits[name] for name in row["limits"]}
                 if row["needs_curve"]:
                     kw["curve"] = [(0, 0, 0), (1, 0, 0), (1, 1, 0)]
+                if row["coupling"]:
+                    kw[row["coupling_args"][0]] = 0.5  # its ratio, radius or pitch
+                # A rack travels across its pinion's axis.
+                axis2 = (1, 0, 0) if row["name"] == "rack" else Z
                 i = m.add_joint("a", kind=row["name"], point1=(0, 0, 0), point2=(0.1, 0, 0),
-                                axis1=(0, 0, 2), axis2=Z, label=row["title"], **kw)
+                                axis1=(0, 0, 2), axis2=axis2, label=row["title"], **kw)
                 self.assertEqual(m.joint(i).kind, row["name"])
                 back = dispcon.loads(m.to_dcl())
                 self.assertEqual(back.joint(0).kind, row["name"])
@@ -402,6 +407,85 @@ class Vocabulary(unittest.TestCase):
             m.add_joint("a", bogus=1)
         with self.assertRaisesRegex(ValueError, "at most one translation guide"):
             m.add_joint("a", axial=(Z,), planar=(Z,))
+        self.assertEqual(m.joint_count(), 0)
+
+    def test_couplings_by_kind_and_by_statement_are_the_same_joint(self):
+        rows = {r["name"]: r for r in dispcon.joint_kinds()}
+        self.assertEqual(rows["gear"]["coupling_args"], ["ratio", "phase"])
+        self.assertEqual(rows["rack"]["coupling_args"], ["radius", "phase"])
+        self.assertEqual(rows["screw"]["coupling_args"], ["pitch", "left", "phase"])
+        self.assertIsNone(rows["revolute"]["coupling"])
+        gear = [c for c in dispcon.components() if c["keyword"] == "gear"][0]
+        self.assertTrue(gear["coupling"])
+        self.assertEqual([a[0] for a in gear["args"]], ["C1", "a1", "C2", "a2", "ratio", "phase"])
+        cases = [
+            (dict(kind="gear", ratio=2.0, phase=0.25), dict(gear=((0, 0, 0), Z, (1, 0, 0), Z, 2.0, 0.25))),
+            (dict(kind="belt", ratio=0.5), dict(belt=((0, 0, 0), Z, (1, 0, 0), Z, 0.5))),
+            (dict(kind="rack", radius=0.3, phase=0.0),
+             dict(rack=((0, 0, 0), Z, (1, 0, 0), (0, 1, 0), 0.3, 0.0))),
+            (dict(kind="screw", pitch=0.2, left=True, phase=0.0),
+             dict(hinge=((0, 0, 0), (1, 0, 0)), axial=(Z,), angle=(Z, Z, 0, 0),
+                  screw=((0, 0, 0), Z, (1, 0, 0), Z, 0.2, True, 0.0))),
+        ]
+        for by_kind, by_statement in cases:
+            with self.subTest(kind=by_kind["kind"]):
+                a, b = dispcon.Model(), dispcon.Model()
+                for m in (a, b):
+                    m.add_body("g", position=(2, 0, 0))
+                axis2 = (0, 1, 0) if by_kind["kind"] == "rack" else Z
+                a.add_joint("g", point2=(1, 0, 0), axis1=Z, axis2=axis2, **by_kind)
+                b.add_joint("g", **by_statement)
+                self.assertEqual(a.to_dcl(), b.to_dcl())
+                self.assertEqual(a.joint(0).kind, by_kind["kind"])
+                back = dispcon.loads(a.to_dcl())
+                self.assertEqual(back.to_dcl(), a.to_dcl())
+
+    def test_a_gear_pair_built_in_python_holds_its_ratio(self):
+        # Two gears on the frame, radii 1 and 2 (ratio 2), the first dragged a quarter turn: the
+        # second turns back by half as much.
+        m = dispcon.Model()
+        m.add_body("g1")
+        m.add_body("g2", position=(3, 0, 0))
+        m.add_joint("g1", kind="revolute")
+        m.add_joint("g2", kind="revolute", point1=(3, 0, 0))
+        m.add_joint("g2", object1="g1", kind="gear", point2=(0, 0, 0), ratio=0.5)
+        self.assertEqual(m.check().dof, 1)
+        m.body("g1").fixed = True
+        m.set_pose("g1", rotation=(0, 0, math.pi / 2))
+        self.assertTrue(m.solve().converged)
+        self.assertAlmostEqual(m.body("g2").rotation_vector[2], -math.pi / 4, delta=1e-9)
+
+    def test_bad_coupling_arguments_raise_value_error_naming_them(self):
+        m = dispcon.Model()
+        m.add_body("a", position=(1, 0, 0))
+        with self.assertRaisesRegex(ValueError, "gear needs its ratio"):
+            m.add_joint("a", kind="gear")
+        with self.assertRaisesRegex(ValueError, "gear ratio must be positive, found -1"):
+            m.add_joint("a", kind="gear", ratio=-1)
+        with self.assertRaisesRegex(ValueError, "ratio must be a number"):
+            m.add_joint("a", kind="gear", ratio="two")
+        with self.assertRaisesRegex(ValueError, "pitch must be a number"):
+            m.add_joint("a", kind="screw", pitch=[1])
+        with self.assertRaisesRegex(ValueError, "left must be True or False"):
+            m.add_joint("a", kind="screw", pitch=1, left=1)
+        with self.assertRaisesRegex(ValueError, r"add_joint\(kind='belt'\) takes .*, ratio, phase; not 'left'"):
+            m.add_joint("a", kind="belt", ratio=1, left=True)
+        with self.assertRaisesRegex(ValueError, "not 'left'"):
+            m.add_joint("a", kind="revolute", left=True)
+        with self.assertRaisesRegex(ValueError, r"kind='revolute'\) takes .*; not 'ratio'"):
+            m.add_joint("a", kind="revolute", ratio=2)
+        with self.assertRaisesRegex(ValueError, r"kind='rack'\) takes .*, radius, phase; not 'ratio'"):
+            m.add_joint("a", kind="rack", ratio=2)
+        with self.assertRaisesRegex(ValueError, "gear a2 is a zero vector"):
+            m.add_joint("a", kind="gear", ratio=1, axis2=(0, 0, 0))
+        with self.assertRaisesRegex(ValueError, "gear phase is not a number"):
+            m.add_joint("a", kind="gear", ratio=1, phase=float("nan"))
+        with self.assertRaisesRegex(ValueError, "the turn has no reference"):
+            m.add_joint("a", kind="gear", ratio=1, point1=(1, 0, 0))
+        with self.assertRaisesRegex(ValueError, "screw left must be True or False"):
+            m.add_joint("a", screw=((0, 0, 0), Z, (0, 0, 0), Z, 1, "yes"))
+        with self.assertRaisesRegex(ValueError, "gear needs at least 5 items"):
+            m.add_joint("a", gear=((0, 0, 0), Z, (0, 0, 0), Z))
         self.assertEqual(m.joint_count(), 0)
 
     def test_clamped_bounds_warn_instead_of_passing_silently(self):

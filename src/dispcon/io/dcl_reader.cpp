@@ -56,10 +56,12 @@ struct ConstraintBlock {
   bool has_object2 = false;
   Joint joint;
   Statements seen;
-  std::string guide;  // the keyword of its translation guide
+  std::string guide;     // the keyword of its translation guide
+  std::string coupling;  // the keyword of its coupling
   bool ok = true;
-  Place coupling_at;
 };
+
+bool read_file(const std::string& path, std::string& text);
 
 // Thrown inside the parser to abandon one statement; caught at statement level.
 struct StatementError {};
@@ -213,61 +215,6 @@ class Parser {
     next();
   }
 
-  // `gear|belt C1 a1 C2 a2 ratio r`, `rack C1 a1 C2 u radius r`, `screw C1 a1 C2 a2 pitch p
-  // {left}`, then `{phase f}` and `;` (the keyword `k` has been read).
-  CouplingSpec coupling(const std::string& k) {
-    CouplingSpec c;
-    c.kind = k == "gear"   ? CouplingKind::Gear
-             : k == "belt" ? CouplingKind::Belt
-             : k == "rack" ? CouplingKind::Rack
-                           : CouplingKind::Screw;
-    const bool rack = c.kind == CouplingKind::Rack;
-    // An axis: three numbers, not all zero (the model normalises it).
-    auto direction = [&](const std::string& what) {
-      const Token& first = peek();
-      const Vec3 v = vec3(what);
-      if (v == Vec3::Zero()) {
-        error(at(first), what + " is a zero vector");
-        throw StatementError{};
-      }
-      return v;
-    };
-    c.c1 = vec3(k + (rack ? " pinion centre" : " centre1"));
-    c.a1 = direction(k + (rack ? " pinion axis" : " axis1"));
-    c.c2 = vec3(k + (rack ? " rack point" : " centre2"));
-    c.a2 = direction(k + (rack ? " rack direction" : " axis2"));
-    const char* value_name = rack ? "radius" : c.kind == CouplingKind::Screw ? "pitch" : "ratio";
-    const Token& v = peek();
-    if (v.kind != Token::Word || v.text != value_name) {
-      error(at(v), "expected '" + std::string(value_name) + "' in " + k + ", found " + quote(v));
-      throw StatementError{};
-    }
-    next();
-    const Token& first = peek();
-    c.value = number(k + " " + value_name);
-    if (!(c.value > 0)) {
-      error(at(first), k + " " + value_name + " must be positive");
-      throw StatementError{};
-    }
-    if (c.kind == CouplingKind::Screw && peek().kind == Token::Word && peek().text == "left") {
-      next();
-      c.left = true;
-    }
-    if (peek().kind == Token::Word && peek().text == "phase") {
-      next();
-      c.phase = number(k + " phase");
-    }
-    if (peek().kind != Token::Semicolon) {
-      error(at(peek()),
-            std::string("expected ") +
-                (c.kind == CouplingKind::Screw && !c.left && !c.phase ? "'left', " : "") +
-                (c.phase ? "" : "'phase' or ") + "';' in " + k + ", found " + quote(peek()));
-      throw StatementError{};
-    }
-    next();
-    return c;
-  }
-
   // A block's statement keyword: a word, not given before in the block (`seen` records it).
   const std::string& keyword(const Token& t, const char* block, const std::string& where,
                              std::map<std::string, Place>& seen) {
@@ -384,12 +331,16 @@ class Parser {
     objects_.push_back(ob);
   }
 
-  // A component's statement (hinge, a guide, angle, twist) as its row of components() says:
-  // its arguments, then `{min} {max}` or `;`. The model checks the values.
+  // A component's statement (hinge, a guide, angle, twist, a coupling) as its row of
+  // components() says: its arguments, then `{min} {max}` or its optional words and `;`. The model
+  // checks the values; the place of each argument is kept under "KEYWORD ARG" in `cb.seen`, so
+  // that a value the model refuses is reported where it is written.
   void component_statement(const ComponentRow& row, const std::string& k, ConstraintBlock& cb) {
     ComponentValues v;
+    auto mark = [&](const ArgSpec& a, const Token& t) { cb.seen[k + " " + a.name] = at(t); };
     for (const ArgSpec& a : row.args) {
       const std::string what = k + " " + a.name;
+      mark(a, peek());
       switch (a.kind) {
         case Arg::Point:
         case Arg::Direction:
@@ -399,6 +350,17 @@ class Parser {
         case Arg::NonNegativeLength:
           v.scalars.push_back(number(what));
           break;
+        case Arg::NamedPositive: {
+          const Token& w = peek();
+          if (w.kind != Token::Word || w.text != a.name) {
+            error(at(w), "expected '" + std::string(a.name) + "' in " + k + ", found " + quote(w));
+            throw StatementError{};
+          }
+          next();
+          mark(a, peek());
+          v.scalars.push_back(number(what));
+          break;
+        }
         case Arg::Points: {
           const Token& first = peek();
           std::vector<double> x;
@@ -411,16 +373,60 @@ class Parser {
           for (size_t i = 0; i < x.size(); i += 3) v.points.emplace_back(x[i], x[i + 1], x[i + 2]);
           break;
         }
+        case Arg::Flag:
+          v.flags.push_back(false);
+          break;
+        case Arg::NamedOption:
+          v.options.emplace_back();
+          break;
       }
     }
     if (row.has_bounds) {
       v.bounds = row.defaults;
       bounds(k, v.bounds.min, v.bounds.max);
     } else {
-      semicolon(k);
+      options(row, k, v, cb);
     }
     set_component(cb.joint, row.id, v);
     if (row.guide) cb.guide = k;
+    if (row.coupling) cb.coupling = k;
+  }
+
+  // The optional words of a statement (`left`, `phase f`), each at most once and in any order,
+  // then `;`.
+  void options(const ComponentRow& row, const std::string& k, ComponentValues& v,
+               ConstraintBlock& cb) {
+    std::vector<bool> given(row.args.size(), false);
+    while (peek().kind == Token::Word) {
+      size_t i = 0, flag = 0, option = 0;
+      for (; i < row.args.size(); ++i) {
+        const ArgSpec& a = row.args[i];
+        if (is_optional(a.kind) && !given[i] && peek().text == a.name) break;
+        flag += a.kind == Arg::Flag;
+        option += a.kind == Arg::NamedOption;
+      }
+      if (i == row.args.size()) break;
+      given[i] = true;
+      const ArgSpec& a = row.args[i];
+      next();
+      cb.seen[k + " " + a.name] = at(peek());
+      if (a.kind == Arg::Flag) {
+        v.flags[flag] = true;
+      } else {
+        v.options[option] = number(k + " " + a.name);
+      }
+    }
+    if (peek().kind != Token::Semicolon) {
+      std::string expected;  // "'left', 'phase' or "
+      for (size_t i = 0; i < row.args.size(); ++i)
+        if (is_optional(row.args[i].kind) && !given[i])
+          expected += "'" + std::string(row.args[i].name) + "', ";
+      if (expected.empty()) semicolon(k);  // "expected ';' after hinge"
+      expected.replace(expected.size() - 2, 2, " or ");
+      error(at(peek()), "expected " + expected + "';' in " + k + ", found " + quote(peek()));
+      throw StatementError{};
+    }
+    next();
   }
 
   void constraint_block() {
@@ -441,6 +447,11 @@ class Parser {
                            std::to_string(place(cb.seen, cb.guide, cb.at).line));
           throw StatementError{};
         }
+        if (row && row->coupling && !cb.coupling.empty()) {
+          error(at(t), "a constraint has at most one coupling: '" + k + "' after '" + cb.coupling +
+                           "' at line " + std::to_string(place(cb.seen, cb.coupling, cb.at).line));
+          throw StatementError{};
+        }
         if (row) {
           component_statement(*row, k, cb);
         } else if (k == "object1") {
@@ -450,15 +461,6 @@ class Parser {
           cb.object2 = name("an object name");
           cb.has_object2 = true;
           semicolon("object2");
-        } else if (k == "gear" || k == "belt" || k == "rack" || k == "screw") {
-          if (j.coupling) {
-            error(at(t), "a constraint has at most one coupling: '" + k + "' after '" +
-                             to_string(j.coupling->kind) + "' at line " +
-                             std::to_string(cb.coupling_at.line));
-            throw StatementError{};
-          }
-          j.coupling = coupling(k);
-          cb.coupling_at = at(t);
         } else if (k == "move") {
           j.move = number("move");
           semicolon("move");
@@ -479,7 +481,7 @@ class Parser {
           std::string known;
           for (const ComponentRow& r : components()) known += std::string(r.keyword) + ", ";
           error(at(t), "unknown constraint statement '" + k + "' (expected object1, object2, " +
-                           known + "gear, belt, rack, screw, move, time, label or end)");
+                           known + "move, time, label or end)");
           throw StatementError{};
         }
       } catch (const StatementError&) {
@@ -546,7 +548,9 @@ class Parser {
       try {
         model.add_joint(j);
       } catch (const JointError& e) {
-        error(place(cb.seen, e.keyword(), cb.at), e.detail());
+        const Place statement = place(cb.seen, e.keyword(), cb.at);
+        error(e.arg().empty() ? statement : place(cb.seen, e.keyword() + " " + e.arg(), statement),
+              e.detail());
       } catch (const ValueError& e) {
         error(place(cb.seen, e.field(), cb.at), e.what());
       } catch (const std::invalid_argument& e) {
@@ -586,6 +590,24 @@ class Parser {
   std::vector<ConstraintBlock> constraints_;
 };
 
+// The file's text, or false and the reason in `text`.
+bool read_file(const std::string& path, std::string& text) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    text = "is a directory, not a .dcl file";
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    text = std::string("cannot open the file (") + std::strerror(errno) + ")";
+    return false;
+  }
+  std::ostringstream out;
+  out << in.rdbuf();
+  text = out.str();
+  return true;
+}
+
 }  // namespace
 
 ParseResult parse_dcl(std::string_view text, const std::string& filename) {
@@ -600,20 +622,12 @@ ParseResult parse_dcl(std::string_view text, const std::string& filename) {
 
 ParseResult load_dcl(const std::string& path) {
   ParseResult r;
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    r.diagnostics.push_back({path, 0, 0, true, "is a directory, not a .dcl file"});
+  std::string text;
+  if (!read_file(path, text)) {
+    r.diagnostics.push_back({path, 0, 0, true, text});
     return r;
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    r.diagnostics.push_back(
-        {path, 0, 0, true, std::string("cannot open the file (") + std::strerror(errno) + ")"});
-    return r;
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_dcl(text.str(), path);
+  return parse_dcl(text, path);
 }
 
 }  // namespace dispcon

@@ -58,22 +58,39 @@ std::string write_dcl(const Model& model) {
       if (!has_component(j, row.id)) continue;
       const ComponentValues v = get_component(j, row.id);
       out << "  " << row.keyword;
-      for (const Vec3& x : v.vectors) out << " " << vec(x);
-      for (const double x : v.scalars) out << " " << num(x);
-      for (const Vec3& x : v.points) out << " " << vec(x);
+      size_t vector = 0, scalar = 0, flag = 0, option = 0;
+      for (const ArgSpec& a : row.args) {
+        switch (a.kind) {
+          case Arg::Point:
+          case Arg::Direction:
+            out << " " << vec(v.vectors.at(vector++));
+            break;
+          case Arg::PositiveLength:
+          case Arg::NonNegativeLength:
+            out << " " << num(v.scalars.at(scalar++));
+            break;
+          case Arg::NamedPositive:
+            out << " " << a.name << " " << num(v.scalars.at(scalar++));
+            break;
+          case Arg::Points:
+            for (const Vec3& x : v.points) out << " " << vec(x);
+            break;
+          case Arg::Flag:
+            if (v.flags.at(flag++)) out << " " << a.name;
+            break;
+          case Arg::NamedOption: {
+            const std::optional<double>& x = v.options.at(option++);
+            if (x) out << " " << a.name << " " << num(*x);
+            break;
+          }
+        }
+      }
       // Bounds equal to the defaults are left out (reading fills them back in).
       if (row.has_bounds) {
         if (v.bounds.min != row.defaults.min) out << " min " << num(v.bounds.min);
         if (v.bounds.max != row.defaults.max) out << " max " << num(v.bounds.max);
       }
       out << ";\n";
-    }
-    if (j.coupling) {
-      const CouplingSpec& c = *j.coupling;
-      static const char* value_name[] = {"ratio", "ratio", "radius", "pitch"};
-      out << "  " << to_string(c.kind) << " " << vec(c.c1) << "  " << vec(c.a1) << "  " << vec(c.c2)
-          << "  " << vec(c.a2) << " " << value_name[static_cast<int>(c.kind)] << " " << num(c.value)
-          << (c.left ? " left" : "") << " phase " << num(c.phase.value_or(0)) << ";\n";
     }
     if (j.move) out << "  move " << num(*j.move) << ";\n";
     if (j.t0 != -kInf || j.t1 != kInf) out << "  time " << num(j.t0) << " " << num(j.t1) << ";\n";

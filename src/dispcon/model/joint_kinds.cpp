@@ -1,6 +1,7 @@
 #include "dispcon/model/joint_kinds.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace dispcon {
 
@@ -11,34 +12,132 @@ constexpr Range kDistances{0, kInf};
 constexpr Range kAngles{0, kPi};
 constexpr Range kTwists{-kPi, kPi};
 
+// A coupling's statement: `C1 a1 C2 a2 VALUE v {left} {phase f}` (a rack: `C1 a1 P2 u ...`).
+std::vector<ArgSpec> coupling_args(const char* value, bool left) {
+  using A = Arg;
+  const bool rack = std::string(value) == "radius";
+  std::vector<ArgSpec> args{{A::Point, "C1"},
+                            {A::Direction, "a1"},
+                            {A::Point, rack ? "P2" : "C2", 2},
+                            {A::Direction, rack ? "u" : "a2", 2},
+                            {A::NamedPositive, value}};
+  if (left) args.push_back({A::Flag, "left"});
+  args.push_back({A::NamedOption, "phase"});
+  return args;
+}
+
 std::vector<ComponentRow> make_components() {
   using A = Arg;
   return {
-      {Component::Hinge, "hinge", "P1 of object1 and P2 of object2 meet (a guide moves P2 on it)",
-       std::nullopt, {{A::Point, "P1"}, {A::Point, "P2"}}, false, kAll, kAll, ""},
-      {Component::Axial, "axial", "P2 on the line through P1 along R1 u (seed 4.1.1)",
-       GuideKind::Axial, {{A::Direction, "u"}}, true, kAll, kAll, "length"},
-      {Component::Planar, "planar",
+      {Component::Hinge,
+       "hinge",
+       "P1 of object1 and P2 of object2 meet (a guide moves P2 on it)",
+       std::nullopt,
+       {{A::Point, "P1"}, {A::Point, "P2", 2}},
+       false,
+       kAll,
+       kAll,
+       "",
+       std::nullopt},
+      {Component::Axial,
+       "axial",
+       "P2 on the line through P1 along R1 u (seed 4.1.1)",
+       GuideKind::Axial,
+       {{A::Direction, "u"}},
+       true,
+       kAll,
+       kAll,
+       "length",
+       std::nullopt},
+      {Component::Planar,
+       "planar",
        "P2 on the plane through P1 of normal R1 n, at a distance from P1 within the bounds "
        "(seed 4.1.2)",
-       GuideKind::Planar, {{A::Direction, "n"}}, true, kDistances, kDistances, "length"},
-      {Component::Sphere, "sphere", "P2 at a distance from P1 within the bounds (seed 4.1.3)",
-       GuideKind::Sphere, {}, true, kDistances, kDistances, "length"},
-      {Component::Circle, "circle", "P2 on the circle of centre P1, normal R1 n, radius r (4.1.3)",
-       GuideKind::Circle, {{A::Direction, "n"}, {A::PositiveLength, "r"}}, false, kAll, kAll, ""},
-      {Component::Cylinder, "cylinder",
+       GuideKind::Planar,
+       {{A::Direction, "n"}},
+       true,
+       kDistances,
+       kDistances,
+       "length",
+       std::nullopt},
+      {Component::Sphere,
+       "sphere",
+       "P2 at a distance from P1 within the bounds (seed 4.1.3)",
+       GuideKind::Sphere,
+       {},
+       true,
+       kDistances,
+       kDistances,
+       "length",
+       std::nullopt},
+      {Component::Circle,
+       "circle",
+       "P2 on the circle of centre P1, normal R1 n, radius r (4.1.3)",
+       GuideKind::Circle,
+       {{A::Direction, "n"}, {A::PositiveLength, "r"}},
+       false,
+       kAll,
+       kAll,
+       "",
+       std::nullopt},
+      {Component::Cylinder,
+       "cylinder",
        "P2 on the cylinder of axis P1 + lambda R1 u and radius r (seed 4.1.3)",
-       GuideKind::Cylinder, {{A::Direction, "u"}, {A::NonNegativeLength, "r"}}, true, kAll, kAll,
-       "length"},
-      {Component::Polyline, "polyline", "P2 on the polyline through these points of object1",
-       GuideKind::Polyline, {{A::Points, "points"}}, false, kAll, kAll, ""},
-      {Component::Angle, "angle", "the angle between R1 a1 and R2 a2 within the bounds (4.2.1)",
-       std::nullopt, {{A::Direction, "a1"}, {A::Direction, "a2"}}, true, kAngles, kAngles,
-       "radians"},
-      {Component::Twist, "twist",
+       GuideKind::Cylinder,
+       {{A::Direction, "u"}, {A::NonNegativeLength, "r"}},
+       true,
+       kAll,
+       kAll,
+       "length",
+       std::nullopt},
+      {Component::Polyline,
+       "polyline",
+       "P2 on the polyline through these points of object1",
+       GuideKind::Polyline,
+       {{A::Points, "points"}},
+       false,
+       kAll,
+       kAll,
+       "",
+       std::nullopt},
+      {Component::Angle,
+       "angle",
+       "the angle between R1 a1 and R2 a2 within the bounds (4.2.1)",
+       std::nullopt,
+       {{A::Direction, "a1"}, {A::Direction, "a2", 2}},
+       true,
+       kAngles,
+       kAngles,
+       "radians",
+       std::nullopt},
+      {Component::Twist,
+       "twist",
        "the turn from R1 b1 to R2 b2 about the angle's bisector within the bounds (4.2.2)",
-       std::nullopt, {{A::Direction, "b1"}, {A::Direction, "b2"}}, true, Range{0, 0}, kTwists,
-       "radians"},
+       std::nullopt,
+       {{A::Direction, "b1"}, {A::Direction, "b2", 2}},
+       true,
+       Range{0, 0},
+       kTwists,
+       "radians",
+       std::nullopt},
+      // The couplings (parts/gear.hpp, rack_pinion.hpp, screw.hpp): one equation between the
+      // turns, or a turn and a travel, of the two objects.
+      {Component::Gear, "gear",
+       "object2's turn about a2 through C2 = -ratio times object1's about a1 through C1 (an "
+       "external mesh), turns measured from the line of centres",
+       std::nullopt, coupling_args("ratio", false), false, kAll, kAll, "", CouplingKind::Gear},
+      {Component::Belt, "belt",
+       "object2's turn about a2 through C2 = +ratio times object1's about a1 through C1 (a belt, "
+       "a chain, an internal mesh)",
+       std::nullopt, coupling_args("ratio", false), false, kAll, kAll, "", CouplingKind::Belt},
+      {Component::Rack, "rack",
+       "object2 (the rack, through P2) travels along u by radius times object1's turn about a1 "
+       "through C1 (the pinion)",
+       std::nullopt, coupling_args("radius", false), false, kAll, kAll, "", CouplingKind::Rack},
+      {Component::Screw, "screw",
+       "object2 travels along a1 by pitch / (2 pi) times its turn relative to object1 "
+       "(right-handed unless `left`); with a cylindrical pair",
+       std::nullopt, coupling_args("pitch", true), false, kAll, kAll, "", CouplingKind::Screw},
   };
 }
 
@@ -46,35 +145,49 @@ std::vector<JointKindRow> make_joint_kinds() {
   using G = GuideKind;
   // Order matters to classify(): a row comes before any row it is a special case of.
   return {
-      {JointKind::Fixed, "fixed", "Fixed", "no relative motion: the points meet, axes and turn held",
-       true, std::nullopt, AngleUse::Fixed, 0, TwistUse::Weld, 0},
-      {JointKind::Revolute, "revolute", "Revolute", "turns about the common axis",
-       true, std::nullopt, AngleUse::Fixed, 0, TwistUse::Turn, kTurnLimit},
-      {JointKind::Slider, "slider", "Slider", "slides along axis1 without turning",
-       true, G::Axial, AngleUse::Fixed, 0, TwistUse::Weld, kTravelLimit},
+      {JointKind::Fixed, "fixed", "Fixed",
+       "no relative motion: the points meet, axes and turn held", true, std::nullopt,
+       AngleUse::Fixed, 0, TwistUse::Weld, 0, std::nullopt},
+      {JointKind::Revolute, "revolute", "Revolute", "turns about the common axis", true,
+       std::nullopt, AngleUse::Fixed, 0, TwistUse::Turn, kTurnLimit, std::nullopt},
+      {JointKind::Slider, "slider", "Slider", "slides along axis1 without turning", true, G::Axial,
+       AngleUse::Fixed, 0, TwistUse::Weld, kTravelLimit, std::nullopt},
       {JointKind::Cylindrical, "cylindrical", "Cylindrical", "slides along and turns about axis1",
-       true, G::Axial, AngleUse::Fixed, 0, TwistUse::Turn, kTravelLimit | kTurnLimit},
+       true, G::Axial, AngleUse::Fixed, 0, TwistUse::Turn, kTravelLimit | kTurnLimit, std::nullopt},
       {JointKind::Ball, "ball", "Ball", "the points meet; any rotation (within a cone if given)",
-       true, std::nullopt, AngleUse::Cone, 0, TwistUse::None, kConeLimit},
+       true, std::nullopt, AngleUse::Cone, 0, TwistUse::None, kConeLimit, std::nullopt},
       {JointKind::Planar, "planar", "Planar",
        "point2 on the plane of point1 and axis1, the axes parallel", true, G::Planar,
-       AngleUse::Fixed, 0, TwistUse::None, 0},
+       AngleUse::Fixed, 0, TwistUse::None, 0, std::nullopt},
       {JointKind::PointOnLine, "point_on_line", "Point on line", "point2 on the line of axis1",
-       true, G::Axial, AngleUse::None, 0, TwistUse::None, kTravelLimit},
+       true, G::Axial, AngleUse::None, 0, TwistUse::None, kTravelLimit, std::nullopt},
       {JointKind::PointOnPlane, "point_on_plane", "Point on plane",
        "point2 on the plane of point1 and axis1", true, G::Planar, AngleUse::None, 0,
-       TwistUse::None, 0},
+       TwistUse::None, 0, std::nullopt},
       {JointKind::PointOnCurve, "point_on_curve", "Point on curve",
        "point2 on a curve of body1 (a polyline)", true, G::Polyline, AngleUse::None, 0,
-       TwistUse::None, 0},
+       TwistUse::None, 0, std::nullopt},
       {JointKind::Parallel, "parallel", "Parallel", "the axes point the same way", false,
-       std::nullopt, AngleUse::Fixed, 0, TwistUse::None, 0},
+       std::nullopt, AngleUse::Fixed, 0, TwistUse::None, 0, std::nullopt},
       {JointKind::Perpendicular, "perpendicular", "Perpendicular", "the axes are perpendicular",
-       false, std::nullopt, AngleUse::Fixed, kPi / 2, TwistUse::None, 0},
+       false, std::nullopt, AngleUse::Fixed, kPi / 2, TwistUse::None, 0, std::nullopt},
       {JointKind::Angle, "angle", "Angle", "the angle between the axes within a range", false,
-       std::nullopt, AngleUse::Range, 0, TwistUse::None, kAngleLimit},
-      {JointKind::Distance, "distance", "Distance", "the points at a distance within a range",
-       true, G::Sphere, AngleUse::None, 0, TwistUse::None, kDistanceLimit},
+       std::nullopt, AngleUse::Range, 0, TwistUse::None, kAngleLimit, std::nullopt},
+      {JointKind::Distance, "distance", "Distance", "the points at a distance within a range", true,
+       G::Sphere, AngleUse::None, 0, TwistUse::None, kDistanceLimit, std::nullopt},
+      {JointKind::Gear, "gear", "Gears",
+       "body2 turns -ratio times body1 (external mesh; points and axes: the gears' centres and "
+       "axes)",
+       false, std::nullopt, AngleUse::None, 0, TwistUse::None, 0, CouplingKind::Gear},
+      {JointKind::Belt, "belt", "Belt",
+       "body2 turns +ratio times body1 (belt, chain, internal mesh)", false, std::nullopt,
+       AngleUse::None, 0, TwistUse::None, 0, CouplingKind::Belt},
+      {JointKind::Rack, "rack", "Rack and pinion",
+       "body2 (the rack: point2, its direction axis2) travels radius times body1's turn", false,
+       std::nullopt, AngleUse::None, 0, TwistUse::None, 0, CouplingKind::Rack},
+      {JointKind::Screw, "screw", "Screw",
+       "a cylindrical pair whose travel is pitch / (2 pi) times the turn", true, G::Axial,
+       AngleUse::Fixed, 0, TwistUse::None, kTravelLimit, CouplingKind::Screw},
   };
 }
 
@@ -107,8 +220,22 @@ const ComponentRow& component(GuideKind kind) {
   throw std::logic_error("guide kind missing from the table");
 }
 
+const ComponentRow& component(CouplingKind kind) {
+  for (const ComponentRow& r : components())
+    if (r.coupling == kind) return r;
+  throw std::logic_error("coupling kind missing from the table");
+}
+
 const char* to_string(GuideKind kind) {
   return component(kind).keyword;
+}
+
+const char* to_string(CouplingKind kind) {
+  return component(kind).keyword;
+}
+
+bool is_optional(Arg a) {
+  return a == Arg::Flag || a == Arg::NamedOption;
 }
 
 bool has_component(const Joint& j, Component id) {
@@ -119,6 +246,11 @@ bool has_component(const Joint& j, Component id) {
       return j.angle.has_value();
     case Component::Twist:
       return j.twist.has_value();
+    case Component::Gear:
+    case Component::Belt:
+    case Component::Rack:
+    case Component::Screw:
+      return j.coupling && component(id).coupling == j.coupling->kind;
     default:
       return j.guide && component(id).guide == j.guide->kind;
   }
@@ -158,6 +290,17 @@ ComponentValues get_component(const Joint& j, Component id) {
       v.vectors = {j.guide->dir};
       v.bounds = {j.guide->min, j.guide->max};
       break;
+    case Component::Gear:
+    case Component::Belt:
+    case Component::Rack:
+    case Component::Screw: {
+      const CouplingSpec& c = *j.coupling;
+      v.vectors = {c.c1, c.a1, c.c2, c.a2};
+      v.scalars = {c.value};
+      if (id == Component::Screw) v.flags = {c.left};
+      v.options = {c.phase};
+      break;
+    }
   }
   return v;
 }
@@ -178,6 +321,22 @@ void set_component(Joint& j, Component id, const ComponentValues& v) {
     case Component::Twist:
       j.twist = TwistSpec{vec(0), vec(1), v.bounds.min, v.bounds.max};
       return;
+    case Component::Gear:
+    case Component::Belt:
+    case Component::Rack:
+    case Component::Screw: {
+      CouplingSpec c;
+      c.kind = *row.coupling;
+      c.c1 = vec(0);
+      c.a1 = vec(1);
+      c.c2 = vec(2);
+      c.a2 = vec(3);
+      c.value = scalar(0);
+      c.left = !v.flags.empty() && v.flags[0];
+      c.phase = v.options.empty() ? std::nullopt : v.options[0];
+      j.coupling = c;
+      return;
+    }
     default:
       break;
   }
@@ -197,7 +356,8 @@ void set_component(Joint& j, Component id, const ComponentValues& v) {
 // Joint kinds
 
 bool JointKindRow::needs_axis() const {
-  return angle != AngleUse::None || guide == GuideKind::Axial || guide == GuideKind::Planar;
+  return angle != AngleUse::None || guide == GuideKind::Axial || guide == GuideKind::Planar ||
+         coupling.has_value();
 }
 bool JointKindRow::needs_across() const {
   return twist != TwistUse::None;
@@ -206,7 +366,7 @@ bool JointKindRow::needs_curve() const {
   return guide == GuideKind::Polyline;
 }
 bool JointKindRow::needs_points() const {
-  return hinge;
+  return hinge || coupling.has_value();
 }
 
 const std::vector<JointKindRow>& joint_kinds() {
@@ -230,8 +390,21 @@ const char* to_string(JointKind kind) {
   return joint_kind(kind).name;
 }
 
+namespace {
+
+// A component's vectors and bounds, nothing else.
+ComponentValues values(std::vector<Vec3> vectors, Range bounds = {}) {
+  ComponentValues v;
+  v.vectors = std::move(vectors);
+  v.bounds = bounds;
+  return v;
+}
+
+}  // namespace
+
 Joint make_joint(JointKind kind, BodyId body1, const Anchor& at1, BodyId body2, const Anchor& at2,
-                 const JointLimits& limits, const std::vector<Vec3>& curve) {
+                 const JointLimits& limits, const std::vector<Vec3>& curve,
+                 const CouplingValues& coupling) {
   const JointKindRow& row = joint_kind(kind);
   const std::string who = row.name;
   auto refuse = [&](unsigned flag, bool given, const char* what) {
@@ -244,14 +417,21 @@ Joint make_joint(JointKind kind, BodyId body1, const Anchor& at1, BodyId body2, 
   refuse(kAngleLimit, limits.angle.has_value(), "angle");
   refuse(kDistanceLimit, limits.distance.has_value(), "distance");
   if (!row.needs_curve() && !curve.empty()) throw std::invalid_argument(who + " takes no curve");
+  const ComponentRow* coupled = row.coupling ? &component(*row.coupling) : nullptr;
+  if (!coupled && (coupling.value || coupling.left || coupling.phase))
+    throw std::invalid_argument(who + " is no coupling: it takes no ratio, radius, pitch or phase");
+  if (coupled && !coupling.value)
+    throw std::invalid_argument(who + " needs its " + coupled->args[4].name);
+  if (coupling.left && row.coupling != CouplingKind::Screw)
+    throw std::invalid_argument(who + " takes no left (only a screw is left- or right-handed)");
 
   Joint j;
   j.body1 = body1;
   j.body2 = body2;
-  if (row.hinge) set_component(j, Component::Hinge, {{at1.point, at2.point}, {}, {}, {}});
+  if (row.hinge) set_component(j, Component::Hinge, values({at1.point, at2.point}));
   if (row.guide) {
     const ComponentRow& c = component(*row.guide);
-    ComponentValues g{{at1.axis}, {}, {}, c.defaults};
+    ComponentValues g = values({at1.axis}, c.defaults);
     switch (*row.guide) {
       case GuideKind::Axial:
         if (limits.travel) g.bounds = *limits.travel;
@@ -274,14 +454,14 @@ Joint make_joint(JointKind kind, BodyId body1, const Anchor& at1, BodyId body2, 
     case AngleUse::None:
       break;
     case AngleUse::Fixed:
-      set_component(j, Component::Angle, {axes, {}, {}, {row.angle_value, row.angle_value}});
+      set_component(j, Component::Angle, values(axes, {row.angle_value, row.angle_value}));
       break;
     case AngleUse::Cone:
-      if (limits.cone) set_component(j, Component::Angle, {axes, {}, {}, {0, *limits.cone}});
+      if (limits.cone) set_component(j, Component::Angle, values(axes, {0, *limits.cone}));
       break;
     case AngleUse::Range:
       if (!limits.angle) throw std::invalid_argument(who + " needs its angle range");
-      set_component(j, Component::Angle, {axes, {}, {}, *limits.angle});
+      set_component(j, Component::Angle, values(axes, *limits.angle));
       break;
   }
   const std::vector<Vec3> across{at1.across, at2.across};
@@ -289,11 +469,18 @@ Joint make_joint(JointKind kind, BodyId body1, const Anchor& at1, BodyId body2, 
     case TwistUse::None:
       break;
     case TwistUse::Weld:
-      set_component(j, Component::Twist, {across, {}, {}, {0, 0}});
+      set_component(j, Component::Twist, values(across, {0, 0}));
       break;
     case TwistUse::Turn:
-      if (limits.turn) set_component(j, Component::Twist, {across, {}, {}, *limits.turn});
+      if (limits.turn) set_component(j, Component::Twist, values(across, *limits.turn));
       break;
+  }
+  if (coupled) {
+    ComponentValues v = values({at1.point, at1.axis, at2.point, at2.axis});
+    v.scalars = {*coupling.value};
+    v.flags = {coupling.left};
+    v.options = {coupling.phase};
+    set_component(j, coupled->id, v);
   }
   return j;
 }
@@ -357,8 +544,28 @@ Joint distance(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, Range
   return make_joint(JointKind::Distance, b1, at1, b2, at2, l);
 }
 
+Joint gear(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, double ratio,
+           std::optional<double> phase) {
+  return make_joint(JointKind::Gear, b1, at1, b2, at2, {}, {}, {ratio, false, phase});
+}
+Joint belt(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, double ratio,
+           std::optional<double> phase) {
+  return make_joint(JointKind::Belt, b1, at1, b2, at2, {}, {}, {ratio, false, phase});
+}
+Joint rack_pinion(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, double radius,
+                  std::optional<double> phase) {
+  return make_joint(JointKind::Rack, b1, at1, b2, at2, {}, {}, {radius, false, phase});
+}
+Joint screw(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, double pitch, bool left,
+            std::optional<double> phase) {
+  return make_joint(JointKind::Screw, b1, at1, b2, at2, {}, {}, {pitch, left, phase});
+}
+
 std::optional<JointKind> classify(const Joint& j) {
+  const std::optional<CouplingKind> coupling =
+      j.coupling ? std::optional(j.coupling->kind) : std::nullopt;
   for (const JointKindRow& row : joint_kinds()) {
+    if (coupling != row.coupling) continue;
     if (j.has_translation() != row.hinge) continue;
     const std::optional<GuideKind> guide =
         j.guide && j.guide->kind != GuideKind::Point ? std::optional(j.guide->kind) : std::nullopt;

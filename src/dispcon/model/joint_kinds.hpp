@@ -5,8 +5,10 @@
 // - components(): the statements of a `constraint` block that carry geometry (format.md): `hinge`,
 //   the translation guides (seed 4.1), `angle` and `twist` (seed 4.2). Each row says what the
 //   statement is written with (points, directions, a radius, a list of points), whether it takes
-//   `{min} {max}`, their defaults and their natural range. A new part (a coupling of issue 11: a
-//   gear, a rack, a screw) is a new row plus its case in get_component/set_component.
+//   `{min} {max}`, their defaults and their natural range. The couplings of issue 11 (gear, belt,
+//   rack, screw) are rows too: their value is a keyword and a number (`ratio 2`), then optional
+//   words (`left`) and keyword-number pairs (`phase 0.5`). A new part is a new row plus its case
+//   in get_component/set_component.
 // - joint_kinds(): the named joints a designer picks (revolute, slider, ball, ...). Each row says
 //   which components the joint composes and which limits it takes; make_joint builds a Joint from
 //   a row, classify finds the row a Joint matches.
@@ -23,20 +25,41 @@ namespace dispcon {
 // ---------------------------------------------------------------------------------------------
 // Components: the statements of a constraint block.
 
-enum class Component { Hinge, Axial, Planar, Sphere, Circle, Cylinder, Polyline, Angle, Twist };
+enum class Component {
+  Hinge,
+  Axial,
+  Planar,
+  Sphere,
+  Circle,
+  Cylinder,
+  Polyline,
+  Angle,
+  Twist,
+  Gear,
+  Belt,
+  Rack,
+  Screw,
+};
 
 // One argument of a component's statement, in the order it is written.
 enum class Arg {
-  Point,         // three numbers, kept as written
-  Direction,     // three numbers, normalised (a zero vector is an error)
+  Point,              // three numbers, kept as written
+  Direction,          // three numbers, normalised (a zero vector is an error)
   PositiveLength,     // one number > 0
   NonNegativeLength,  // one number >= 0
-  Points,        // three numbers per point, at least two points
+  Points,             // three numbers per point, at least two points
+  NamedPositive,      // the word `name`, then one number > 0 (`ratio 2`)
+  Flag,               // optional: the word `name` alone (`left`)
+  NamedOption,        // optional: the word `name`, then one number (`phase 0.5`)
 };
+
+// Whether an argument may be left out (it is then absent, or false).
+bool is_optional(Arg a);
 
 struct ArgSpec {
   Arg kind;
   const char* name;  // as format.md writes it: "P1", "u", "r", ...
+  int side = 1;      // the object whose frame a point or vector is in (1 or 2)
 };
 
 struct Range {
@@ -46,14 +69,15 @@ struct Range {
 
 struct ComponentRow {
   Component id;
-  const char* keyword;  // the .dcl statement
-  const char* meaning;  // one line, for people
-  std::optional<GuideKind> guide;  // a translation guide (at most one per joint), or none
-  std::vector<ArgSpec> args;       // what follows the keyword, before the bounds
-  bool has_bounds = false;         // `{min a} {max b}` follow
-  Range defaults;                  // bounds when not given
-  Range natural;                   // bounds outside are clamped with a warning
-  const char* bound_unit = "";     // "length" or "radians"
+  const char* keyword;                   // the .dcl statement
+  const char* meaning;                   // one line, for people
+  std::optional<GuideKind> guide;        // a translation guide (at most one per joint), or none
+  std::vector<ArgSpec> args;             // what follows the keyword, before the bounds
+  bool has_bounds = false;               // `{min a} {max b}` follow
+  Range defaults;                        // bounds when not given
+  Range natural;                         // bounds outside are clamped with a warning
+  const char* bound_unit = "";           // "length" or "radians"
+  std::optional<CouplingKind> coupling;  // a coupling (at most one per joint), or none
 };
 
 // Every component, in the order the writer writes them.
@@ -61,14 +85,18 @@ const std::vector<ComponentRow>& components();
 const ComponentRow& component(Component id);
 const ComponentRow* find_component(const std::string& keyword);
 const ComponentRow& component(GuideKind kind);
+const ComponentRow& component(CouplingKind kind);
 
 // A component's values in the row's generic form: `vectors` holds the Point and Direction
-// arguments in order, `scalars` the lengths, `points` a Points argument.
+// arguments in order, `scalars` the lengths and NamedPositive values, `points` a Points argument,
+// `flags` the Flag arguments, `options` the NamedOption ones (absent when not given).
 struct ComponentValues {
   std::vector<Vec3> vectors;
   std::vector<double> scalars;
   std::vector<Vec3> points;
   Range bounds;
+  std::vector<bool> flags;
+  std::vector<std::optional<double>> options;
 };
 
 bool has_component(const Joint& j, Component id);
@@ -93,6 +121,10 @@ enum class JointKind {
   Perpendicular,
   Angle,
   Distance,
+  Gear,
+  Belt,
+  Rack,
+  Screw,
 };
 
 // How a kind uses the angle between its two axes.
@@ -130,6 +162,9 @@ struct JointKindRow {
   double angle_value = 0;  // AngleUse::Fixed
   TwistUse twist = TwistUse::None;
   unsigned limits = 0;  // LimitFlag: which limits it takes
+  // A coupling between the bodies' turns (issue 11): the anchors' points and axes are its centres
+  // and axes (a rack: at2 is a point of the rack and its direction of travel).
+  std::optional<CouplingKind> coupling;
 
   bool needs_axis() const;    // axis1, axis2 are used
   bool needs_across() const;  // across1, across2 (the twist's reference vectors) are used
@@ -158,11 +193,21 @@ struct JointLimits {
   std::optional<Range> distance;
 };
 
+// What a coupling kind takes beside its anchors; the names are its row's of components():
+// `value` is the ratio (gear, belt), radius (rack) or pitch (screw).
+struct CouplingValues {
+  std::optional<double> value;  // required by a coupling kind
+  bool left = false;            // a screw only: left-handed
+  std::optional<double> phase;  // absent: held at the poses the model has when it is added
+};
+
 // Builds the joint a row describes between body1 (at1, the guide's side) and body2 (at2).
 // Throws std::invalid_argument naming the kind when a limit is given that it does not take, or a
-// required one (angle, distance) or a curve is missing. Values are checked by Model::add_joint.
+// required one (angle, distance), a curve or a coupling's value is missing, or coupling values are
+// given to a kind without a coupling. Values are checked by Model::add_joint.
 Joint make_joint(JointKind kind, BodyId body1, const Anchor& at1, BodyId body2, const Anchor& at2,
-                 const JointLimits& limits = {}, const std::vector<Vec3>& curve = {});
+                 const JointLimits& limits = {}, const std::vector<Vec3>& curve = {},
+                 const CouplingValues& coupling = {});
 
 // The named constructors.
 Joint fixed_joint(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2);
@@ -183,6 +228,16 @@ Joint parallel(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2);
 Joint perpendicular(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2);
 Joint angle_joint(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, Range angle);
 Joint distance(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, Range distance);
+// Couplings: at1 and at2 give each body's centre and axis (a rack: a point and its direction).
+Joint gear(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, double ratio,
+           std::optional<double> phase = {});
+Joint belt(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, double ratio,
+           std::optional<double> phase = {});
+Joint rack_pinion(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, double radius,
+                  std::optional<double> phase = {});
+// A cylindrical pair (hinge, axial guide along at1.axis, axes parallel) plus the screw coupling.
+Joint screw(BodyId b1, const Anchor& at1, BodyId b2, const Anchor& at2, double pitch,
+            bool left = false, std::optional<double> phase = {});
 
 // The first row whose composition the joint has (a revolute whose turn is held at 0 is `fixed`),
 // or none for a block that no row names (a custom constraint).

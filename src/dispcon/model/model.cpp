@@ -2,8 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <cmath>
 #include <cctype>
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -75,31 +75,42 @@ class ComponentCheck {
       : who_(who), row_(row), warnings_(warnings) {}
 
   void operator()(ComponentValues& v) const {
-    size_t vec = 0, scalar = 0;
+    size_t vec = 0, scalar = 0, option = 0;
     for (const ArgSpec& a : row_.args) {
       const std::string what = std::string(row_.keyword) + " " + a.name;
       switch (a.kind) {
         case Arg::Point:
-          door([&] { check_vector(v.vectors.at(vec), row_.keyword, what); });
+          door(a, [&] { check_vector(v.vectors.at(vec), row_.keyword, what); });
           ++vec;
           break;
         case Arg::Direction:
-          door([&] { v.vectors.at(vec) = check_direction(v.vectors.at(vec), row_.keyword, what); });
+          door(a,
+               [&] { v.vectors.at(vec) = check_direction(v.vectors.at(vec), row_.keyword, what); });
           ++vec;
           break;
         case Arg::PositiveLength:
-        case Arg::NonNegativeLength: {
+        case Arg::NonNegativeLength:
+        case Arg::NamedPositive: {
           const double r = v.scalars.at(scalar++);
-          const bool positive = a.kind == Arg::PositiveLength;
-          door([&] { check_number(r, row_.keyword, what); });
+          const bool positive = a.kind != Arg::NonNegativeLength;
+          door(a, [&] { check_number(r, row_.keyword, what); });
           if (r < 0 || (positive && r == 0))
             fail(what + (positive ? " must be positive" : " must not be negative") + ", found " +
-                 format_number(r));
+                     format_number(r),
+                 a.name);
           break;
         }
         case Arg::Points:
-          if (v.points.size() < 2) fail(what + ": at least two points are needed");
-          for (const Vec3& p : v.points) door([&] { check_vector(p, row_.keyword, what + " point"); });
+          if (v.points.size() < 2) fail(what + ": at least two points are needed", a.name);
+          for (const Vec3& p : v.points)
+            door(a, [&] { check_vector(p, row_.keyword, what + " point"); });
+          break;
+        case Arg::Flag:
+          break;
+        case Arg::NamedOption:
+          if (option < v.options.size() && v.options[option])
+            door(a, [&] { check_number(*v.options[option], row_.keyword, what); });
+          ++option;
           break;
       }
     }
@@ -107,26 +118,28 @@ class ComponentCheck {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& detail) const {
-    throw JointError(who_, row_.keyword, detail);
+  [[noreturn]] void fail(const std::string& detail, const std::string& arg = "") const {
+    throw JointError(who_, row_.keyword, detail, arg);
   }
 
-  // The door's checks (numbers.hpp), their message placed at this statement.
+  // The door's checks (numbers.hpp), their message placed at this argument of the statement.
   template <class Check>
-  void door(Check check) const {
+  void door(const ArgSpec& a, Check check) const {
     try {
       check();
     } catch (const ValueError& e) {
-      fail(e.what());
+      fail(e.what(), a.name);
     }
   }
 
   // Each bound a number within range or an infinity (no bound); min not above max.
   void bounds(Range& b) const {
     const std::string what = row_.keyword;
-    if (!std::isinf(b.min)) door([&] { check_number(b.min, row_.keyword, what + " min"); });
-    if (!std::isinf(b.max)) door([&] { check_number(b.max, row_.keyword, what + " max"); });
-    if (b.min > b.max) fail(what + ": min " + format_number(b.min) + " is above max " + format_number(b.max));
+    const ArgSpec lo{Arg::NamedOption, "min"}, hi{Arg::NamedOption, "max"};
+    if (!std::isinf(b.min)) door(lo, [&] { check_number(b.min, row_.keyword, what + " min"); });
+    if (!std::isinf(b.max)) door(hi, [&] { check_number(b.max, row_.keyword, what + " max"); });
+    if (b.min > b.max)
+      fail(what + ": min " + format_number(b.min) + " is above max " + format_number(b.max));
     clamp(b.min, "min");
     clamp(b.max, "max");
   }
@@ -135,8 +148,9 @@ class ComponentCheck {
     const Range n = row_.natural;
     if (v >= n.min && v <= n.max) return;
     const double c = v < n.min ? n.min : n.max;
-    warnings_.push_back(std::string(row_.keyword) + " " + which + " " + format_number(v) + " is outside [" +
-                        format_number(n.min) + ", " + format_number(n.max) + "]; clamped to " + format_number(c));
+    warnings_.push_back(std::string(row_.keyword) + " " + which + " " + format_number(v) +
+                        " is outside [" + format_number(n.min) + ", " + format_number(n.max) +
+                        "]; clamped to " + format_number(c));
     v = c;
   }
 
@@ -159,27 +173,16 @@ Frame frame(const Body& b) {
 
 }  // namespace
 
-const char* to_string(CouplingKind kind) {
-  switch (kind) {
-    case CouplingKind::Gear:
-      return "gear";
-    case CouplingKind::Belt:
-      return "belt";
-    case CouplingKind::Rack:
-      return "rack";
-    case CouplingKind::Screw:
-      return "screw";
-  }
-  return "?";
-}
-
 bool is_valid_name(std::string_view name) {
   if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
   return std::all_of(name.begin(), name.end(), is_name_char);
 }
 
-JointError::JointError(const std::string& who, std::string keyword, std::string detail)
-    : ValueError(std::move(keyword), who + ": " + detail), detail_(std::move(detail)) {}
+JointError::JointError(const std::string& who, std::string keyword, std::string detail,
+                       std::string arg)
+    : ValueError(std::move(keyword), who + ": " + detail),
+      detail_(std::move(detail)),
+      arg_(std::move(arg)) {}
 
 Model::Model() {
   Body world;
@@ -243,24 +246,17 @@ JointId Model::add_joint(Joint j) {
     for (std::string& m : messages) clamped.push_back({id, row.keyword, std::move(m)});
   }
   if (j.coupling) {
+    // Its values were checked by its row above; here, whether its turns can be measured.
     CouplingSpec& c = *j.coupling;
-    const std::string field = to_string(c.kind);
-    const std::string cw = who + ": " + field;
-    const bool rack = c.kind == CouplingKind::Rack;
-    c.c1 = check_vector(c.c1, field, cw + (rack ? " pinion centre" : " centre1"));
-    c.c2 = check_vector(c.c2, field, cw + (rack ? " rack point" : " centre2"));
-    c.a1 = check_direction(c.a1, field, cw + (rack ? " pinion axis" : " axis1"));
-    c.a2 = check_direction(c.a2, field, cw + (rack ? " rack direction" : " axis2"));
-    static const char* value_name[] = {"ratio", "ratio", "radius", "pitch"};
-    check_positive(c.value, field, cw + " " + value_name[static_cast<int>(c.kind)]);
-    if (c.phase) check_number(*c.phase, field, cw + " phase");
-    const CouplingMeasure m = measure_coupling(c, frame(body(j.body1)), frame(body(j.body2)), false);
+    const CouplingMeasure m =
+        measure_coupling(c, frame(body(j.body1)), frame(body(j.body2)), false);
     if (!m.valid) {
-      throw ValueError(field, cw + (c.kind == CouplingKind::Screw
-                                        ? ": the axes are not aligned (a screw needs a "
-                                          "cylindrical pair)"
-                                        : ": the turn has no reference (the line of centres or "
-                                          "the rack lies along an axis)"));
+      fail(to_string(c.kind),
+           std::string(to_string(c.kind)) +
+               (c.kind == CouplingKind::Screw
+                    ? ": the axes are not aligned (a screw needs a cylindrical pair)"
+                    : ": the turn has no reference (the line of centres or the rack lies along "
+                      "an axis)"));
     }
     // Made at the model's poses unless a phase is given: the equation holds there.
     if (!c.phase) {

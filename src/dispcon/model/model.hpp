@@ -21,16 +21,19 @@ bool is_name_char(char c);
 bool is_valid_name(std::string_view name);
 
 // A joint refused by the model: a ValueError whose field() is the statement ("axial", "move",
-// "object2"; empty for the block as a whole), so that the reader can point at its place;
+// "object2"; empty for the block as a whole) and arg() the argument of it at fault ("u",
+// "ratio"; empty for the statement as a whole), so that the reader can point at its place;
 // `detail` is the message without the "constraint at line N: " prefix that what() carries.
 class JointError : public ValueError {
  public:
-  JointError(const std::string& who, std::string keyword, std::string detail);
+  JointError(const std::string& who, std::string keyword, std::string detail, std::string arg = "");
   const std::string& keyword() const { return field(); }
+  const std::string& arg() const { return arg_; }
   const std::string& detail() const { return detail_; }
 
  private:
   std::string detail_;
+  std::string arg_;
 };
 
 // What add_joint changed while accepting a joint: a bound clamped into its natural range.

@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <random>
-
 #include <string>
 
 #include "dispcon/io/dcl_writer.hpp"
@@ -144,7 +143,7 @@ TEST(DclReader, EveryErrorNamesItsPlace) {
        "move 1.5 is not in [0, 1]"},
       {"object a; inertia 1 1 -1; end", 1, 11, "inertia is not positive definite"},
       {"object a; end\x01", 1, 14, "byte 0x01 is not text"},
-      {"object a; end\nconstraint object2 a; axial 0 0 0; end", 2, 23, "zero vector"},
+      {"object a; end\nconstraint object2 a; axial 0 0 0; end", 2, 29, "axial u is a zero vector"},
       {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0; label \"x;", 2, 48, "not closed"},
       {"object a; end\nconstraint object2 a; hinge 0 0 0 0 0 0; label x; end", 2, 48,
        "expected a string in double quotes for label"},
@@ -165,7 +164,7 @@ TEST(DclReader, EveryErrorNamesItsPlace) {
       {"object a; end\nconstraint object2 a; gear 1 0 0 0 0 1 0 0 0 0 0 1 ratio -2; end", 2, 58,
        "gear ratio must be positive"},
       {"object a; end\nconstraint object2 a; gear 1 0 0 0 0 0 0 0 0 0 0 1 ratio 2; end", 2, 34,
-       "gear axis1 is a zero vector"},
+       "gear a1 is a zero vector"},
       {"object a; end\nconstraint object2 a; rack 1 0 0 0 0 1 0 0 0 1 0 0 ratio 2; end", 2, 52,
        "expected 'radius' in rack, found 'ratio'"},
       {"object a; end\nconstraint object2 a; belt 1 0 0 0 0 1 0 0 0 0 0 1 ratio 2 phase; end", 2,
@@ -223,8 +222,7 @@ TEST(DclReader, ErrorsAreCappedWithACountOfTheRest) {
   const ParseResult warned = parse_dcl(clamped);
   ASSERT_TRUE(warned.ok()) << warned.messages();
   ASSERT_EQ(warned.diagnostics.size(), 101u);
-  EXPECT_EQ(warned.diagnostics.back().message,
-            "50 more warnings (only the first 100 are listed)");
+  EXPECT_EQ(warned.diagnostics.back().message, "50 more warnings (only the first 100 are listed)");
 }
 
 TEST(DclReader, ModelChecksArePlacedAtTheirStatement) {
@@ -233,7 +231,7 @@ TEST(DclReader, ModelChecksArePlacedAtTheirStatement) {
       parse_dcl("object a; end\nconstraint object2 a; axial 1e200 1e200 0; end");
   ASSERT_TRUE(big.ok()) << big.messages();
   EXPECT_NEAR(big.model->joint(JointId{0}).guide->dir.x(), std::sqrt(0.5), 1e-15);
-  // Errors from the model (here a negative radius) point at the keyword, even after an earlier
+  // Errors from the model (here a negative radius) point at the argument, even after an earlier
   // error in another block.
   const ParseResult r = parse_dcl(
       "object a; mass -1; end\nobject b; end\n"
@@ -241,12 +239,14 @@ TEST(DclReader, ModelChecksArePlacedAtTheirStatement) {
       "f.dcl");
   EXPECT_NE(r.messages().find("f.dcl:1:11: error: mass must be positive"), std::string::npos)
       << r.messages();
-  EXPECT_NE(r.messages().find("f.dcl:4:3: error: cylinder r must not be negative, found -2"),
+  EXPECT_NE(r.messages().find("f.dcl:4:18: error: cylinder r must not be negative, found -2"),
             std::string::npos)
       << r.messages();
   // The warning of a clamp is the model's, placed at the statement.
-  const ParseResult w = parse_dcl("object a; end\nconstraint object2 a;\n twist 0 1 0 0 1 0 max 4;\n"
-                                  " angle 0 0 1 0 0 1 max 0; end", "w.dcl");
+  const ParseResult w = parse_dcl(
+      "object a; end\nconstraint object2 a;\n twist 0 1 0 0 1 0 max 4;\n"
+      " angle 0 0 1 0 0 1 max 0; end",
+      "w.dcl");
   ASSERT_TRUE(w.ok()) << w.messages();
   EXPECT_EQ(w.messages(),
             "w.dcl:3:2: warning: twist max 4 is outside [-3.14159, 3.14159]; clamped to 3.14159\n");
@@ -254,7 +254,8 @@ TEST(DclReader, ModelChecksArePlacedAtTheirStatement) {
 
 TEST(DclReader, LabelsAreStrings) {
   const ParseResult r = parse_dcl(
-      "object a; end\nconstraint label \"Revolute 1\\n\\\"crank\\\"\"; object2 a; hinge 0 0 0 0 0 0; end");
+      "object a; end\nconstraint label \"Revolute 1\\n\\\"crank\\\"\"; object2 a; hinge 0 0 0 0 0 "
+      "0; end");
   ASSERT_TRUE(r.ok()) << r.messages();
   EXPECT_EQ(r.model->joint(JointId{0}).label, "Revolute 1\n\"crank\"");
 }

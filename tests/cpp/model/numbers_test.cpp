@@ -130,9 +130,10 @@ TEST(ModelDoor, SettersCheckAndChangeNothingOnRefusal) {
 }
 
 TEST(ModelDoor, FileValuesAreReportedAtTheirStatement) {
+  // A joint's value: at its argument.
   EXPECT_NE(parse_errors(std::string(kPendulum) +
                          "constraint object2 a;\n  hinge 1e155 0 0  0 0 0; end\n")
-                .find("t.dcl:3:3: error: hinge P1 (1e+155 0 0) is out of range"),
+                .find("t.dcl:3:9: error: hinge P1 (1e+155 0 0) is out of range"),
             std::string::npos);
   EXPECT_NE(parse_errors("object a;\n rotate 1e300; end\n").find("t.dcl:2:2: error:"),
             std::string::npos);
