@@ -85,7 +85,7 @@ class Assemble(unittest.TestCase):
                 f.write("object a; end\nconstraint object2 a;\n  axial 0 0 0; end\n")
             r = run("assemble", path)
             self.assertEqual(r.returncode, 2)
-            self.assertIn("big.dcl:3:3: error: axial u is a zero vector", r.stderr)
+            self.assertIn("big.dcl:3:9: error: axial u is a zero vector", r.stderr)
 
     def test_defaults_are_the_engines(self):
         r = run("assemble", "--help")

@@ -58,7 +58,7 @@ class Door(unittest.TestCase):
 
     def test_file_values_are_placed(self):
         for text, place in [
-            ("object a; end\nconstraint object2 a;\n hinge 1e155 0 0 0 0 0; end\n", ":3:2:"),
+            ("object a; end\nconstraint object2 a;\n hinge 1e155 0 0 0 0 0; end\n", ":3:8:"),
             ("object a;\n rotate 1e300; end\n", ":2:2:"),
             ("object a;\n mass 1; inertia 1e-150 1e-150 1e-150; end\n", ":2:10:"),
             ("object a;\n mass 1; inertia 1e300 1e300 1e300; end\n", ":2:10:"),
