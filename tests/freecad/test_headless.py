@@ -825,9 +825,11 @@ class Samples(unittest.TestCase):
                                  env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
             self.assertEqual(run.returncode, 0, run.stdout[-2000:])
             self.assertNotIn("not supported", run.stdout)
-            self.assertEqual(sorted(os.listdir(out)), ["fourbar-clash.FCStd", "fourbar.FCStd", "leg.FCStd", "rssr.FCStd",
-                                                  "side-rods.FCStd", "slider-crank.FCStd", "walker-rigid.FCStd",
-                                                  "walker.FCStd"])
+            # The coupling samples (couplings.py) too: the engine has the coupling rows.
+            self.assertEqual(sorted(os.listdir(out)), ["fourbar-clash.FCStd", "fourbar.FCStd", "leg.FCStd",
+                                                  "planetary.FCStd", "rssr.FCStd", "side-rods.FCStd",
+                                                  "slider-crank.FCStd", "steering.FCStd", "three-gears.FCStd",
+                                                  "vice.FCStd", "walker-rigid.FCStd", "walker.FCStd"])
 
 
 class WorkbenchFiles(unittest.TestCase):
