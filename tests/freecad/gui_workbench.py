@@ -354,6 +354,39 @@ class TestMarkers(Documents):
         for j in js[1:]:
             j.ViewObject.Visibility = True
 
+    def test_hovering_over_an_edge_shows_the_marker_to_come(self):
+        # The cursor moved over the arm's pin edge (a Coin3D mouse move through the viewer's
+        # scene graph, as a real mouse's): FreeCAD preselects the edge under it and the panel
+        # draws the marker the joint would get there.
+        from dispcon_fc.panels import joint as jp
+
+        asm, base, arm, e1, e2 = self.arm()
+        self.view().viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        settle()
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Dispcon_JointRevolute")
+        settle()
+        panel = jp.current()
+        edge = arm.Shape.getElement(e2[1])
+        x, y = self.view().getPointOnScreen(edge.valueAt(0.4 * edge.FirstParameter + 0.6 * edge.LastParameter))
+        height = self.view().getSize()[1]
+        hit = None
+        for dx, dy in [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1), (2, 0), (-2, 0), (0, 2), (0, -2)]:
+            mouse(self.view(), "move", int(x) + dx, int(y) + dy)
+            settle()
+            pre = Gui.Selection.getPreselection()
+            if pre.Object is not None and pre.SubElementNames and panel.preview is not None:
+                hit = pre
+                break
+        self.assertIsNotNone(hit, "no preselection under the cursor at %d, %d (view %d high)" % (x, y, height))
+        self.assertTrue(hit.SubElementNames[0].startswith("Edge"), hit.SubElementNames)
+        self.assertEqual(panel.preview.joint_type, "Revolute")
+        at = panel.preview.transform.translation.getValue().getValue()
+        centre = arm.Shape.getElement(hit.SubElementNames[0]).Curve.Center
+        self.assertLess(math.dist(at, (centre.x, centre.y, centre.z)), 1e-6, "the preview is not at the edge's centre")
+        panel.reject()
+
     def test_preselection_shows_the_marker_to_come(self):
         from pivy import coin
         from dispcon_fc.panels import joint as jp
