@@ -180,6 +180,11 @@ class Check(unittest.TestCase):
         self.assertEqual(doc["dof"], 2)
         self.assertEqual(doc["locking"], [])
 
+    def test_four_flexible_legs_have_four_degrees_of_freedom(self):
+        r = run("check", os.path.join(SRC, "samples", "legs.dcl"), "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(json.loads(r.stdout)["dof"], 4)
+
 
 class Animate(unittest.TestCase):
     def test_frames_carry_their_time_and_the_csv_a_row_per_body_per_frame(self):

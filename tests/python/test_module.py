@@ -531,5 +531,35 @@ class Vocabulary(unittest.TestCase):
         self.assertEqual(angle["bounds"], (0, math.pi))
 
 
+class Include(unittest.TestCase):
+    """Sub-models: dispcon.load follows `include`, flexible copies drag alone, rigid ones not."""
+
+    def test_load_follows_includes_and_each_flexible_leg_drags_alone(self):
+        m = dispcon.load(os.path.join(SRC, "samples", "legs.dcl"))
+        names = m.body_names()
+        self.assertIn("front_left.crank", names)
+        self.assertIn("back_right.rocker", names)
+        self.assertEqual(len(names), 1 + 4 * 3)
+        self.assertEqual(m.check().dof, 4)
+        before = same_bits(m)
+        r = m.drag("front_right.crank", position=(0, 0, -1), rotation=(0, 0, math.pi / 2 + 0.5), steps=5)
+        self.assertTrue(r.converged, r.message)
+        after = same_bits(m)
+        moved = sorted(n for n in names if after[n] != before[n])
+        self.assertEqual(moved, ["front_right.coupler", "front_right.crank", "front_right.rocker"])
+
+    def test_a_rigid_include_is_one_body_that_does_not_move(self):
+        leg = os.path.join(SRC, "samples", "leg.dcl")
+        m = dispcon.loads('include "%s" as stiff rigid;' % leg, "walker.dcl")
+        self.assertEqual(m.body_names(), ["stiff"])
+        self.assertEqual(m.check().dof, 0)
+        before = same_bits(m)
+        r = m.drag("stiff", rotation=(0, 0, 0.5), steps=3)
+        self.assertFalse(r.converged)
+        self.assertEqual(same_bits(m), before)
+        with self.assertRaisesRegex(ValueError, r"walker.dcl:1:9: error: cannot include 'nowhere.dcl'"):
+            dispcon.loads('include "nowhere.dcl" as n;', "walker.dcl")
+
+
 if __name__ == "__main__":
     unittest.main()

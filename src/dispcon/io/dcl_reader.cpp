@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "dispcon/io/dcl_lexer.hpp"
+#include "dispcon/io/include.hpp"
 #include "dispcon/model/joint_kinds.hpp"
 
 namespace dispcon {
@@ -61,6 +62,20 @@ struct ConstraintBlock {
   bool ok = true;
 };
 
+// `include "file" as NAME {position x y z} {rotation r} {on BODY} {rigid};` (format.md).
+struct IncludeBlock {
+  Place at;
+  std::string path;
+  Inclusion inc;
+  Vec3 position = Vec3::Zero(), rotation = Vec3::Zero();
+  std::string on = "world";
+  Statements seen;
+};
+
+// The files being read, outermost first (canonical paths): an include of one of them is a cycle.
+using IncludeStack = std::vector<std::string>;
+
+ParseResult parse_text(std::string_view text, const std::string& filename, IncludeStack& stack);
 bool read_file(const std::string& path, std::string& text);
 
 // Thrown inside the parser to abandon one statement; caught at statement level.
@@ -68,7 +83,8 @@ struct StatementError {};
 
 class Parser {
  public:
-  Parser(std::string_view text, const std::string& file) : file_(file) {
+  Parser(std::string_view text, const std::string& file, IncludeStack& stack)
+      : file_(file), stack_(stack) {
     LexErrors lex_errors;
     tokens_ = lex_dcl(text, lex_errors);
     for (const LexError& e : lex_errors.listed) error({e.line, e.column}, e.message);
@@ -82,10 +98,12 @@ class Parser {
         object_block();
       } else if (t.kind == Token::Word && t.text == "constraint") {
         constraint_block();
+      } else if (t.kind == Token::Word && t.text == "include") {
+        include_statement();
       } else {
         // A bad token was reported by the lexer; saying so twice would double a flood.
         if (t.kind != Token::Bad)
-          error(at(t), "expected 'object' or 'constraint', found " + quote(t));
+          error(at(t), "expected 'object', 'constraint' or 'include', found " + quote(t));
         next();
       }
     }
@@ -137,7 +155,7 @@ class Parser {
         return;
       }
       if (t.kind == Token::Word &&
-          (t.text == "end" || t.text == "object" || t.text == "constraint"))
+          (t.text == "end" || t.text == "object" || t.text == "constraint" || t.text == "include"))
         return;
       next();
     }
@@ -242,7 +260,8 @@ class Parser {
       return true;
     }
     if (t.kind == Token::End ||
-        (t.kind == Token::Word && (t.text == "object" || t.text == "constraint"))) {
+        (t.kind == Token::Word &&
+         (t.text == "object" || t.text == "constraint" || t.text == "include"))) {
       std::ostringstream m;
       m << "missing 'end' for the " << block << " opened at line " << open.line << ", found "
         << quote(t);
@@ -429,6 +448,110 @@ class Parser {
     next();
   }
 
+  // `include "file" as NAME` then, in any order and each at most once, `position x y z`,
+  // `rotation rx ry rz`, `on BODY`, `rigid`; then `;`.
+  void include_statement() {
+    const Token& kw = next();
+    IncludeBlock ib;
+    ib.at = at(kw);
+    ib.inc.line = kw.line;
+    try {
+      if (peek().kind != Token::String) {
+        error(at(peek()), "expected the file to include in double quotes, found " + quote(peek()));
+        throw StatementError{};
+      }
+      ib.seen["file"] = at(peek());
+      ib.path = next().text;
+      if (peek().kind != Token::Word || peek().text != "as") {
+        error(at(peek()),
+              "expected 'as' and a name after the included file, found " + quote(peek()));
+        throw StatementError{};
+      }
+      next();
+      ib.seen["as"] = at(peek());
+      ib.inc.name = name("the included model's name");
+      while (peek().kind == Token::Word) {
+        const std::string k = peek().text;
+        if (k != "position" && k != "rotation" && k != "on" && k != "rigid") break;
+        keyword(next(), "include", "this include", ib.seen);
+        if (k == "position") ib.position = vec3("include position");
+        if (k == "rotation") ib.rotation = vec3("include rotation");
+        if (k == "on") ib.on = name("the object the included model stands on");
+        if (k == "rigid") ib.inc.rigid = true;
+      }
+      if (peek().kind != Token::Semicolon) {
+        error(at(peek()),
+              "expected 'position', 'rotation', 'on', 'rigid' or ';' in include, found " +
+                  quote(peek()));
+        throw StatementError{};
+      }
+      next();
+      includes_.push_back(ib);
+    } catch (const StatementError&) {
+      recover();
+    }
+  }
+
+  // Reads, checks and adds the model an include names, its names declared; every problem is
+  // reported at the include statement (and the included file's own errors at their places).
+  void include_into(Model& model, IncludeBlock& ib, std::map<std::string, Place>& declared) {
+    namespace fs = std::filesystem;
+    const Place file_at = place(ib.seen, "file", ib.at);
+    const fs::path path = fs::path(file_).parent_path() / ib.path;
+    std::error_code ec;
+    const std::string canonical = fs::weakly_canonical(path, ec).string();
+    for (size_t k = 0; k < stack_.size(); ++k) {
+      if (stack_[k] != canonical) continue;
+      std::string cycle;
+      for (size_t i = k; i < stack_.size(); ++i)
+        cycle += fs::path(stack_[i]).filename().string() + " -> ";
+      error(file_at, "include cycle: " + cycle + fs::path(canonical).filename().string());
+      return;
+    }
+    std::string text;
+    if (!read_file(path.string(), text)) {
+      error(file_at, "cannot include '" + ib.path + "' (" + text + ")");
+      return;
+    }
+    stack_.push_back(canonical);
+    ParseResult sub = parse_text(text, path.string(), stack_);
+    stack_.pop_back();
+    for (const Diagnostic& d : sub.diagnostics) {
+      if (d.error ? errors_++ < kErrorCap : warnings_++ < kErrorCap) diagnostics_.push_back(d);
+    }
+    if (!sub.ok()) {
+      error(file_at, "'" + ib.path + "' has errors (listed above)");
+      return;
+    }
+    if (ib.on != "world") {
+      const auto on = model.find(ib.on);
+      if (!on) {
+        error(place(ib.seen, "on", ib.at), "unknown object '" + ib.on + "'");
+        return;
+      }
+      ib.inc.on = *on;
+    }
+    try {
+      ib.inc.placement = Pose{rotation_from_vector(ib.rotation, "rotation"),
+                              check_vector(ib.position, "position", "include position")};
+      include_model(model, *sub.model, ib.inc);
+    } catch (const ValueError& e) {
+      error(place(ib.seen, e.field(), ib.at), "include '" + ib.path + "': " + e.what());
+      return;
+    } catch (const std::invalid_argument& e) {
+      error(place(ib.seen, "as", ib.at),
+            "include '" + ib.path + "' as " + ib.inc.name + ": " + e.what());
+      return;
+    }
+    if (ib.inc.rigid) {
+      declared[ib.inc.name] = ib.at;
+      rigid_.push_back(ib.inc.name);
+      return;
+    }
+    for (int i = 1; i < sub.model->body_count(); ++i)
+      declared[ib.inc.name + "." + sub.model->body(BodyId{i}).name] = ib.at;
+  }
+
   void constraint_block() {
     const Token& kw = next();
     ConstraintBlock cb;
@@ -516,6 +639,7 @@ class Parser {
         error(ob.at, e.what());
       }
     }
+    for (IncludeBlock& ib : includes_) include_into(model, ib, declared);
     for (ConstraintBlock& cb : constraints_) {
       Joint& j = cb.joint;
       bool ok = cb.ok;
@@ -525,8 +649,12 @@ class Parser {
           return;
         }
         if (!declared.count(name)) {
-          error(place(cb.seen, keyword, cb.at),
-                "unknown object '" + name + "' (no 'object " + name + "' block declares it)");
+          std::string why = "no 'object " + name + "' block declares it";
+          for (const std::string& r : rigid_) {
+            if (name.rfind(r + ".", 0) == 0)
+              why = r + " is a rigid include: its objects are one, '" + r + "'";
+          }
+          error(place(cb.seen, keyword, cb.at), "unknown object '" + name + "' (" + why + ")");
           ok = false;
           return;
         }
@@ -588,6 +716,9 @@ class Parser {
   long long warnings_ = 0;
   std::vector<ObjectBlock> objects_;
   std::vector<ConstraintBlock> constraints_;
+  std::vector<IncludeBlock> includes_;
+  std::vector<std::string> rigid_;  // the names of rigid includes
+  IncludeStack& stack_;
 };
 
 // The file's text, or false and the reason in `text`.
@@ -608,16 +739,25 @@ bool read_file(const std::string& path, std::string& text) {
   return true;
 }
 
-}  // namespace
-
-ParseResult parse_dcl(std::string_view text, const std::string& filename) {
+ParseResult parse_text(std::string_view text, const std::string& filename, IncludeStack& stack) {
   try {
-    return Parser(text, filename).run();
+    return Parser(text, filename, stack).run();
   } catch (const std::exception& e) {
     ParseResult r;
     r.diagnostics.push_back({filename, 0, 0, true, std::string("internal error: ") + e.what()});
     return r;
   }
+}
+
+}  // namespace
+
+ParseResult parse_dcl(std::string_view text, const std::string& filename) {
+  // A file's own includes of itself are cycles too.
+  IncludeStack stack;
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(filename, ec))
+    stack.push_back(std::filesystem::weakly_canonical(filename, ec).string());
+  return parse_text(text, filename, stack);
 }
 
 ParseResult load_dcl(const std::string& path) {

@@ -160,7 +160,7 @@ TEST(DclReader, EveryErrorNamesItsPlace) {
       {"/* never closed", 1, 1, "never closed"},
       {"object a; position 1x 0 0; end", 1, 20, "malformed number '1x'"},
       {"object a; position inf 0 0; end", 1, 20, "must be finite"},
-      {"stuff", 1, 1, "expected 'object' or 'constraint'"},
+      {"stuff", 1, 1, "expected 'object', 'constraint' or 'include'"},
       {"object a; end\nconstraint object2 a; gear 1 0 0 0 0 1 0 0 0 0 0 1 ratio -2; end", 2, 58,
        "gear ratio must be positive"},
       {"object a; end\nconstraint object2 a; gear 1 0 0 0 0 0 0 0 0 0 0 1 ratio 2; end", 2, 34,
