@@ -34,6 +34,8 @@ struct PolishWork {
   std::vector<Eigen::Triplet<double>> triplets_;
   std::vector<int> pattern_;
   std::vector<double> rows_per_body_;
+  std::vector<int> joint_rows_;  // the rows of the k-th joint with rows: joint_rows_[k] ...
+  std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows, a body)
 };
 
 // Newton polish. The step is dq = M^-1 J^T y with (J M^-1 J^T + lambda I) y = -r: the
@@ -113,6 +115,7 @@ class Polisher {
   int slot(const Eigen::Triplet<double>& t) const;
 
   static constexpr int kDenseRows = 120;
+  static constexpr int kBlockOrdering = 20000;  // unknowns from which AMD orders blocks
   const Group* group_;
   int nv_ = 0;
   PolishWork* w_ = nullptr;  // the session's scratch space, during step()
@@ -127,6 +130,7 @@ class Polisher {
   std::vector<int> analyzed_pattern_;
   std::vector<int> slots_;
   bool analyzed_ = false;
+  size_t rows_hint_ = 0;  // rows of the last gather
 };
 
 }  // namespace dispcon

@@ -120,23 +120,67 @@ bool Polisher::solve_factored() {
 }
 
 // Orders, places and analyses an n x n system given by its lower-triangle entries (in a fixed
-// order).
+// order). In large systems the fill-reducing order is found on blocks, each joint's rows and
+// (saddle-point form) each body's six unknowns, which share their neighbours: AMD on the 300,000
+// rows of a 100,000-link chain took 0.2 s, on its 100,000 joints 5 ms. Below kBlockOrdering
+// unknowns the analysis is cheap and AMD on single unknowns leaves less fill (the 105-link
+// grid's factor: 22,454 entries against 24,302 by blocks), which every drag frame pays.
 template <typename Form>
 void Polisher::analyze(int n, Form&& form) {
+  std::vector<int>& start = w_->block_start_;
+  start.clear();
+  const int base = kkt_ ? 6 * nv_ : 0;
+  if (n < kBlockOrdering) {
+    for (int i = 0; i < n; ++i) start.push_back(i);
+  } else {
+    if (kkt_) {
+      for (int v = 0; v < nv_; ++v) start.push_back(6 * v);
+    }
+    for (size_t k = 0; k + 1 < w_->joint_rows_.size(); ++k) {
+      start.push_back(base + w_->joint_rows_[k]);
+    }
+  }
+  start.push_back(n);
+  const int blocks = static_cast<int>(start.size()) - 1;
+  std::vector<int>& block = w_->block_of_;
+  block.resize(static_cast<size_t>(n));
+  for (int b = 0; b < blocks; ++b) {
+    std::fill(block.begin() + start[static_cast<size_t>(b)],
+              block.begin() + start[static_cast<size_t>(b) + 1], b);
+  }
+  // The blocks' pattern; the entries come block pair by block pair, so repeats are mostly next
+  // to each other (setFromTriplets merges the rest).
   w_->triplets_.clear();
-  form([&](int a, int b, double v) { w_->triplets_.emplace_back(a, b, v); });
-  Eigen::SparseMatrix<double> lower(n, n);
+  int last_a = -1, last_b = -1;
+  size_t count = 0;
+  form([&](int a, int b, double) {
+    ++count;
+    const int ba = block[static_cast<size_t>(a)], bb = block[static_cast<size_t>(b)];
+    if (ba == last_a && bb == last_b) return;
+    last_a = ba;
+    last_b = bb;
+    w_->triplets_.emplace_back(std::max(ba, bb), std::min(ba, bb), 1.0);
+  });
+  Eigen::SparseMatrix<double> lower(blocks, blocks);
   lower.setFromTriplets(w_->triplets_.begin(), w_->triplets_.end());
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
   Eigen::AMDOrdering<int>()(lower.selfadjointView<Eigen::Lower>(), inverse);
-  // Row a goes to order_[a] (Eigen's orderings return the inverse permutation).
-  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> forward = inverse.inverse();
-  order_ = forward.indices();
-  for (auto& t : w_->triplets_) t = reordered(t.row(), t.col(), t.value());
+  // Eigen's orderings return the inverse permutation: inverse.indices()(k) is the k-th block
+  // to eliminate. Row a goes to order_[a]: the blocks in that order, each block's rows in theirs.
+  order_.resize(n);
+  int at = 0;
+  for (int k = 0; k < blocks; ++k) {
+    const auto b = static_cast<size_t>(inverse.indices()(k));
+    for (int i = start[b]; i < start[b + 1]; ++i) order_(i) = at++;
+  }
+  w_->triplets_.clear();
+  w_->triplets_.reserve(count);
+  form([&](int a, int b, double v) { w_->triplets_.push_back(reordered(a, b, v)); });
   sparse_.resize(n, n);
   sparse_.setFromTriplets(w_->triplets_.begin(), w_->triplets_.end());
   sparse_.makeCompressed();
   slots_.clear();
+  slots_.reserve(count);
   form([&](int a, int b, double) { slots_.push_back(slot(reordered(a, b))); });
   sparse_ldlt_.analyzePattern(sparse_);
 }
