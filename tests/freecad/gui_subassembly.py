@@ -6,6 +6,7 @@ other legs stay, and a screenshot of the four legs (walker.png). Quits FreeCAD i
 import os
 import sys
 import tempfile
+import time
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -114,17 +115,27 @@ class Walker(unittest.TestCase):
         self.assertEqual(sub.getEditorMode("Rigid"), [])
         Gui.Selection.clearSelection()
         Gui.Selection.addSelection(sub)
-        gw.settle()
+        # The property editor opens on the tab FreeCAD last showed (saved in its settings, so another
+        # test or session can leave it on View): Rigid lives on the Data tab.
+        for tabs in gw.mw().findChildren(QtWidgets.QTabWidget):
+            names = [tabs.tabText(i) for i in range(tabs.count())]
+            if "Data" in names and "View" in names:
+                tabs.setCurrentIndex(names.index("Data"))
         shown = set()
-        for tree in gw.mw().findChildren(QtWidgets.QTreeView):
-            model = tree.model()
-            if model is None:
-                continue
-            stack = [model.index(r, 0) for r in range(model.rowCount())]
-            while stack:
-                index = stack.pop()
-                shown.add(model.data(index))
-                stack += [model.index(r, 0, index) for r in range(model.rowCount(index))]
+        # The editor fills its rows from a timer after the selection changes: wait for them.
+        deadline = time.monotonic() + 5
+        while "Rigid" not in shown and time.monotonic() < deadline:
+            gw.settle()
+            time.sleep(0.05)
+            for tree in gw.mw().findChildren(QtWidgets.QTreeView):
+                model = tree.model()
+                if model is None:
+                    continue
+                stack = [model.index(r, 0) for r in range(model.rowCount())]
+                while stack:
+                    index = stack.pop()
+                    shown.add(model.data(index))
+                    stack += [model.index(r, 0, index) for r in range(model.rowCount(index))]
         self.assertIn("Rigid", shown)
         sub.Rigid = True
         self.assertTrue(proxy.getIcon().endswith("Dispcon_SubAssembly.svg"))
