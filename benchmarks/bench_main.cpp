@@ -41,11 +41,10 @@ void BM_FourBars_dispcon_1core(benchmark::State& state) {
 BENCHMARK(BM_FourBars_dispcon_1core)->Apply([](auto* b) { fourbar_counts(b, 1000); });
 
 // SolveSpace on the same four-bars, set up by `solve` (2D sketch or rigid links in 3D).
-void solvespace(benchmark::State& state,
-                bench::SlvsResult (*solve)(int, const bench::FourBarProblem&)) {
+void solvespace(benchmark::State& state, bench::SlvsResult (*solve)(int)) {
   const int n = static_cast<int>(state.range(0));
   for (auto _ : state) {
-    const bench::SlvsResult r = solve(n, {});
+    const bench::SlvsResult r = solve(n);
     if (r.result == SLVS_RESULT_TOO_MANY_UNKNOWNS) {
       state.SkipWithError("SolveSpace refuses: too many unknowns");  // rigid: 147 four-bars on
     } else if (r.result != SLVS_RESULT_OKAY) {
@@ -55,11 +54,16 @@ void solvespace(benchmark::State& state,
   }
 }
 void BM_FourBars_slvs(benchmark::State& state) {
-  solvespace(state, bench::fourbars_slvs);
+  solvespace(state, [](int n) { return bench::fourbars_slvs(n); });
 }
 BENCHMARK(BM_FourBars_slvs)->Apply([](auto* b) { fourbar_counts(b, 400); }) -> Iterations(3);
+// The same sketch with the crank held by an angle constraint (the set-up).
+void BM_FourBars_slvs_angle(benchmark::State& state) {
+  solvespace(state, [](int n) { return bench::fourbars_slvs(n, {}, true); });
+}
+BENCHMARK(BM_FourBars_slvs_angle)->Apply([](auto* b) { fourbar_counts(b, 400); }) -> Iterations(3);
 void BM_FourBars_slvs_rigid(benchmark::State& state) {
-  solvespace(state, bench::fourbars_slvs_rigid);
+  solvespace(state, [](int n) { return bench::fourbars_slvs_rigid(n); });
 }
 BENCHMARK(BM_FourBars_slvs_rigid)->Apply([](auto* b) { fourbar_counts(b, 400); }) -> Iterations(3);
 
@@ -184,11 +188,12 @@ bool same_answer() {
     SolveOptions o;
     o.tolerance = 1e-12;
     if (!assemble(m, o).converged) return false;
-    for (const bool rigid : {false, true}) {
-      const bench::SlvsResult s = rigid ? bench::fourbars_slvs_rigid(n) : bench::fourbars_slvs(n);
+    for (const char* setup : {"2D", "2D angle", "rigid"}) {
+      const bench::SlvsResult s = setup[0] == 'r'   ? bench::fourbars_slvs_rigid(n)
+                                  : setup[2] == 'a' ? bench::fourbars_slvs(n, {}, true)
+                                                    : bench::fourbars_slvs(n);
       if (s.result != SLVS_RESULT_OKAY) {
-        std::fprintf(stderr, "SolveSpace (%s) failed: result %d\n", rigid ? "rigid" : "2D",
-                     s.result);
+        std::fprintf(stderr, "SolveSpace (%s) failed: result %d\n", setup, s.result);
         return false;
       }
       for (int k = 0; k < n; ++k) {
@@ -196,15 +201,16 @@ bool same_answer() {
             bench::rocker_angle_dispcon(m, k) - s.rocker[static_cast<size_t>(k)], 2 * M_PI));
         if (diff > 1e-8) {
           std::fprintf(stderr, "four-bar %d: dispcon and SolveSpace (%s) differ by %g rad\n", k,
-                       rigid ? "rigid" : "2D", diff);
+                       setup, diff);
           return false;
         }
       }
     }
   }
-  std::fprintf(stderr,
-               "check: dispcon and SolveSpace (2D and rigid) give the same rocker angles (within "
-               "1e-8 rad)\n");
+  std::fprintf(
+      stderr,
+      "check: dispcon and SolveSpace (2D, 2D angle and rigid) give the same rocker angles (within "
+      "1e-8 rad)\n");
   return true;
 }
 

@@ -60,7 +60,7 @@ double rocker_angle_dispcon(const Model& m, int k) {
   return std::atan2(x.y(), x.x());
 }
 
-SlvsResult fourbars_slvs(int n, const FourBarProblem& p) {
+SlvsResult fourbars_slvs(int n, const FourBarProblem& p, bool crank_angle) {
   // Group 1: the workplane and the fixed points; group 2: the crank tip A and the pin B.
   std::vector<Slvs_Param> param;
   std::vector<Slvs_Entity> entity;
@@ -107,7 +107,17 @@ SlvsResult fourbars_slvs(int n, const FourBarProblem& p) {
       constraint.push_back(Slvs_MakeConstraint(hc++, g2, SLVS_C_PT_PT_DISTANCE, wp, l, a, b, 0, 0));
     };
     distance(O, A, p.a);
-    constraint.push_back(Slvs_MakeConstraint(hc++, g2, SLVS_C_PT_ON_LINE, wp, 0, A, 0, line, 0));
+    if (crank_angle) {
+      // The crank O-A held at angle t to the ground O-D, as a sketch's dimension poses it.
+      const Slvs_hEntity ground = he++;
+      entity.push_back(Slvs_MakeLineSegment(ground, g1, wp, O, D));
+      const Slvs_hEntity crank = he++;
+      entity.push_back(Slvs_MakeLineSegment(crank, g2, wp, O, A));
+      constraint.push_back(
+          Slvs_MakeConstraint(hc++, g2, SLVS_C_ANGLE, wp, p.t * 180 / M_PI, 0, 0, ground, crank));
+    } else {
+      constraint.push_back(Slvs_MakeConstraint(hc++, g2, SLVS_C_PT_ON_LINE, wp, 0, A, 0, line, 0));
+    }
     distance(A, B, p.b);
     distance(B, D, p.c);
   }

@@ -24,8 +24,10 @@ struct SlvsResult {
   int result = -1;
   std::vector<double> rocker;  // the rocker's angle of each copy
 };
-// SolveSpace at its easiest: 2D points in one workplane, distances (4 unknowns per four-bar).
-SlvsResult fourbars_slvs(int n, const FourBarProblem& p = {});
+// SolveSpace at its easiest: 2D points in one workplane, distances (4 unknowns per four-bar),
+// the crank's tip on a line at angle t; with `crank_angle`, the crank held by an angle
+// constraint to the ground instead (the set-up: 30 times slower for SolveSpace).
+SlvsResult fourbars_slvs(int n, const FourBarProblem& p = {}, bool crank_angle = false);
 // SolveSpace on dispcon's problem: rigid links in 3D (frames of 7 parameters each).
 SlvsResult fourbars_slvs_rigid(int n, const FourBarProblem& p = {});
 

@@ -13,8 +13,6 @@
 namespace dispcon::cli {
 namespace {
 
-using nlohmann::json;
-
 struct AnimateArgs {
   Common common;
   double duration = 1, dt = 0.01;
@@ -46,24 +44,29 @@ int run_animate(const AnimateArgs& a) {
   if (!a.svg.empty() && !write_text(a.svg, write_animation_svg(*m, r))) return kBadInput;
   const std::vector<ConstraintReport> now = measure(*m, m->poses(), o.solve);
   if (a.common.json) {
-    json frames = json::array();
-    for (const Frame& f : r.frames) {
-      frames.push_back({{"time", f.time},
-                        {"iterations", f.iterations},
-                        {"max_residual", f.max_residual},
-                        {"converged", f.converged},
-                        {"violated", joint_list(f.violated)}});
-    }
-    json doc = {{"converged", r.converged},
-                {"stopped", r.stopped},
-                {"iterations", r.iterations},
-                {"max_residual", r.max_residual},
-                {"message", r.message},
-                {"warnings", r.warnings},
-                {"bodies", bodies_json(*m, m->poses())},
-                {"constraints", constraints_json(*m, now)},
-                {"frames", frames}};
-    std::cout << doc.dump(2) << "\n";
+    auto frames = [&](JsonWriter& w) {
+      w.begin_array();
+      for (const Frame& f : r.frames) {
+        write_object(w, {{"time", [&](JsonWriter& v) { v.value(f.time); }},
+                         {"iterations", [&](JsonWriter& v) { v.value(f.iterations); }},
+                         {"max_residual", [&](JsonWriter& v) { v.value(f.max_residual); }},
+                         {"converged", [&](JsonWriter& v) { v.value(f.converged); }},
+                         {"violated", [&](JsonWriter& v) { write_joint_list(v, f.violated); }}});
+      }
+      w.end_array();
+    };
+    const std::vector<Pose> poses = m->poses();
+    print_json([&](JsonWriter& w) {
+      write_object(w, {{"converged", [&](JsonWriter& v) { v.value(r.converged); }},
+                       {"stopped", [&](JsonWriter& v) { v.value(r.stopped); }},
+                       {"iterations", [&](JsonWriter& v) { v.value(r.iterations); }},
+                       {"max_residual", [&](JsonWriter& v) { v.value(r.max_residual); }},
+                       {"message", [&](JsonWriter& v) { v.value(r.message); }},
+                       {"warnings", [&](JsonWriter& v) { write_strings(v, r.warnings); }},
+                       {"bodies", [&](JsonWriter& v) { write_bodies(v, *m, poses); }},
+                       {"constraints", [&](JsonWriter& v) { write_constraints(v, *m, now); }},
+                       {"frames", frames}});
+    });
   } else {
     std::cout << a.common.file << ": " << r.message << "\n";
     for (const std::string& w : r.warnings)

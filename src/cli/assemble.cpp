@@ -20,7 +20,7 @@ int run_assemble(const AssembleArgs& a) {
   const SolveResult r = assemble(*m, options(a.common));
   if (!a.write.empty() && r.converged && !write_text(a.write, write_dcl(*m))) return kBadInput;
   if (a.common.json) {
-    std::cout << solve_json(*m, r).dump(2) << "\n";
+    print_json([&](JsonWriter& w) { write_object(w, solve_members(*m, r)); });
   } else {
     std::cout << a.common.file << ": ";
     print_solve(std::cout, *m, r);

@@ -14,18 +14,16 @@ int run_check(const Common& c) {
   if (!m) return kBadInput;
   const CheckResult r = check(*m, options(c));
   if (c.json) {
-    nlohmann::json doc = solve_json(*m, r.solve);
-    doc["dof"] = r.dof;
-    doc["redundant"] = joint_list(r.redundant);
-    doc["conflicting"] = joint_list(r.conflicting);
-    doc["limits_active"] = joint_list(r.limits_active);
-    doc["locking"] = joint_list(r.locking);
-    doc["advice"] = r.advice;
-    doc["diagnosis"] = r.message;
-    for (int i = 1; i < m->body_count(); ++i) {
-      doc["bodies"][m->body(BodyId{i}).name]["dof"] = r.body_dof[static_cast<size_t>(i)];
-    }
-    std::cout << doc.dump(2) << "\n";
+    std::vector<Member> doc = solve_members(*m, r.solve, &r.body_dof);
+    doc.insert(doc.end(),
+               {{"dof", [&](JsonWriter& w) { w.value(r.dof); }},
+                {"redundant", [&](JsonWriter& w) { write_joint_list(w, r.redundant); }},
+                {"conflicting", [&](JsonWriter& w) { write_joint_list(w, r.conflicting); }},
+                {"limits_active", [&](JsonWriter& w) { write_joint_list(w, r.limits_active); }},
+                {"locking", [&](JsonWriter& w) { write_joint_list(w, r.locking); }},
+                {"advice", [&](JsonWriter& w) { write_strings(w, r.advice); }},
+                {"diagnosis", [&](JsonWriter& w) { w.value(r.message); }}});
+    print_json([&](JsonWriter& w) { write_object(w, std::move(doc)); });
   } else {
     std::cout << c.file << ": " << r.message << "\n";
     std::cout << "degrees of freedom: " << r.dof << "\n";

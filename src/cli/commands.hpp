@@ -5,7 +5,6 @@
 #include <CLI/CLI.hpp>
 #include <fstream>
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +56,5 @@ Vec3 vec(const std::vector<double>& v);
 bool write_text(const std::string& path, const std::string& text);
 // Flushes and closes a file written in pieces; false, with a message, when any write failed.
 bool written(std::ofstream& out, const std::string& path);
-nlohmann::json joint_list(const std::vector<JointId>& ids);
 
 }  // namespace dispcon::cli

@@ -57,10 +57,4 @@ bool written(std::ofstream& out, const std::string& path) {
   return !out.fail();
 }
 
-nlohmann::json joint_list(const std::vector<JointId>& ids) {
-  nlohmann::json out = nlohmann::json::array();
-  for (JointId j : ids) out.push_back(j.value);
-  return out;
-}
-
 }  // namespace dispcon::cli

@@ -11,8 +11,6 @@
 namespace dispcon::cli {
 namespace {
 
-using nlohmann::json;
-
 struct DragArgs {
   Common common;
   std::string body, csv;
@@ -48,21 +46,28 @@ int run_drag(const DragArgs& a) {
   const std::vector<ConstraintReport> now =
       d.steps.empty() ? first.constraints : d.steps.back().constraints;
   if (a.common.json) {
-    json steps = json::array();
-    for (const SolveResult& s : d.steps) {
-      steps.push_back({{"iterations", s.iterations},
-                       {"max_residual", s.max_residual},
-                       {"converged", s.converged}});
-    }
-    json doc = {{"converged", converged},
-                {"iterations", first.iterations + d.iterations},
-                {"max_residual", std::max(first.max_residual, d.max_residual)},
-                {"message", d.message},
-                {"failed_step", d.failed_step},
-                {"bodies", bodies_json(*m, m->poses())},
-                {"constraints", constraints_json(*m, now)},
-                {"steps", steps}};
-    std::cout << doc.dump(2) << "\n";
+    auto steps = [&](JsonWriter& w) {
+      w.begin_array();
+      for (const SolveResult& s : d.steps) {
+        write_object(w, {{"iterations", [&](JsonWriter& v) { v.value(s.iterations); }},
+                         {"max_residual", [&](JsonWriter& v) { v.value(s.max_residual); }},
+                         {"converged", [&](JsonWriter& v) { v.value(s.converged); }}});
+      }
+      w.end_array();
+    };
+    const std::vector<Pose> poses = m->poses();
+    print_json([&](JsonWriter& w) {
+      write_object(
+          w, {{"converged", [&](JsonWriter& v) { v.value(converged); }},
+              {"iterations", [&](JsonWriter& v) { v.value(first.iterations + d.iterations); }},
+              {"max_residual",
+               [&](JsonWriter& v) { v.value(std::max(first.max_residual, d.max_residual)); }},
+              {"message", [&](JsonWriter& v) { v.value(d.message); }},
+              {"failed_step", [&](JsonWriter& v) { v.value(d.failed_step); }},
+              {"bodies", [&](JsonWriter& v) { write_bodies(v, *m, poses); }},
+              {"constraints", [&](JsonWriter& v) { write_constraints(v, *m, now); }},
+              {"steps", steps}});
+    });
   } else {
     std::cout << a.common.file << ": assembled: " << first.message << "\n" << d.message << "\n";
     if (!d.steps.empty()) {

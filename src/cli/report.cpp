@@ -1,55 +1,126 @@
 #include "report.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 
 namespace dispcon::cli {
 
-nlohmann::json pose_json(const Pose& pose) {
+namespace {
+
+void write_numbers(JsonWriter& w, std::initializer_list<double> values) {
+  w.begin_array();
+  for (const double v : values) w.value(v);
+  w.end_array();
+}
+
+// A body's pose (and its dof when given), members in key order.
+void write_pose(JsonWriter& w, const Pose& pose, const int* dof) {
   const Mat3 R = pose.rotation();
-  nlohmann::json rotation = nlohmann::json::array();
-  for (int i = 0; i < 3; ++i) rotation.push_back({R(i, 0), R(i, 1), R(i, 2)});
   Quat q = pose.q.normalized();
   if (q.w() < 0) q.coeffs() = -q.coeffs();
-  return {{"position", {pose.x.x(), pose.x.y(), pose.x.z()}},
-          {"rotation", rotation},
-          {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
-}
-
-nlohmann::json bodies_json(const Model& model, const std::vector<Pose>& poses) {
-  nlohmann::json out = nlohmann::json::object();
-  for (int i = 1; i < model.body_count(); ++i) {
-    out[model.body(BodyId{i}).name] = pose_json(poses[static_cast<size_t>(i)]);
+  w.begin_object();
+  if (dof) {
+    w.key("dof");
+    w.value(*dof);
   }
-  return out;
+  w.key("position");
+  write_numbers(w, {pose.x.x(), pose.x.y(), pose.x.z()});
+  w.key("quaternion");
+  write_numbers(w, {q.w(), q.x(), q.y(), q.z()});
+  w.key("rotation");
+  w.begin_array();
+  for (int i = 0; i < 3; ++i) write_numbers(w, {R(i, 0), R(i, 1), R(i, 2)});
+  w.end_array();
+  w.end_object();
 }
 
-nlohmann::json constraints_json(const Model& model, const std::vector<ConstraintReport>& reports) {
-  nlohmann::json out = nlohmann::json::array();
+}  // namespace
+
+void write_object(JsonWriter& w, std::vector<Member> members) {
+  std::sort(members.begin(), members.end(),
+            [](const Member& a, const Member& b) { return a.key < b.key; });
+  w.begin_object();
+  for (const Member& m : members) {
+    w.key(m.key);
+    m.write(w);
+  }
+  w.end_object();
+}
+
+void write_bodies(JsonWriter& w, const Model& model, const std::vector<Pose>& poses,
+                  const std::vector<int>* dof) {
+  std::vector<int> order;  // by name, as a sorted map has them
+  order.reserve(static_cast<size_t>(model.body_count()));
+  for (int i = 1; i < model.body_count(); ++i) order.push_back(i);
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return model.body(BodyId{a}).name < model.body(BodyId{b}).name; });
+  w.begin_object();
+  for (const int i : order) {
+    w.key(model.body(BodyId{i}).name);
+    write_pose(w, poses[static_cast<size_t>(i)], dof ? &(*dof)[static_cast<size_t>(i)] : nullptr);
+  }
+  w.end_object();
+}
+
+void write_constraints(JsonWriter& w, const Model& model,
+                       const std::vector<ConstraintReport>& reports) {
+  w.begin_array();
   for (const ConstraintReport& c : reports) {
     const Joint& j = model.joint(c.joint);
-    out.push_back({{"index", c.joint.value},
-                   {"line", c.line},
-                   {"object1", model.body(j.body1).name},
-                   {"object2", model.body(j.body2).name},
-                   {"residual", c.residual},
-                   {"satisfied", c.satisfied},
-                   {"active", c.active},
-                   {"at_limit", c.at_limit}});
+    w.begin_object();
+    w.key("active");
+    w.value(c.active);
+    w.key("at_limit");
+    w.value(c.at_limit);
+    w.key("index");
+    w.value(c.joint.value);
+    w.key("line");
+    w.value(c.line);
+    w.key("object1");
+    w.value(model.body(j.body1).name);
+    w.key("object2");
+    w.value(model.body(j.body2).name);
+    w.key("residual");
+    w.value(c.residual);
+    w.key("satisfied");
+    w.value(c.satisfied);
+    w.end_object();
   }
-  return out;
+  w.end_array();
 }
 
-nlohmann::json solve_json(const Model& model, const SolveResult& r) {
-  return {{"converged", r.converged},
-          {"status", to_string(r.status)},
-          {"iterations", r.iterations},
-          {"seed_iterations", r.seed_iterations},
-          {"newton_iterations", r.polish_iterations},
-          {"max_residual", r.max_residual},
-          {"message", r.message},
-          {"bodies", bodies_json(model, r.poses)},
-          {"constraints", constraints_json(model, r.constraints)}};
+void write_joint_list(JsonWriter& w, const std::vector<JointId>& ids) {
+  w.begin_array();
+  for (const JointId j : ids) w.value(j.value);
+  w.end_array();
+}
+
+void write_strings(JsonWriter& w, const std::vector<std::string>& strings) {
+  w.begin_array();
+  for (const std::string& s : strings) w.value(s);
+  w.end_array();
+}
+
+std::vector<Member> solve_members(const Model& model, const SolveResult& r,
+                                  const std::vector<int>* body_dof) {
+  return {{"converged", [&](JsonWriter& w) { w.value(r.converged); }},
+          {"status", [&](JsonWriter& w) { w.value(to_string(r.status)); }},
+          {"iterations", [&](JsonWriter& w) { w.value(r.iterations); }},
+          {"seed_iterations", [&](JsonWriter& w) { w.value(r.seed_iterations); }},
+          {"newton_iterations", [&](JsonWriter& w) { w.value(r.polish_iterations); }},
+          {"max_residual", [&](JsonWriter& w) { w.value(r.max_residual); }},
+          {"message", [&](JsonWriter& w) { w.value(r.message); }},
+          {"bodies", [&, body_dof](JsonWriter& w) { write_bodies(w, model, r.poses, body_dof); }},
+          {"constraints", [&](JsonWriter& w) { write_constraints(w, model, r.constraints); }}};
+}
+
+void print_json(const std::function<void(JsonWriter&)>& write) {
+  std::string out;
+  JsonWriter w(out, stdout);
+  write(w);
+  out += '\n';
+  std::fwrite(out.data(), 1, out.size(), stdout);
 }
 
 void csv_rows(std::ostream& out, const std::string& first, const Model& model,

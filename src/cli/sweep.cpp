@@ -6,11 +6,10 @@
 #include "commands.hpp"
 #include "dispcon/io/sweep_plot.hpp"
 #include "dispcon/solve/diagnostics.hpp"
+#include "report.hpp"
 
 namespace dispcon::cli {
 namespace {
-
-using nlohmann::json;
 
 struct SweepArgs {
   Common common;
@@ -45,20 +44,29 @@ int run_sweep(const SweepArgs& a) {
   }
   if (!a.plot.empty() && !write_text(a.plot, write_sweep_svg(*m, r))) return kBadInput;
   if (a.common.json) {
-    json samples = json::array();
-    for (const SweepSample& x : r.samples) {
-      samples.push_back({{"value", x.value},
-                         {"converged", x.converged},
-                         {"max_residual", x.max_residual},
-                         {"limits_active", joint_list(x.limits_active)},
-                         {"joint_values", x.joint_values}});
-    }
-    json doc = {{"converged", !r.locked},
-                {"locked", r.locked},
-                {"lock_value", r.lock_value},
-                {"message", r.message},
-                {"samples", samples}};
-    std::cout << doc.dump(2) << "\n";
+    auto samples = [&](JsonWriter& w) {
+      w.begin_array();
+      for (const SweepSample& x : r.samples) {
+        write_object(
+            w, {{"value", [&](JsonWriter& v) { v.value(x.value); }},
+                {"converged", [&](JsonWriter& v) { v.value(x.converged); }},
+                {"max_residual", [&](JsonWriter& v) { v.value(x.max_residual); }},
+                {"limits_active", [&](JsonWriter& v) { write_joint_list(v, x.limits_active); }},
+                {"joint_values", [&](JsonWriter& v) {
+                   v.begin_array();
+                   for (const double j : x.joint_values) v.value(j);
+                   v.end_array();
+                 }}});
+      }
+      w.end_array();
+    };
+    print_json([&](JsonWriter& w) {
+      write_object(w, {{"converged", [&](JsonWriter& v) { v.value(!r.locked); }},
+                       {"locked", [&](JsonWriter& v) { v.value(r.locked); }},
+                       {"lock_value", [&](JsonWriter& v) { v.value(r.lock_value); }},
+                       {"message", [&](JsonWriter& v) { v.value(r.message); }},
+                       {"samples", samples}});
+    });
   } else {
     std::cout << a.common.file << ": " << r.message << "\n";
   }

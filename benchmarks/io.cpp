@@ -1,0 +1,73 @@
+// Reading and the whole command (issue 14): the .dcl of N four-bars as dispcon writes it (the
+// rough start of BM_FourBars_dispcon, 17 significant digits a number), read by load_dcl; and
+// `dispcon assemble FILE --json` run as a process, timed from fork to exit, its CPU time (user
+// and system, from wait4) reported beside.
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "common.hpp"
+#include "dispcon/io/dcl_reader.hpp"
+#include "dispcon/io/dcl_writer.hpp"
+#include "mechanisms.hpp"
+
+namespace {
+
+using namespace dispcon;
+
+// Written once per size, beside the benchmark binary's build (scripts/bench names it).
+std::string fourbars_file(int n) {
+  const std::string path =
+      std::string(DISPCON_BUILD_DIR) + "/fourbars-" + std::to_string(n) + ".dcl";
+  std::ofstream(path, std::ios::binary) << write_dcl(bench::fourbars_dispcon(n));
+  return path;
+}
+
+void BM_Load_FourBars(benchmark::State& state) {
+  const std::string path = fourbars_file(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const ParseResult r = load_dcl(path);
+    if (!r.ok()) state.SkipWithError(r.messages().c_str());
+    benchmark::DoNotOptimize(r);
+  }
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  state.SetBytesProcessed(state.iterations() * static_cast<int64_t>(in.tellg()));
+}
+BENCHMARK(BM_Load_FourBars)->Arg(400)->Unit(benchmark::kMillisecond);
+
+#ifdef DISPCON_BIN
+// The whole `dispcon assemble FILE --json` (its output to /dev/null), as a user waits for it.
+void BM_Command_AssembleJson_FourBars(benchmark::State& state) {
+  const std::string path = fourbars_file(static_cast<int>(state.range(0)));
+  double cpu = 0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const pid_t pid = fork();
+    if (pid == 0) {
+      if (!std::freopen("/dev/null", "w", stdout)) _exit(127);
+      execl(DISPCON_BIN, DISPCON_BIN, "assemble", path.c_str(), "--json", nullptr);
+      _exit(127);
+    }
+    int status = 0;
+    rusage usage{};
+    wait4(pid, &status, 0, &usage);
+    const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - start;
+    state.SetIterationTime(wall.count());
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) state.SkipWithError("dispcon failed");
+    cpu += usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+           1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+  }
+  state.counters["cpu_ms"] = 1e3 * cpu / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_Command_AssembleJson_FourBars)
+    ->Arg(400)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+#endif
+
+}  // namespace

@@ -1,0 +1,49 @@
+// JSON written as it goes, with no document built first: the command line's output of a large
+// model (a body, a constraint, a frame at a time) costs what printing it costs.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dispcon::cli {
+
+// Appends to a string the layout nlohmann::json::dump(2) gives the same values, byte for byte,
+// which is what the documents have always been: two-space indents, `"key": value`, `[]` and
+// `{}` when empty, doubles as nlohmann writes them (shortest round-trip digits, `.0` on whole
+// numbers, null for NaN and infinities), strings escaped as JSON requires. Keys are written in
+// the order given (the documents give them sorted: see write_object in report.hpp).
+class JsonWriter {
+ public:
+  // With a `sink`, what is written goes out to it in pieces of about 64 kB as it is written
+  // (the rest stays in `out`): a long document never sits whole in memory.
+  explicit JsonWriter(std::string& out, std::FILE* sink = nullptr) : out_(out), sink_(sink) {}
+
+  void begin_object();
+  void end_object();
+  void begin_array();
+  void end_array();
+  // The key of the member whose value comes next.
+  void key(std::string_view k);
+
+  void value(double v);
+  void value(int v);
+  void value(bool v);
+  void value(std::string_view s);
+  void value(const char* s) { value(std::string_view(s)); }
+  void value(const std::string& s) { value(std::string_view(s)); }
+
+ private:
+  void item();  // the comma, new line and indent before an array's item or an object's key
+  void open(char bracket);
+  void close(char bracket);
+  void string(std::string_view s);
+
+  std::string& out_;
+  std::FILE* sink_;
+  std::vector<int> items_;  // per open container, its items so far
+  bool after_key_ = false;
+};
+
+}  // namespace dispcon::cli
