@@ -36,7 +36,7 @@ class DispconWorkbench(Gui.Workbench):
         # FreeCAD's own toolbars fill the first row at 1280 px: ours start a row of their own, so
         # Solve, Drag and Check never hide behind a toolbar's ">>".
         import FreeCADGui
-        from PySide2 import QtWidgets
+        from dispcon_fc.qt import QtWidgets
 
         window = FreeCADGui.getMainWindow()
         bars = [tb for tb in window.findChildren(QtWidgets.QToolBar)

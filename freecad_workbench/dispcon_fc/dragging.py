@@ -161,7 +161,7 @@ class DragMode:
 
     def _show_state(self, on):
         """The status bar's message and label, and the Drag button's pressed state."""
-        from PySide2 import QtWidgets
+        from .qt import QtWidgets
 
         window = Gui.getMainWindow()
         bar = window.statusBar()

@@ -20,7 +20,7 @@ sys.path.insert(0, HERE)
 
 import FreeCAD as App  # noqa: E402
 import FreeCADGui as Gui  # noqa: E402
-from PySide2 import QtWidgets  # noqa: E402
+from dispcon_fc.qt import QtWidgets  # noqa: E402
 from pivy import coin  # noqa: E402
 
 
@@ -323,7 +323,7 @@ try:
     view.saveImage(os.path.join(OUT, "fourbar-drag.png"), 1280, 900, "White")
     # The session as a person sees it: the main window, with the 3D view's rendering painted
     # where the view is (a widget grab cannot read OpenGL under Xvfb).
-    from PySide2 import QtGui
+    from dispcon_fc.qt import QtGui
 
     window = Gui.getMainWindow()
     shot = window.grab()

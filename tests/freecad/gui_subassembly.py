@@ -16,9 +16,8 @@ os.environ["DISPCON_SUB_IMPORT_ONLY"] = "1"
 
 import FreeCAD as App  # noqa: E402
 import FreeCADGui as Gui  # noqa: E402
-from PySide2 import QtGui, QtWidgets  # noqa: E402
-
-import gui_workbench as gw  # noqa: E402
+import gui_workbench as gw  # noqa: E402  (puts the workbench on sys.path)
+from dispcon_fc.qt import QtGui, QtWidgets  # noqa: E402
 import test_subassembly as ts  # noqa: E402
 
 

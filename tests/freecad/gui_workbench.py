@@ -22,7 +22,7 @@ os.environ["DISPCON_IMPORT_ONLY"] = "1"
 
 import FreeCAD as App  # noqa: E402
 import FreeCADGui as Gui  # noqa: E402
-from PySide2 import QtCore, QtGui, QtWidgets  # noqa: E402
+from dispcon_fc.qt import QtCore, QtGui, QtWidgets  # noqa: E402
 
 MOTION = ("Dispcon_Solve", "Dispcon_Drag", "Dispcon_Drive")
 MAIN = ("Dispcon_Solve", "Dispcon_Drag", "Dispcon_Check", "Dispcon_JointRevolute", "Dispcon_CreateAssembly")
@@ -206,10 +206,10 @@ class TestCommands(Documents):
         shot("toolbars-1280")
 
     def test_menu_has_joint_submenu_and_separators(self):
-        import shiboken2
+        from dispcon_fc.qt import is_alive
 
         menus = [m for m in mw().menuBar().findChildren(QtWidgets.QMenu)
-                 if shiboken2.isValid(m) and m.title().replace("&", "") == "Dispcon"]
+                 if is_alive(m) and m.title().replace("&", "") == "Dispcon"]
         self.assertTrue(menus, "no Dispcon menu")
         acts = menus[-1].actions()
         self.assertTrue(any(a.isSeparator() for a in acts), "no separators in the Dispcon menu")
@@ -887,14 +887,14 @@ class TestCouplings(Documents):
         return asm, named
 
     def test_commands_have_icons_and_sit_with_the_joints(self):
-        import shiboken2
+        from dispcon_fc.qt import is_alive
 
         joints_bar = toolbar_of("Dispcon_JointRevolute")
         # The menu bar's Dispcon menu as it is now (FreeCAD remakes its menus as documents come
         # and go): its Joints submenu.
         in_menu = set()
         for m in mw().menuBar().findChildren(QtWidgets.QMenu):
-            if shiboken2.isValid(m) and m.title().replace("&", "") == "Joints":
+            if is_alive(m) and m.title().replace("&", "") == "Joints":
                 in_menu |= {a.objectName() for a in m.actions()}
         for kind in self.NEW if engine_couples() else ("Distance", "Parallel", "Perpendicular"):
             n = "Dispcon_Joint" + kind

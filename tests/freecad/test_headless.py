@@ -856,6 +856,24 @@ class WorkbenchFiles(unittest.TestCase):
                     self.assertEqual((used & top) - local, set(), "%s: %s.%s" % (name, cls.name, method.name))
 
 
+    def test_qt_comes_through_freecads_shim(self):
+        """Qt is imported through FreeCAD's PySide shim (dispcon_fc/qt.py), never a binding by name,
+        so the workbench runs on whichever Qt FreeCAD was built with."""
+        bindings = {"PySide2", "PySide6", "shiboken2", "shiboken6"}
+        for root, _, files in os.walk(os.path.join(REPO, "freecad_workbench")):
+            for name in (f for f in files if f.endswith(".py")):
+                path = os.path.join(root, name)
+                if os.path.relpath(path, REPO) == os.path.join("freecad_workbench", "dispcon_fc", "qt.py"):
+                    continue
+                for node in ast.walk(ast.parse(open(path).read())):
+                    names = ([a.name for a in node.names] if isinstance(node, ast.Import)
+                             else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
+                    for n in names:
+                        self.assertNotIn(n.split(".")[0], bindings, "%s:%d imports %s" % (path, node.lineno, n))
+        from dispcon_fc import qt
+        self.assertTrue(qt.QtCore.__name__.startswith("PySide"))
+        self.assertTrue(hasattr(qt.QtWidgets, "QWidget"))
+
 UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles)
 
 

@@ -9,7 +9,7 @@ def _check():
 
 
 def _export():
-    from PySide2 import QtWidgets
+    from ..qt import QtWidgets
 
     path, _ = QtWidgets.QFileDialog.getSaveFileName(None, "Export .dcl", "", "dispcon (*.dcl)")
     if path:
@@ -17,7 +17,7 @@ def _export():
 
 
 def _import_dcl():
-    from PySide2 import QtWidgets
+    from ..qt import QtWidgets
 
     path, _ = QtWidgets.QFileDialog.getOpenFileName(None, "Import .dcl placements", "", "dispcon (*.dcl)")
     if path:

@@ -18,7 +18,7 @@ def _add_parts():
 
 
 def _import():
-    from PySide2 import QtWidgets
+    from ..qt import QtWidgets
 
     path, _ = QtWidgets.QFileDialog.getOpenFileName(None, "Import a part", "", "CAD (*.step *.stp *.iges *.igs *.brep *.brp)")
     if path:
@@ -27,7 +27,7 @@ def _import():
 
 def _insert_link():
     """A part from another .FCStd file, linked (App::Link): the file's solid, or the one chosen."""
-    from PySide2 import QtWidgets
+    from ..qt import QtWidgets
 
     asm = active_assembly()
     path, _ = QtWidgets.QFileDialog.getOpenFileName(None, "Insert a part from a FreeCAD file", "", "FreeCAD (*.FCStd)")
@@ -49,7 +49,7 @@ def _insert_link():
 def _insert_sub_assembly():
     """An assembly placed in the active one: the second assembly selected (of this document), or
     one of a saved .FCStd file chosen in a dialog (linked, as FreeCAD 1.x's Insert component)."""
-    from PySide2 import QtWidgets
+    from ..qt import QtWidgets
 
     from .. import subassembly
     from ..objects import is_assembly, top_assemblies

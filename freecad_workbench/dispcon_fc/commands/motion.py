@@ -36,7 +36,7 @@ def _drive():
          [j for j in joints(asm) if j.JointType == "Revolute"]
     if not js:
         raise ValueError("select a revolute joint to drive")
-    from PySide2 import QtWidgets
+    from ..qt import QtWidgets
 
     def frame(_):
         Gui.updateGui()
@@ -58,7 +58,7 @@ def study_joint(asm):
 
 def save_path(title, suggested, filter_text):
     """A path from a save dialog (Qt's own, the same under any desktop), or "" when cancelled."""
-    from PySide2 import QtWidgets
+    from ..qt import QtWidgets
 
     path, _ = QtWidgets.QFileDialog.getSaveFileName(Gui.getMainWindow(), title, suggested, filter_text,
                                                     options=QtWidgets.QFileDialog.DontUseNativeDialog)

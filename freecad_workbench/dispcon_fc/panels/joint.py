@@ -15,11 +15,7 @@ from ..guide import PICK
 from ..adapter import offered_types
 from ..objects import COUPLINGS
 
-try:
-    from PySide2 import QtCore, QtGui, QtWidgets
-except ImportError:  # FreeCAD's own shim
-    from PySide import QtCore, QtGui
-    from PySide import QtGui as QtWidgets
+from ..qt import QtCore, QtGui, QtWidgets, is_alive
 
 # Which groups of fields each type shows.
 FIELDS = {
@@ -264,11 +260,9 @@ class JointPanel:
     def _gone(self):
         """True, and the panel stops listening, once its document or its form is gone (FreeCAD
         closes a task dialog without asking it when the document closes)."""
-        import shiboken2
-
         try:
             self.doc.Name
-            if shiboken2.isValid(self.form):
+            if is_alive(self.form):
                 return False
         except ReferenceError:
             pass
@@ -441,13 +435,11 @@ class JointPanel:
     def ok_button(self):
         """The task view's OK button: the nearest one up from the form (a closed dialog's may
         still be there, waiting for deletion)."""
-        import shiboken2
-
         w = self.form
         while w is not None:
             found = [box.button(QtWidgets.QDialogButtonBox.Ok)
-                     for box in w.findChildren(QtWidgets.QDialogButtonBox) if shiboken2.isValid(box)]
-            found = [b for b in found if b is not None and shiboken2.isValid(b) and b.isVisibleTo(w)]
+                     for box in w.findChildren(QtWidgets.QDialogButtonBox) if is_alive(box)]
+            found = [b for b in found if is_alive(b) and b.isVisibleTo(w)]
             if found:
                 return found[-1]
             w = w.parentWidget()
