@@ -73,12 +73,12 @@ const char* to_string(CouplingKind kind);
 
 struct CouplingSpec {
   CouplingKind kind = CouplingKind::Gear;
-  Vec3 c1 = Vec3::Zero();    // a point of object1's axis, object1's frame
-  Vec3 a1 = Vec3::UnitZ();   // object1's axis, unit
-  Vec3 c2 = Vec3::Zero();    // a point of object2's axis (rack: a point of the rack)
-  Vec3 a2 = Vec3::UnitZ();   // object2's axis (rack: its direction of travel), unit
-  double value = 1;          // ratio (gear, belt), radius (rack), pitch (screw); positive
-  bool left = false;         // screw: left-handed
+  Vec3 c1 = Vec3::Zero();   // a point of object1's axis, object1's frame
+  Vec3 a1 = Vec3::UnitZ();  // object1's axis, unit
+  Vec3 c2 = Vec3::Zero();   // a point of object2's axis (rack: a point of the rack)
+  Vec3 a2 = Vec3::UnitZ();  // object2's axis (rack: its direction of travel), unit
+  double value = 1;         // ratio (gear, belt), radius (rack), pitch (screw); positive
+  bool left = false;        // screw: left-handed
   // The coupling's constant; absent: taken at add_joint so that the model's poses hold it. The
   // model keeps it as the turns go round (Model::set_poses), so it survives full turns.
   std::optional<double> phase;

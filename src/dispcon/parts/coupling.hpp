@@ -28,10 +28,10 @@ struct Frame {
 
 // A coupling's equation at the current poses.
 struct CouplingMeasure {
-  int angles = 0;                  // turns in the equation (1 or 2)
-  double theta[2] = {0, 0};        // wrapped turns, (-pi, pi]
-  double k[2] = {0, 0};            // their coefficients
-  double s = 0;                    // the travel term
+  int angles = 0;                              // turns in the equation (1 or 2)
+  double theta[2] = {0, 0};                    // wrapped turns, (-pi, pi]
+  double k[2] = {0, 0};                        // their coefficients
+  double s = 0;                                // the travel term
   Row dtheta[2] = {Row::Zero(), Row::Zero()};  // gradients (when asked for)
   Row ds = Row::Zero();
   bool valid = true;  // false when a turn has no reference (it lies along the axis)

@@ -1,6 +1,7 @@
 // Diagnostics at the assembled pose: degrees of freedom from the rank of the constraints'
-// Jacobian (SVD, group by group: rank.cpp), redundant joints (equations that repeat others), conflicting joints (whose
-// removal lets the rest assemble), limits in contact, and range-of-motion sweeps.
+// Jacobian (SVD, group by group: rank.cpp), redundant joints (equations that repeat others),
+// conflicting joints (whose removal lets the rest assemble), limits in contact, and range-of-motion
+// sweeps.
 #include "dispcon/solve/diagnostics.hpp"
 
 #include <algorithm>

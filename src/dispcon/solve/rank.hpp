@@ -23,7 +23,7 @@ struct Repeated {
 
 struct RankReport {
   int dof = 0;
-  std::vector<int> body_dof;       // per body (index BodyId::value); 0 for fixed bodies
+  std::vector<int> body_dof;        // per body (index BodyId::value); 0 for fixed bodies
   std::vector<Repeated> redundant;  // in model order
 };
 

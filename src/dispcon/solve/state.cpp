@@ -104,9 +104,9 @@ SolverState::SolverState(const Model& model, const std::vector<Pose>& poses,
       // The phase holds at the model's poses: the turns there are the first ones seen.
       const Body& m1 = model.body(j.body1);
       const Body& m2 = model.body(j.body2);
-      const CouplingMeasure m = measure_coupling(
-          *j.coupling, Frame{m1.pose.rotation(), m1.pose.x, m1.world_center()},
-          Frame{m2.pose.rotation(), m2.pose.x, m2.world_center()}, false);
+      const CouplingMeasure m =
+          measure_coupling(*j.coupling, Frame{m1.pose.rotation(), m1.pose.x, m1.world_center()},
+                           Frame{m2.pose.rotation(), m2.pose.x, m2.world_center()}, false);
       js.phase = j.coupling->phase.value_or(0);
       js.last[0] = m.theta[0];
       js.last[1] = m.theta[1];
@@ -212,7 +212,8 @@ double SolverState::residual(const JointState& js) const {
     const double t = twist_angle(g.a1, g.a2, g.b1, g.b2);
     r = std::max(r, std::abs(twist_violation(t, j.twist->min, j.twist->max)));
   }
-  if (j.coupling) r = std::max(r, std::abs(coupling_residual(coupling(js, false), js.last, js.phase)));
+  if (j.coupling)
+    r = std::max(r, std::abs(coupling_residual(coupling(js, false), js.last, js.phase)));
   return r;
 }
 
