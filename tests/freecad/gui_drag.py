@@ -21,8 +21,9 @@ sys.path.insert(0, HERE)
 import FreeCAD as App  # noqa: E402
 import FreeCADGui as Gui  # noqa: E402
 from dispcon_fc.qt import QtWidgets  # noqa: E402
-from pivy import coin  # noqa: E402
 
+os.environ["DISPCON_GUI_IMPORT_ONLY"] = "1"
+import gui_workbench as gw  # noqa: E402  (its helpers only)
 
 
 def crank_chain(doc, cranks):
@@ -61,26 +62,6 @@ def crank_chain(doc, cranks):
         da.add_joint(asm, "Revolute", pin(cs[k], length, True), pin(ls[k], 0), offset=layer)
         da.add_joint(asm, "Revolute", pin(cs[k + 1], length, True), pin(ls[k], pitch), offset=layer)
     return asm, cs, ls
-
-
-def mouse(view, kind, x, y, state=None):
-    """A Coin3D event sent to the view's scene graph, as the viewer sends the mouse's."""
-    viewer = view.getViewer()
-    region = viewer.getSoRenderManager().getViewportRegion()
-    if kind == "move":
-        event = coin.SoLocation2Event()
-    elif kind == "esc":
-        event = coin.SoKeyboardEvent()
-        event.setKey(coin.SoKeyboardEvent.ESCAPE)
-        event.setState(coin.SoButtonEvent.DOWN)
-    else:
-        event = coin.SoMouseButtonEvent()
-        event.setButton(coin.SoMouseButtonEvent.BUTTON1)
-        event.setState(coin.SoMouseButtonEvent.DOWN if kind == "press" else coin.SoMouseButtonEvent.UP)
-    event.setPosition(coin.SbVec2s(x, y))
-    action = coin.SoHandleEventAction(region)
-    action.setEvent(event)
-    action.apply(viewer.getSoRenderManager().getSceneGraph())
 
 
 def same_placement(p, q, tol=1e-12):
@@ -155,10 +136,10 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
 
     if check:
         # Esc during a drag: everything drawn goes back, the document never changed.
-        mouse(view, "press", x, y)
+        gw.mouse(view, "press", x, y)
         for k in range(1, 6):
-            mouse(view, "move", *cursor(k))
-        mouse(view, "esc", 0, 0)
+            gw.mouse(view, "move", *cursor(k))
+        gw.mouse(view, "esc", 0, 0)
         assert dragging._active is mode and mode.drag is None, "Esc did not cancel the drag alone"
         assert doc.UndoNames == undo, "a cancelled drag left an undo step: %s" % doc.UndoNames[:2]
         for p in moving:
@@ -170,14 +151,14 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
         mode.frames, mode.solver_seconds, mode.write_seconds, mode.release_seconds = 0, 0.0, 0.0, 0.0
         mode.solver_cpu = mode.write_cpu = cpu[0] = 0.0
     t0 = time.perf_counter()
-    mouse(view, "press", x, y)
+    gw.mouse(view, "press", x, y)
     press = time.perf_counter() - t0
     assert mode.drag is not None, "pressing on %s did not start a drag" % part.Label
     redraws = []
     handled = 0.0
     for k in range(1, frames + 1):
         t0 = time.perf_counter()
-        mouse(view, "move", *cursor(k))
+        gw.mouse(view, "move", *cursor(k))
         handled += time.perf_counter() - t0
         redraws.append(redraw())
     assert None not in redraws, "a frame of the drag was not drawn"
@@ -186,7 +167,6 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
     drag = mode.drag
     if check:
         # During the drag the document is unchanged; what is drawn is the engine's poses.
-        model = drag.adapter.model
         for p in moving:
             assert same_placement(p.Placement, start[p.Name], 0), "%s was written during the drag" % p.Label
             t = p.ViewObject.RootNode.getChild(0)
@@ -206,9 +186,7 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
             assert (at - where).Length < 1e-5, "%s's marker did not follow" % j.Label
             followed += 1
         assert followed > 0, "no marker to follow"
-    t0 = time.perf_counter()
-    mouse(view, "release", *cursor(frames))
-    released = time.perf_counter() - t0
+    gw.mouse(view, "release", *cursor(frames))
     release_redraw = redraw() or 0.0
     Gui.runCommand("Dispcon_Drag", 0)
     moved = max((p.Placement.Base - start[p.Name].Base).Length for p in moving)
@@ -280,38 +258,22 @@ try:
     Gui.runCommand("Dispcon_Drag", 1)  # a checkable command: 1 turns it on
     mode = dragging._active
     assert mode is not None, "drag mode did not start"
-    viewer = view.getViewer()
-    region = viewer.getSoRenderManager().getViewportRegion()
-    height = region.getWindowSize()[1]
     mid = coupler.Placement.multVec(App.Vector(1.5, 0, 0.1))
 
     def screen(p):
         x, y = view.getPointOnScreen(p)
         return int(x), int(y)
 
-    def send(event, x, y):
-        event.setPosition(coin.SbVec2s(x, y))
-        action = coin.SoHandleEventAction(region)
-        action.setEvent(event)
-        action.apply(viewer.getSoRenderManager().getSceneGraph())
-
     x0, y0 = screen(mid)
     info = view.getObjectInfo((x0, y0))
     assert info and info["Object"] == coupler.Name, "the coupler is not under the cursor: %s" % info
     crank_before = angle_of(crank)
-    press = coin.SoMouseButtonEvent()
-    press.setButton(coin.SoMouseButtonEvent.BUTTON1)
-    press.setState(coin.SoMouseButtonEvent.DOWN)
-    send(press, x0, y0)
+    gw.mouse(view, "press", x0, y0)
     assert mode.drag is not None, "pressing on the coupler did not start a drag"
     for k in range(1, 31):
-        move = coin.SoLocation2Event()
-        send(move, x0 - 2 * k, y0 + 3 * k)
+        gw.mouse(view, "move", x0 - 2 * k, y0 + 3 * k)
         Gui.updateGui()
-    release = coin.SoMouseButtonEvent()
-    release.setButton(coin.SoMouseButtonEvent.BUTTON1)
-    release.setState(coin.SoMouseButtonEvent.UP)
-    send(release, x0 - 60, y0 + 90)
+    gw.mouse(view, "release", x0 - 60, y0 + 90)
     Gui.runCommand("Dispcon_Drag", 0)
     moved = abs(angle_of(crank) - crank_before)
     assert moved > 0.05, "the crank did not follow the coupler (turned %.4f rad)" % moved

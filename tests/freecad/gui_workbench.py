@@ -82,14 +82,19 @@ def shot(name, view=None):
 
 
 def mouse(view, kind, x, y):
-    """A Coin3D mouse event at (x, y) in `view`: "press" or "release" of the left button, or
-    "move", through the viewer's scene graph as a real mouse's event goes."""
+    """A Coin3D event at (x, y) in `view`: "press" or "release" of the left button, "move", or
+    "esc" (the Escape key pressed), through the viewer's scene graph as a real mouse's or
+    keyboard's event goes."""
     from pivy import coin
 
     viewer = view.getViewer()
     region = viewer.getSoRenderManager().getViewportRegion()
     if kind == "move":
         event = coin.SoLocation2Event()
+    elif kind == "esc":
+        event = coin.SoKeyboardEvent()
+        event.setKey(coin.SoKeyboardEvent.ESCAPE)
+        event.setState(coin.SoButtonEvent.DOWN)
     else:
         event = coin.SoMouseButtonEvent()
         event.setButton(coin.SoMouseButtonEvent.BUTTON1)

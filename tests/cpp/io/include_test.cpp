@@ -21,6 +21,7 @@ namespace dispcon {
 namespace {
 
 namespace fs = std::filesystem;
+using test_support::id;
 using test_support::sample;
 
 // A folder of its own for the files a test writes, removed afterwards.
@@ -45,12 +46,6 @@ SolveOptions tight() {
   SolveOptions o;
   o.tolerance = 1e-12;
   return o;
-}
-
-BodyId id(const Model& m, const std::string& name) {
-  const auto b = m.find(name);
-  EXPECT_TRUE(b) << name;
-  return b ? *b : Model::kWorld;
 }
 
 const std::string kLeg = std::string(DISPCON_SOURCE_DIR) + "/samples/leg.dcl";

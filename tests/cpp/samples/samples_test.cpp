@@ -17,16 +17,13 @@
 namespace dispcon {
 namespace {
 
+using test_support::id;
 using test_support::sample;
 
 SolveOptions tight() {
   SolveOptions o;
   o.tolerance = 1e-10;
   return o;
-}
-
-BodyId id(const Model& m, const char* name) {
-  return *m.find(name);
 }
 
 double angle_z(const Model& m, const char* name) {

@@ -17,16 +17,13 @@
 namespace dispcon {
 namespace {
 
+using test_support::id;
 using test_support::sample;
 
 SolveOptions tight() {
   SolveOptions o;
   o.tolerance = 1e-13;
   return o;
-}
-
-BodyId id(const Model& m, const char* name) {
-  return *m.find(name);
 }
 
 // A body's turn about a world axis, unwrapped from one call to the next.
@@ -191,13 +188,14 @@ TEST(Couplings, ScrewAdvancesItsPitchPerTurn) {
   EXPECT_NEAR(screw(), 4 * kPi, 1e-12);
 
   // Left-handed: the same travel turns the screw the other way.
-  std::string text = "object screw; end object jaw; position 1 0 0; end\n"
-                     "constraint object2 screw; hinge 0 0 0 0 0 0; axial 1 0 0; angle 1 0 0 1 0 0 "
-                     "max 0; screw 0 0 0 1 0 0 0 0 0 1 0 0 pitch 0.2 left; end\n"
-                     "constraint object2 jaw; hinge 1 0 0 0 0 0; axial 1 0 0; angle 0 0 1 0 0 1 "
-                     "max 0; twist 1 0 0 1 0 0; end\n"
-                     "constraint object1 screw; object2 jaw; hinge 1 0 0 0 0 0; angle 1 0 0 1 0 0 "
-                     "max 0; end\n";
+  std::string text =
+      "object screw; end object jaw; position 1 0 0; end\n"
+      "constraint object2 screw; hinge 0 0 0 0 0 0; axial 1 0 0; angle 1 0 0 1 0 0 "
+      "max 0; screw 0 0 0 1 0 0 0 0 0 1 0 0 pitch 0.2 left; end\n"
+      "constraint object2 jaw; hinge 1 0 0 0 0 0; axial 1 0 0; angle 0 0 1 0 0 1 "
+      "max 0; twist 1 0 0 1 0 0; end\n"
+      "constraint object1 screw; object2 jaw; hinge 1 0 0 0 0 0; angle 1 0 0 1 0 0 "
+      "max 0; end\n";
   ParseResult r = parse_dcl(text);
   ASSERT_TRUE(r.ok()) << r.messages();
   Model left = std::move(*r.model);

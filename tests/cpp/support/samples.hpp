@@ -15,4 +15,11 @@ inline Model sample(const std::string& name) {
   return r.ok() ? std::move(*r.model) : Model();
 }
 
+// A body's id by name; an unknown name fails the test (and gives the world) rather than crashing.
+inline BodyId id(const Model& m, const std::string& name) {
+  const auto b = m.find(name);
+  EXPECT_TRUE(b) << "no body '" << name << "'";
+  return b ? *b : Model::kWorld;
+}
+
 }  // namespace dispcon::test_support
