@@ -1,7 +1,8 @@
+// The lexer walks the text once, keeping its place (line, column) as it goes; tokens are views
+// of the text, numbers are read with std::from_chars: no allocation per token.
 #include "dispcon/io/dcl_lexer.hpp"
 
-#include <cctype>
-#include <cmath>
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -25,7 +26,190 @@ int hex_digit(char c) {
   return -1;
 }
 
+bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
+
+bool is_alpha(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
+
 }  // namespace
+
+Token DclLexer::next() {
+  Token t;
+  while (skip_space_and_comments()) {
+    t.line = line_;
+    t.column = column_;
+    const char c = text_[i_];
+    const char next = i_ + 1 < text_.size() ? text_[i_ + 1] : '\0';
+    const bool sign = c == '-' || c == '+';
+    if (c == ';') {
+      t.kind = Token::Semicolon;
+      t.text = text_.substr(i_, 1);
+      take(1);
+    } else if (is_digit(c) || c == '.' ||
+               (sign && (is_digit(next) || next == '.' || next == 'i'))) {
+      number(t);
+    } else if (c == '"') {
+      string(t);
+    } else if (is_alpha(c)) {
+      size_t j = i_;
+      while (j < text_.size() && is_name_char(text_[j])) ++j;
+      t.kind = Token::Word;
+      t.text = text_.substr(i_, j - i_);
+      take(j - i_);
+    } else {
+      // Reported and left out: the statement around it reads on as if it were not there.
+      const unsigned char b = static_cast<unsigned char>(c);
+      if (b < 0x20 || b >= 0x7f) {
+        error("byte " + describe_byte(b) + " is not text");
+      } else {
+        error(std::string("unexpected character '") + c + "'");
+      }
+      take(1);
+      continue;
+    }
+    return t;
+  }
+  t.kind = Token::End;
+  t.line = line_;
+  t.column = column_;
+  return t;
+}
+
+// Moves past `n` bytes that hold no new line (a token's).
+void DclLexer::take(size_t n) {
+  i_ += n;
+  column_ += static_cast<int>(n);
+}
+
+// Moves past one byte, which may be a new line.
+void DclLexer::step() {
+  if (text_[i_++] == '\n') {
+    ++line_;
+    column_ = 1;
+  } else {
+    ++column_;
+  }
+}
+
+void DclLexer::error(std::string message) {
+  errors_.add({line_, column_, std::move(message)});
+}
+
+// Skips white space and comments; false at the end of the text.
+bool DclLexer::skip_space_and_comments() {
+  while (i_ < text_.size()) {
+    const char c = text_[i_];
+    if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v') {
+      step();
+    } else if (c == '/' && i_ + 1 < text_.size() && text_[i_ + 1] == '/') {
+      while (i_ < text_.size() && text_[i_] != '\n') take(1);
+    } else if (c == '/' && i_ + 1 < text_.size() && text_[i_ + 1] == '*') {
+      const int l0 = line_, c0 = column_;
+      take(2);
+      while (i_ < text_.size() &&
+             !(text_[i_] == '*' && i_ + 1 < text_.size() && text_[i_ + 1] == '/')) {
+        const unsigned char b = static_cast<unsigned char>(text_[i_]);
+        if (b == 0 || (b < 0x20 && b != '\n' && b != '\r' && b != '\t')) {
+          error("byte " + describe_byte(b) + " is not text");
+        }
+        step();
+      }
+      if (i_ >= text_.size()) {
+        errors_.add({l0, c0, "comment '/*' is never closed with '*/'"});
+        return false;
+      }
+      take(2);
+    } else {
+      return true;
+    }
+  }
+  return false;
+}
+
+// A number: a sign, then letters, digits, '.', '_' and exponent signs, read as one token so
+// that "1.5x" is one malformed number, not a number and a word.
+void DclLexer::number(Token& t) {
+  const bool sign = text_[i_] == '-' || text_[i_] == '+';
+  size_t j = sign ? i_ + 1 : i_;
+  while (j < text_.size()) {
+    const char ch = text_[j];
+    const bool exponent_sign =
+        (ch == '-' || ch == '+') && (text_[j - 1] == 'e' || text_[j - 1] == 'E');
+    if (!(is_digit(ch) || is_alpha(ch) || ch == '.' || ch == '_' || exponent_sign)) break;
+    ++j;
+  }
+  t.text = text_.substr(i_, j - i_);
+  if (parse_number(t.text, t.value)) {
+    t.kind = Token::Number;
+  } else {
+    t.kind = Token::Bad;
+    errors_.add({t.line, t.column, "malformed number '" + std::string(t.text) + "'"});
+  }
+  take(j - i_);
+}
+
+// A string ends at the next unescaped quote on the same line: a lost quote cannot swallow the
+// rest of the file. Its value is a view of the text unless it has escapes.
+void DclLexer::string(Token& t) {
+  t.kind = Token::String;
+  take(1);
+  const size_t start = i_;
+  std::string* decoded = nullptr;  // made at the first escape, holding what came before
+  auto copy = [&] {
+    if (!decoded) decoded = &decoded_.emplace_front(text_.substr(start, i_ - start));
+  };
+  bool closed = false, bad = false;
+  while (i_ < text_.size() && text_[i_] != '\n') {
+    const unsigned char b = static_cast<unsigned char>(text_[i_]);
+    if (b == '"') {
+      closed = true;
+      break;
+    }
+    if (b == '\\') {
+      copy();
+      const char e = i_ + 1 < text_.size() ? text_[i_ + 1] : '\0';
+      const int h1 = i_ + 2 < text_.size() ? hex_digit(text_[i_ + 2]) : -1;
+      const int h2 = i_ + 3 < text_.size() ? hex_digit(text_[i_ + 3]) : -1;
+      if (e == '\\' || e == '"') {
+        *decoded += e;
+      } else if (e == 'n' || e == 't' || e == 'r') {
+        *decoded += e == 'n' ? '\n' : e == 't' ? '\t' : '\r';
+      } else if (e == 'x' && h1 >= 0 && h2 >= 0) {
+        *decoded += static_cast<char>(h1 * 16 + h2);
+        take(4);
+        continue;
+      } else {
+        error("unknown escape in a string (use \\\\, \\\", \\n, \\t, \\r or \\xHH)");
+        bad = true;
+        if (e == '\n' || e == '\0') {  // a backslash ending the line escapes nothing
+          take(1);
+          continue;
+        }
+      }
+      take(2);
+      continue;
+    }
+    if ((b < 0x20 && b != '\t') || b == 0x7f) {
+      error("byte " + describe_byte(b) + " in a string: write it as \\xHH");
+      bad = true;
+      copy();  // left out of the value, which a view of the text would hold
+    } else if (decoded) {
+      *decoded += static_cast<char>(b);
+    }
+    take(1);
+  }
+  t.text = decoded ? std::string_view(*decoded) : text_.substr(start, i_ - start);
+  if (closed) {
+    take(1);
+  } else {
+    errors_.add({t.line, t.column, "string is not closed with '\"' on its line"});
+    bad = true;
+  }
+  if (bad) t.kind = Token::Bad;
+}
 
 void LexErrors::add(LexError e) {
   if (listed.size() < static_cast<size_t>(kErrorCap)) {
@@ -35,7 +219,35 @@ void LexErrors::add(LexError e) {
   }
 }
 
-std::string quote_string(const std::string& value) {
+bool parse_number(std::string_view text, double& value) {
+  std::string_view body = text;
+  const bool negative = !body.empty() && body[0] == '-';
+  if (!body.empty() && (body[0] == '-' || body[0] == '+')) body.remove_prefix(1);
+  if (body == "inf") {
+    value = negative ? -std::numeric_limits<double>::infinity()
+                     : std::numeric_limits<double>::infinity();
+    return true;
+  }
+  // strtod's syntax, which the format names, would also take hexadecimal, nan and infinity.
+  if (body.empty() || body[0] == '-' || body[0] == '+' ||
+      body.find_first_of("xXnN") != std::string_view::npos) {
+    return false;
+  }
+  double v = 0;
+  const char* last = body.data() + body.size();
+  const std::from_chars_result r = std::from_chars(body.data(), last, v);
+  if (r.ptr != last || r.ec == std::errc::invalid_argument) return false;
+  if (r.ec == std::errc::result_out_of_range) {
+    // Beyond a double's range from_chars gives no value; strtod's (+-inf, or the nearest
+    // subnormal or zero) is what these numbers have always been read as.
+    const std::string copy(body);
+    v = std::strtod(copy.c_str(), nullptr);
+  }
+  value = negative ? -v : v;
+  return true;
+}
+
+std::string quote_string(std::string_view value) {
   std::string out = "\"";
   for (const char ch : value) {
     const unsigned char c = static_cast<unsigned char>(ch);
@@ -59,175 +271,13 @@ std::string quote_string(const std::string& value) {
   return out + "\"";
 }
 
-std::vector<Token> lex_dcl(std::string_view text, LexErrors& errors) {
-  std::vector<Token> out;
-  size_t i = 0;
-  int line = 1, column = 1;
-  auto advance = [&](size_t n) {
-    for (size_t k = 0; k < n && i < text.size(); ++k, ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-  };
-  while (i < text.size()) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v') {
-      advance(1);
-      continue;
-    }
-    if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
-      while (i < text.size() && text[i] != '\n') advance(1);
-      continue;
-    }
-    if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
-      const int l0 = line, c0 = column;
-      advance(2);
-      while (i < text.size() && !(text[i] == '*' && i + 1 < text.size() && text[i + 1] == '/')) {
-        const unsigned char b = static_cast<unsigned char>(text[i]);
-        if (b == 0 || (b < 0x20 && b != '\n' && b != '\r' && b != '\t')) {
-          errors.add({line, column, "byte " + describe_byte(b) + " is not text"});
-        }
-        advance(1);
-      }
-      if (i >= text.size()) {
-        errors.add({l0, c0, "comment '/*' is never closed with '*/'"});
-        break;
-      }
-      advance(2);
-      continue;
-    }
-    Token t;
-    t.line = line;
-    t.column = column;
-    if (c == ';') {
-      t.kind = Token::Semicolon;
-      t.text = ";";
-      advance(1);
-      out.push_back(t);
-      continue;
-    }
-    const bool sign = (c == '-' || c == '+');
-    const char next = i + 1 < text.size() ? text[i + 1] : '\0';
-    if (std::isdigit(c) || c == '.' ||
-        (sign && (std::isdigit(static_cast<unsigned char>(next)) || next == '.' || next == 'i'))) {
-      size_t j = sign ? i + 1 : i;
-      while (j < text.size()) {
-        const char ch = text[j];
-        const bool exponent_sign =
-            (ch == '-' || ch == '+') && (text[j - 1] == 'e' || text[j - 1] == 'E');
-        if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_' ||
-              exponent_sign)) {
-          break;
-        }
-        ++j;
-      }
-      t.text = std::string(text.substr(i, j - i));
-      std::string body = t.text;
-      double sgn = 1;
-      if (!body.empty() && (body[0] == '-' || body[0] == '+')) {
-        sgn = body[0] == '-' ? -1 : 1;
-        body = body.substr(1);
-      }
-      if (body == "inf") {
-        t.kind = Token::Number;
-        t.value = sgn * std::numeric_limits<double>::infinity();
-      } else {
-        char* end = nullptr;
-        const double v = std::strtod(t.text.c_str(), &end);
-        const bool hex_or_word = body.find_first_of("xXnN") != std::string::npos;
-        if (end != t.text.c_str() + t.text.size() || hex_or_word || body.empty()) {
-          t.kind = Token::Bad;
-          errors.add({t.line, t.column, "malformed number '" + t.text + "'"});
-        } else {
-          t.kind = Token::Number;
-          t.value = v;
-        }
-      }
-      advance(j - i);
-      out.push_back(t);
-      continue;
-    }
-    if (c == '"') {
-      // A string ends at the next unescaped quote on the same line: a lost quote cannot
-      // swallow the rest of the file.
-      t.kind = Token::String;
-      advance(1);
-      bool closed = false, bad = false;
-      while (i < text.size() && text[i] != '\n') {
-        const unsigned char b = static_cast<unsigned char>(text[i]);
-        if (b == '"') {
-          closed = true;
-          advance(1);
-          break;
-        }
-        if (b == '\\') {
-          const char e = i + 1 < text.size() ? text[i + 1] : '\0';
-          const int h1 = i + 2 < text.size() ? hex_digit(text[i + 2]) : -1;
-          const int h2 = i + 3 < text.size() ? hex_digit(text[i + 3]) : -1;
-          if (e == '\\' || e == '"') {
-            t.text += e;
-          } else if (e == 'n' || e == 't' || e == 'r') {
-            t.text += e == 'n' ? '\n' : e == 't' ? '\t' : '\r';
-          } else if (e == 'x' && h1 >= 0 && h2 >= 0) {
-            t.text += static_cast<char>(h1 * 16 + h2);
-            advance(4);
-            continue;
-          } else {
-            errors.add({line, column,
-                        "unknown escape in a string (use \\\\, \\\", \\n, \\t, \\r or \\xHH)"});
-            bad = true;
-            if (e == '\n' || e == '\0') {  // a backslash ending the line escapes nothing
-              advance(1);
-              continue;
-            }
-          }
-          advance(2);
-          continue;
-        }
-        if ((b < 0x20 && b != '\t') || b == 0x7f) {
-          errors.add(
-              {line, column, "byte " + describe_byte(b) + " in a string: write it as \\xHH"});
-          bad = true;
-        } else {
-          t.text += static_cast<char>(b);
-        }
-        advance(1);
-      }
-      if (!closed) {
-        errors.add({t.line, t.column, "string is not closed with '\"' on its line"});
-        bad = true;
-      }
-      if (bad) t.kind = Token::Bad;
-      out.push_back(t);
-      continue;
-    }
-    if (std::isalpha(c)) {
-      size_t j = i;
-      while (j < text.size() && is_name_char(text[j])) ++j;
-      t.kind = Token::Word;
-      t.text = std::string(text.substr(i, j - i));
-      advance(j - i);
-      out.push_back(t);
-      continue;
-    }
-    t.kind = Token::Bad;
-    if (c < 0x20 || c >= 0x7f) {
-      errors.add({line, column, "byte " + describe_byte(c) + " is not text"});
-    } else {
-      errors.add(
-          {line, column, std::string("unexpected character '") + static_cast<char>(c) + "'"});
-    }
-    advance(1);
-  }
-  Token end;
-  end.kind = Token::End;
-  end.line = line;
-  end.column = column;
-  out.push_back(end);
+Tokens lex_dcl(std::string_view text, LexErrors& errors) {
+  Tokens out;
+  DclLexer lexer(text, errors);
+  do {
+    out.list.push_back(lexer.next());
+  } while (out.list.back().kind != Token::End);
+  out.decoded = std::move(lexer).decoded();
   return out;
 }
 

@@ -1,6 +1,7 @@
 // Tokens of the description language (format.md, "Lexical rules").
 #pragma once
 
+#include <forward_list>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,10 +14,22 @@ constexpr int kErrorCap = 100;
 
 struct Token {
   enum Kind { Word, Number, String, Semicolon, End, Bad } kind = End;
-  std::string text;  // as written; String: the value, escapes decoded
+  // As written, a view of the text lexed (no copy per token). String: its value, escapes
+  // decoded: a view of the text between the quotes, or of the lexer's copy when it had escapes.
+  std::string_view text;
   double value = 0;  // Number
   int line = 1;
   int column = 1;
+};
+
+// The tokens of a text, ending with an End token. They view the text: it must outlive them.
+struct Tokens {
+  std::vector<Token> list;
+  // The values of the strings written with escapes (a list: its strings never move).
+  std::forward_list<std::string> decoded;
+
+  const Token& operator[](size_t i) const { return list[i]; }
+  size_t size() const { return list.size(); }
 };
 
 struct LexError {
@@ -31,13 +44,41 @@ struct LexErrors {
   void add(LexError e);
 };
 
-// Splits `text` into tokens, skipping white space and comments. Problems (bytes that are not
-// text, an unterminated comment or string, a malformed number) are added to `errors`; lexing
-// goes on.
-std::vector<Token> lex_dcl(std::string_view text, LexErrors& errors);
+// Reads `text` one token at a time, skipping white space and comments (the reader keeps no list
+// of tokens: a file's tokens would take ten times its size). Problems (bytes that are not text,
+// an unterminated comment or string, a malformed number) are added to `errors`; lexing goes on.
+class DclLexer {
+ public:
+  DclLexer(std::string_view text, LexErrors& errors) : text_(text), errors_(errors) {}
+  // The next token; End at the end of the text, and again after that.
+  Token next();
+  // The values of the strings written with escapes so far, which their tokens view.
+  std::forward_list<std::string> decoded() && { return std::move(decoded_); }
+
+ private:
+  void take(size_t n);
+  void step();
+  void error(std::string message);
+  bool skip_space_and_comments();
+  void number(Token& t);
+  void string(Token& t);
+
+  std::string_view text_;
+  LexErrors& errors_;
+  std::forward_list<std::string> decoded_;
+  size_t i_ = 0;
+  int line_ = 1, column_ = 1;
+};
+
+// Every token of `text`, with DclLexer.
+Tokens lex_dcl(std::string_view text, LexErrors& errors);
+
+// A number token's value, as the lexer reads it: decimal (strtod's syntax without hexadecimal,
+// nan or infinity), or `inf`, after an optional sign. False when `text` is not one.
+bool parse_number(std::string_view text, double& value);
 
 // A string token as the lexer reads it back: in double quotes, with `\\`, `\"`, `\n`, `\t`, `\r`
 // and `\xHH` for any other byte below 0x20 and 0x7F; other bytes (UTF-8 included) as they are.
-std::string quote_string(const std::string& value);
+std::string quote_string(std::string_view value);
 
 }  // namespace dispcon

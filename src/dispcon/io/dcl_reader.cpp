@@ -2,17 +2,21 @@
 // blocks with their places, then names are resolved and the model is built, so objects may be
 // declared after the constraints that name them. Every problem becomes a diagnostic naming its
 // place; parsing resumes at the next `;` or `end`.
+//
+// Memory speed: the file is read in one go, tokens are views of its text, each name becomes a
+// string once (in its object's Body), and a message is built only when it is written.
 #include "dispcon/io/dcl_reader.hpp"
 
 #include <Eigen/Cholesky>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <map>
+#include <forward_list>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "dispcon/io/dcl_lexer.hpp"
 #include "dispcon/io/include.hpp"
@@ -40,12 +44,34 @@ struct Place {
   int line = 0, column = 0;
 };
 
-// Where each statement of a block was, by keyword: a value the model refuses (a ValueError
-// naming its statement) is reported there.
-using Statements = std::map<std::string, Place>;
+// Where each statement of a block was, by keyword, and each argument of a component's statement,
+// by keyword and argument name: a value the model refuses (a ValueError naming its statement, a
+// JointError its argument) is reported there. Blocks do not nest, so each block's marks are a
+// run [begin, end) of the parser's one list (a handful each: searched in order).
+struct Mark {
+  std::string_view keyword, arg;  // arg empty: the statement itself
+  Place at;
+};
+struct Statements {
+  size_t begin = 0, end = 0;
+};
+
+// What a number is read for, as messages name it ("hinge P1", "angle min"): two words joined
+// with a space, put together only when a message is written.
+struct What {
+  std::string_view head, tail;
+  What(const char* head) : head(head) {}  // NOLINT: a plain name reads as one
+  What(std::string_view head, std::string_view tail = {}) : head(head), tail(tail) {}
+  std::string str() const {
+    std::string s(head);
+    if (!tail.empty()) s.append(" ").append(tail);
+    return s;
+  }
+};
 
 struct ObjectBlock {
   Place at;
+  std::string_view name;  // a view of the text; the Body's own copy is made once, at the end
   Body body;
   Statements seen;
   bool ok = true;  // parsed without error: the model checks it
@@ -53,12 +79,12 @@ struct ObjectBlock {
 
 struct ConstraintBlock {
   Place at;
-  std::string object1 = "world", object2;
+  std::string_view object1 = "world", object2;  // views of the text
   bool has_object2 = false;
   Joint joint;
   Statements seen;
-  std::string guide;     // the keyword of its translation guide
-  std::string coupling;  // the keyword of its coupling
+  std::string_view guide;     // the keyword of its translation guide
+  std::string_view coupling;  // the keyword of its coupling
   bool ok = true;
 };
 
@@ -68,12 +94,20 @@ struct IncludeBlock {
   std::string path;
   Inclusion inc;
   Vec3 position = Vec3::Zero(), rotation = Vec3::Zero();
-  std::string on = "world";
+  std::string_view on = "world";
   Statements seen;
 };
 
 // The files being read, outermost first (canonical paths): an include of one of them is a cycle.
 using IncludeStack = std::vector<std::string>;
+
+// Every declared name, once: where it was declared and the body it became (none when its block
+// had an error, reported there). The names view the text, or included_names_.
+struct Declared {
+  Place at;
+  std::optional<BodyId> body;
+};
+using Declarations = std::unordered_map<std::string_view, Declared>;
 
 ParseResult parse_text(std::string_view text, const std::string& filename, IncludeStack& stack);
 bool read_file(const std::string& path, std::string& text);
@@ -84,11 +118,11 @@ struct StatementError {};
 class Parser {
  public:
   Parser(std::string_view text, const std::string& file, IncludeStack& stack)
-      : file_(file), stack_(stack) {
-    LexErrors lex_errors;
-    tokens_ = lex_dcl(text, lex_errors);
-    for (const LexError& e : lex_errors.listed) error({e.line, e.column}, e.message);
-    errors_ += lex_errors.more;
+      : file_(file), lexer_(text, lex_errors_), current_(lexer_.next()), stack_(stack) {
+    // Room for every block at once (a count of the words, in comments too, is an upper bound):
+    // blocks of half a kilobyte copied at each growth cost more than the count.
+    objects_.reserve(occurrences(text, "object"));
+    constraints_.reserve(occurrences(text, "constraint"));
   }
 
   ParseResult run() {
@@ -111,14 +145,19 @@ class Parser {
   }
 
  private:
-  // Tokens.
-  const Token& peek() const { return tokens_[pos_]; }
-  const Token& next() {
-    const Token& t = tokens_[pos_];
-    if (pos_ + 1 < tokens_.size()) ++pos_;
+  // Tokens, read as the parser goes: peek() is valid until the next call of next().
+  const Token& peek() const { return current_; }
+  Token next() {
+    const Token t = current_;
+    if (t.kind != Token::End) current_ = lexer_.next();
     return t;
   }
   static Place at(const Token& t) { return {t.line, t.column}; }
+  static size_t occurrences(std::string_view text, std::string_view word) {
+    size_t n = 0;
+    for (size_t i = text.find(word); i != std::string_view::npos; i = text.find(word, i + 1)) ++n;
+    return n;
+  }
   static std::string quote(const Token& t) {
     switch (t.kind) {
       case Token::End:
@@ -128,17 +167,41 @@ class Parser {
       case Token::String:
         return "a string";
       default:
-        return "'" + t.text + "'";
+        return "'" + std::string(t.text) + "'";
     }
   }
-  // The place of a block's statement `keyword`, or the block's own.
-  static Place place(const Statements& seen, const std::string& keyword, Place block) {
-    const auto it = seen.find(keyword);
-    return it == seen.end() ? block : it->second;
+  static std::string object_label(std::string_view name) {
+    return "object '" + std::string(name) + "'";
   }
+
+  // Marks a block's statement `keyword` (or its argument `arg`) at `p`.
+  void mark(Statements& seen, std::string_view keyword, std::string_view arg, Place p) {
+    statements_.push_back({keyword, arg, p});
+    seen.end = statements_.size();
+  }
+  // The place of a block's statement `keyword` (or its argument `arg`), or null. The last mark
+  // wins: an argument is marked where its value starts, then again at its number.
+  const Place* statement(const Statements& seen, std::string_view keyword,
+                         std::string_view arg = {}) const {
+    for (size_t i = seen.end; i-- > seen.begin;) {
+      const Mark& m = statements_[i];
+      if (m.keyword == keyword && m.arg == arg) return &m.at;
+    }
+    return nullptr;
+  }
+  // The place of a block's statement `keyword` (or its argument `arg`), or `fallback`.
+  Place place(const Statements& seen, std::string_view keyword, Place fallback,
+              std::string_view arg = {}) const {
+    const Place* p = statement(seen, keyword, arg);
+    return p ? *p : fallback;
+  }
+  // A new block's (empty) run of marks.
+  Statements statements() const { return {statements_.size(), statements_.size()}; }
 
   // Past kErrorCap, errors (and warnings) are counted, not listed: a binary file or 200,000
   // duplicate objects print about a hundred lines, then one line with the count of the rest.
+  // The lexer's errors come first, and how many it finds is known only at the end: the parser's
+  // first kErrorCap are kept, the cap applied to both in build().
   void error(Place p, const std::string& message) {
     if (errors_++ < kErrorCap) diagnostics_.push_back({file_, p.line, p.column, true, message});
   }
@@ -161,98 +224,101 @@ class Parser {
     }
   }
 
-  double number(const std::string& what, bool allow_inf = false) {
+  double number(const What& what, bool allow_inf = false) {
     const Token& t = peek();
+    if (t.kind == Token::Number && (allow_inf || !std::isinf(t.value))) return next().value;
     if (t.kind == Token::Word && t.text == "inf") {
       if (!allow_inf) {
-        error(at(t), what + " must be finite, found 'inf' (inf is allowed only as a bound)");
+        error(at(t), what.str() + " must be finite, found 'inf' (inf is allowed only as a bound)");
         throw StatementError{};
       }
       next();
       return kInf;
     }
     if (t.kind == Token::Number) {
-      if (std::isinf(t.value) && !allow_inf) {
-        error(at(t),
-              what + " must be finite, found '" + t.text + "' (inf is allowed only as a bound)");
-        throw StatementError{};
-      }
-      next();
-      return t.value;
+      error(at(t), what.str() + " must be finite, found '" + std::string(t.text) +
+                       "' (inf is allowed only as a bound)");
+      throw StatementError{};
     }
     if (t.kind == Token::Word && (t.text == "nan" || t.text == "NaN" || t.text == "NAN")) {
-      error(at(t), "expected a number for " + what + ", found 'nan' (not a number)");
+      error(at(t), "expected a number for " + what.str() + ", found 'nan' (not a number)");
     } else if (t.kind != Token::Bad) {
-      error(at(t), "expected a number for " + what + ", found " + quote(t));
+      error(at(t), "expected a number for " + what.str() + ", found " + quote(t));
     }
     throw StatementError{};
   }
 
-  Vec3 vec3(const std::string& what) {
+  Vec3 vec3(const What& what) {
     Vec3 v;
     for (int k = 0; k < 3; ++k) v[k] = number(what);
     return v;
   }
 
-  std::string name(const std::string& what) {
+  std::string_view name(const char* what) {
     const Token& t = peek();
     if (t.kind != Token::Word) {
-      error(at(t), "expected " + what + ", found " + quote(t));
+      error(at(t), std::string("expected ") + what + ", found " + quote(t));
       throw StatementError{};
     }
-    next();
-    return t.text;
+    return next().text;
   }
 
-  void semicolon(const std::string& after) {
+  // `;` after `after` (in quotes when `quoted`: a statement's keyword).
+  void semicolon(std::string_view after, bool quoted = false) {
     const Token& t = peek();
     if (t.kind != Token::Semicolon) {
-      error(at(t), "expected ';' after " + after + ", found " + quote(t));
+      const std::string what = quoted ? "'" + std::string(after) + "'" : std::string(after);
+      error(at(t), "expected ';' after " + what + ", found " + quote(t));
       throw StatementError{};
     }
     next();
   }
 
   // `{min a} {max b}` then `;`.
-  void bounds(const std::string& what, double& lo, double& hi) {
+  void bounds(std::string_view what, double& lo, double& hi) {
     bool seen_min = false, seen_max = false;
     while (peek().kind == Token::Word && (peek().text == "min" || peek().text == "max")) {
-      const Token& kw = next();
+      const Token kw = next();
       const bool is_min = kw.text == "min";
       if ((is_min && seen_min) || (!is_min && seen_max)) {
-        error(at(kw), "'" + kw.text + "' given twice for " + what);
+        error(at(kw), "'" + std::string(kw.text) + "' given twice for " + std::string(what));
         throw StatementError{};
       }
       (is_min ? seen_min : seen_max) = true;
-      (is_min ? lo : hi) = number(what + " " + kw.text, true);
+      (is_min ? lo : hi) = number(What(what, kw.text), true);
     }
     if (peek().kind != Token::Semicolon) {
-      error(at(peek()), "expected 'min', 'max' or ';' in " + what + ", found " + quote(peek()));
+      error(at(peek()),
+            "expected 'min', 'max' or ';' in " + std::string(what) + ", found " + quote(peek()));
       throw StatementError{};
     }
     next();
   }
 
-  // A block's statement keyword: a word, not given before in the block (`seen` records it).
-  const std::string& keyword(const Token& t, const char* block, const std::string& where,
-                             std::map<std::string, Place>& seen) {
+  // A statement's keyword: a word, not given before in its block or include (`seen` records
+  // it). `object_name`: the object block's name, for messages ("this constraint", "this
+  // include" otherwise).
+  std::string_view keyword(const Token& t, const char* block, std::string_view object_name,
+                           Statements& seen) {
+    const bool object = block[0] == 'o';
     if (t.kind != Token::Word) {
-      error(at(t), std::string("expected ") + (block[0] == 'o' ? "an " : "a ") + block +
+      error(at(t), std::string("expected ") + (object ? "an " : "a ") + block +
                        " statement or 'end', found " + quote(t));
       throw StatementError{};
     }
-    const auto first = seen.find(t.text);
-    if (first != seen.end()) {
-      error(at(t), "'" + t.text + "' given twice in " + where + " (first at line " +
-                       std::to_string(first->second.line) + ")");
+    if (const Place* first = statement(seen, t.text)) {
+      error(at(t), "'" + std::string(t.text) + "' given twice in " +
+                       (object ? object_label(object_name) : "this " + std::string(block)) +
+                       " (first at line " + std::to_string(first->line) + ")");
       throw StatementError{};
     }
-    seen[t.text] = at(t);
+    mark(seen, t.text, {}, at(t));
     return t.text;
   }
 
-  // `end` (with an optional `;`) closing a block opened at `open`.
-  bool block_end(const std::string& block, Place open) {
+  // `end` (with an optional `;`) closing a block opened at `open`: an object block (named
+  // `object_name`) or a constraint block.
+  bool block_end(bool object, std::string_view object_name, Place open) {
     const Token& t = peek();
     if (t.kind == Token::Word && t.text == "end") {
       next();
@@ -262,36 +328,35 @@ class Parser {
     if (t.kind == Token::End ||
         (t.kind == Token::Word &&
          (t.text == "object" || t.text == "constraint" || t.text == "include"))) {
-      std::ostringstream m;
-      m << "missing 'end' for the " << block << " opened at line " << open.line << ", found "
-        << quote(t);
-      error(at(t), m.str());
+      error(at(t), "missing 'end' for the " +
+                       (object ? object_label(object_name) : std::string("constraint")) +
+                       " opened at line " + std::to_string(open.line) + ", found " + quote(t));
       return true;
     }
     return false;
   }
 
   void object_block() {
-    const Token& kw = next();
+    const Token kw = next();
     ObjectBlock ob;
     ob.at = at(kw);
     ob.body.line = kw.line;
+    ob.seen = statements();
     const long long errors_before = errors_;
     try {
-      ob.body.name = name("an object name");
-      if (ob.body.name == "world") {
+      ob.name = name("an object name");
+      if (ob.name == "world") {
         error(ob.at, "'world' is reserved for the fixed world frame");
       }
       semicolon("the object name");
     } catch (const StatementError&) {
       recover();
     }
-    Statements& seen = ob.seen;
     Vec3 rotation = Vec3::Zero();
-    while (!block_end("object '" + ob.body.name + "'", ob.at)) {
-      const Token& t = next();
+    while (!block_end(true, ob.name, ob.at)) {
+      const Token t = next();
       try {
-        const std::string& k = keyword(t, "object", "object '" + ob.body.name + "'", seen);
+        const std::string_view k = keyword(t, "object", ob.name, ob.seen);
         Body& b = ob.body;
         if (k == "position") {
           b.pose.x = vec3("position");
@@ -331,12 +396,12 @@ class Parser {
         } else if (k == "torque") {
           b.torque = vec3("torque");
         } else {
-          error(at(t), "unknown object statement '" + k +
+          error(at(t), "unknown object statement '" + std::string(k) +
                            "' (expected position, rotation, fixed, rotate, mass, inertia, center, "
                            "velocity, spin, force, torque or end)");
           throw StatementError{};
         }
-        semicolon("'" + k + "'");
+        semicolon(k, true);
       } catch (const StatementError&) {
         recover();
       }
@@ -344,22 +409,21 @@ class Parser {
     try {
       ob.body.pose.q = rotation_from_vector(rotation, "rotation");
     } catch (const ValueError& e) {
-      error(place(ob.seen, e.field(), ob.at), "object '" + ob.body.name + "': " + e.what());
+      error(place(ob.seen, e.field(), ob.at), object_label(ob.name) + ": " + e.what());
     }
     ob.ok = errors_ == errors_before;
-    objects_.push_back(ob);
+    objects_.push_back(std::move(ob));
   }
 
   // A component's statement (hinge, a guide, angle, twist, a coupling) as its row of
   // components() says: its arguments, then `{min} {max}` or its optional words and `;`. The model
-  // checks the values; the place of each argument is kept under "KEYWORD ARG" in `cb.seen`, so
-  // that a value the model refuses is reported where it is written.
-  void component_statement(const ComponentRow& row, const std::string& k, ConstraintBlock& cb) {
+  // checks the values; the place of each argument is marked in `cb.seen`, so that a value the
+  // model refuses is reported where it is written.
+  void component_statement(const ComponentRow& row, std::string_view k, ConstraintBlock& cb) {
     ComponentValues v;
-    auto mark = [&](const ArgSpec& a, const Token& t) { cb.seen[k + " " + a.name] = at(t); };
     for (const ArgSpec& a : row.args) {
-      const std::string what = k + " " + a.name;
-      mark(a, peek());
+      const What what(k, a.name);
+      mark(cb.seen, k, a.name, at(peek()));
       switch (a.kind) {
         case Arg::Point:
         case Arg::Direction:
@@ -372,21 +436,22 @@ class Parser {
         case Arg::NamedPositive: {
           const Token& w = peek();
           if (w.kind != Token::Word || w.text != a.name) {
-            error(at(w), "expected '" + std::string(a.name) + "' in " + k + ", found " + quote(w));
+            error(at(w), "expected '" + std::string(a.name) + "' in " + std::string(k) +
+                             ", found " + quote(w));
             throw StatementError{};
           }
           next();
-          mark(a, peek());
+          mark(cb.seen, k, a.name, at(peek()));
           v.scalars.push_back(number(what));
           break;
         }
         case Arg::Points: {
-          const Token& first = peek();
+          const Place first = at(peek());
           std::vector<double> x;
           while (peek().kind == Token::Number) x.push_back(number(what));
           if (x.size() % 3 != 0) {
-            error(at(first), k + " needs three coordinates per point, found " +
-                                 std::to_string(x.size()) + " numbers");
+            error(first, std::string(k) + " needs three coordinates per point, found " +
+                             std::to_string(x.size()) + " numbers");
             throw StatementError{};
           }
           for (size_t i = 0; i < x.size(); i += 3) v.points.emplace_back(x[i], x[i + 1], x[i + 2]);
@@ -413,7 +478,7 @@ class Parser {
 
   // The optional words of a statement (`left`, `phase f`), each at most once and in any order,
   // then `;`.
-  void options(const ComponentRow& row, const std::string& k, ComponentValues& v,
+  void options(const ComponentRow& row, std::string_view k, ComponentValues& v,
                ConstraintBlock& cb) {
     std::vector<bool> given(row.args.size(), false);
     while (peek().kind == Token::Word) {
@@ -428,11 +493,11 @@ class Parser {
       given[i] = true;
       const ArgSpec& a = row.args[i];
       next();
-      cb.seen[k + " " + a.name] = at(peek());
+      mark(cb.seen, k, a.name, at(peek()));
       if (a.kind == Arg::Flag) {
         v.flags[flag] = true;
       } else {
-        v.options[option] = number(k + " " + a.name);
+        v.options[option] = number(What(k, a.name));
       }
     }
     if (peek().kind != Token::Semicolon) {
@@ -442,7 +507,8 @@ class Parser {
           expected += "'" + std::string(row.args[i].name) + "', ";
       if (expected.empty()) semicolon(k);  // "expected ';' after hinge"
       expected.replace(expected.size() - 2, 2, " or ");
-      error(at(peek()), "expected " + expected + "';' in " + k + ", found " + quote(peek()));
+      error(at(peek()),
+            "expected " + expected + "';' in " + std::string(k) + ", found " + quote(peek()));
       throw StatementError{};
     }
     next();
@@ -451,29 +517,30 @@ class Parser {
   // `include "file" as NAME` then, in any order and each at most once, `position x y z`,
   // `rotation rx ry rz`, `on BODY`, `rigid`; then `;`.
   void include_statement() {
-    const Token& kw = next();
+    const Token kw = next();
     IncludeBlock ib;
     ib.at = at(kw);
     ib.inc.line = kw.line;
+    ib.seen = statements();
     try {
       if (peek().kind != Token::String) {
         error(at(peek()), "expected the file to include in double quotes, found " + quote(peek()));
         throw StatementError{};
       }
-      ib.seen["file"] = at(peek());
-      ib.path = next().text;
+      mark(ib.seen, "file", {}, at(peek()));
+      ib.path = std::string(next().text);
       if (peek().kind != Token::Word || peek().text != "as") {
         error(at(peek()),
               "expected 'as' and a name after the included file, found " + quote(peek()));
         throw StatementError{};
       }
       next();
-      ib.seen["as"] = at(peek());
-      ib.inc.name = name("the included model's name");
+      mark(ib.seen, "as", {}, at(peek()));
+      ib.inc.name = std::string(name("the included model's name"));
       while (peek().kind == Token::Word) {
-        const std::string k = peek().text;
+        const std::string_view k = peek().text;
         if (k != "position" && k != "rotation" && k != "on" && k != "rigid") break;
-        keyword(next(), "include", "this include", ib.seen);
+        keyword(next(), "include", {}, ib.seen);
         if (k == "position") ib.position = vec3("include position");
         if (k == "rotation") ib.rotation = vec3("include rotation");
         if (k == "on") ib.on = name("the object the included model stands on");
@@ -486,7 +553,7 @@ class Parser {
         throw StatementError{};
       }
       next();
-      includes_.push_back(ib);
+      includes_.push_back(std::move(ib));
     } catch (const StatementError&) {
       recover();
     }
@@ -494,7 +561,7 @@ class Parser {
 
   // Reads, checks and adds the model an include names, its names declared; every problem is
   // reported at the include statement (and the included file's own errors at their places).
-  void include_into(Model& model, IncludeBlock& ib, std::map<std::string, Place>& declared) {
+  void include_into(Model& model, IncludeBlock& ib, Declarations& declared) {
     namespace fs = std::filesystem;
     const Place file_at = place(ib.seen, "file", ib.at);
     const fs::path path = fs::path(file_).parent_path() / ib.path;
@@ -526,7 +593,7 @@ class Parser {
     if (ib.on != "world") {
       const auto on = model.find(ib.on);
       if (!on) {
-        error(place(ib.seen, "on", ib.at), "unknown object '" + ib.on + "'");
+        error(place(ib.seen, "on", ib.at), "unknown object '" + std::string(ib.on) + "'");
         return;
       }
       ib.inc.on = *on;
@@ -543,36 +610,43 @@ class Parser {
             "include '" + ib.path + "' as " + ib.inc.name + ": " + e.what());
       return;
     }
+    // The included bodies' names are new strings: kept in included_names_ for the views.
+    auto declare = [&](std::string name) {
+      const std::string_view view = included_names_.emplace_front(std::move(name));
+      declared[view] = Declared{ib.at, model.find(view)};
+    };
     if (ib.inc.rigid) {
-      declared[ib.inc.name] = ib.at;
+      declare(ib.inc.name);
       rigid_.push_back(ib.inc.name);
       return;
     }
     for (int i = 1; i < sub.model->body_count(); ++i)
-      declared[ib.inc.name + "." + sub.model->body(BodyId{i}).name] = ib.at;
+      declare(ib.inc.name + "." + sub.model->body(BodyId{i}).name);
   }
 
   void constraint_block() {
-    const Token& kw = next();
+    const Token kw = next();
     ConstraintBlock cb;
     cb.at = at(kw);
     cb.joint.line = kw.line;
+    cb.seen = statements();
     Joint& j = cb.joint;
     const long long errors_before = errors_;
-    while (!block_end("constraint", cb.at)) {
-      const Token& t = next();
+    while (!block_end(false, {}, cb.at)) {
+      const Token t = next();
       try {
-        const std::string& k = keyword(t, "constraint", "this constraint", cb.seen);
+        const std::string_view k = keyword(t, "constraint", {}, cb.seen);
         const ComponentRow* row = find_component(k);
         if (row && row->guide && !cb.guide.empty()) {
-          error(at(t), "a constraint has at most one translation guide: '" + k + "' after '" +
-                           cb.guide + "' at line " +
+          error(at(t), "a constraint has at most one translation guide: '" + std::string(k) +
+                           "' after '" + std::string(cb.guide) + "' at line " +
                            std::to_string(place(cb.seen, cb.guide, cb.at).line));
           throw StatementError{};
         }
         if (row && row->coupling && !cb.coupling.empty()) {
-          error(at(t), "a constraint has at most one coupling: '" + k + "' after '" + cb.coupling +
-                           "' at line " + std::to_string(place(cb.seen, cb.coupling, cb.at).line));
+          error(at(t), "a constraint has at most one coupling: '" + std::string(k) + "' after '" +
+                           std::string(cb.coupling) + "' at line " +
+                           std::to_string(place(cb.seen, cb.coupling, cb.at).line));
           throw StatementError{};
         }
         if (row) {
@@ -598,13 +672,13 @@ class Parser {
                     "expected a string in double quotes for label, found " + quote(peek()));
             throw StatementError{};
           }
-          j.label = next().text;
+          j.label = std::string(next().text);
           semicolon("label");
         } else {
           std::string known;
           for (const ComponentRow& r : components()) known += std::string(r.keyword) + ", ";
-          error(at(t), "unknown constraint statement '" + k + "' (expected object1, object2, " +
-                           known + "move, time, label or end)");
+          error(at(t), "unknown constraint statement '" + std::string(k) +
+                           "' (expected object1, object2, " + known + "move, time, label or end)");
           throw StatementError{};
         }
       } catch (const StatementError&) {
@@ -612,7 +686,7 @@ class Parser {
       }
     }
     cb.ok = errors_ == errors_before;
-    constraints_.push_back(cb);
+    constraints_.push_back(std::move(cb));
   }
 
   // Names are resolved and the model checks every block that parsed cleanly, so that each
@@ -620,19 +694,21 @@ class Parser {
   ParseResult build() {
     ParseResult result;
     Model model;
-    std::map<std::string, Place> declared;
+    model.reserve(objects_.size() + 1, constraints_.size());
+    Declarations declared;
+    declared.reserve(objects_.size());
     for (ObjectBlock& ob : objects_) {
-      if (ob.body.name.empty() || ob.body.name == "world") continue;
-      auto it = declared.find(ob.body.name);
-      if (it != declared.end()) {
-        error(ob.at, "duplicate object '" + ob.body.name + "' (first declared at line " +
-                         std::to_string(it->second.line) + ")");
+      if (ob.name.empty() || ob.name == "world") continue;
+      const auto [it, first] = declared.try_emplace(ob.name, Declared{ob.at, std::nullopt});
+      if (!first) {
+        error(ob.at, "duplicate object '" + std::string(ob.name) + "' (first declared at line " +
+                         std::to_string(it->second.at.line) + ")");
         continue;
       }
-      declared[ob.body.name] = ob.at;
       if (!ob.ok) continue;
+      ob.body.name = std::string(ob.name);
       try {
-        model.add_body(ob.body);
+        it->second.body = model.add_body(std::move(ob.body));
       } catch (const ValueError& e) {
         error(place(ob.seen, e.field(), ob.at), e.what());
       } catch (const std::invalid_argument& e) {
@@ -643,23 +719,26 @@ class Parser {
     for (ConstraintBlock& cb : constraints_) {
       Joint& j = cb.joint;
       bool ok = cb.ok;
-      auto resolve = [&](const std::string& name, const char* keyword, BodyId& out) {
+      auto resolve = [&](std::string_view name, const char* keyword, BodyId& out) {
         if (name == "world") {
           out = Model::kWorld;
           return;
         }
-        if (!declared.count(name)) {
-          std::string why = "no 'object " + name + "' block declares it";
+        const auto it = declared.find(name);
+        if (it == declared.end()) {
+          std::string why = "no 'object " + std::string(name) + "' block declares it";
           for (const std::string& r : rigid_) {
-            if (name.rfind(r + ".", 0) == 0)
+            if (name.size() > r.size() && name.compare(0, r.size(), r) == 0 &&
+                name[r.size()] == '.')
               why = r + " is a rigid include: its objects are one, '" + r + "'";
           }
-          error(place(cb.seen, keyword, cb.at), "unknown object '" + name + "' (" + why + ")");
+          error(place(cb.seen, keyword, cb.at),
+                "unknown object '" + std::string(name) + "' (" + why + ")");
           ok = false;
           return;
         }
-        if (const auto id = model.find(name)) {
-          out = *id;
+        if (it->second.body) {
+          out = *it->second.body;
         } else {
           ok = false;  // its object block had an error, reported there
         }
@@ -674,10 +753,10 @@ class Parser {
       if (!ok) continue;
       const size_t warned = model.warnings().size();
       try {
-        model.add_joint(j);
+        model.add_joint(std::move(j));
       } catch (const JointError& e) {
         const Place statement = place(cb.seen, e.keyword(), cb.at);
-        error(e.arg().empty() ? statement : place(cb.seen, e.keyword() + " " + e.arg(), statement),
+        error(e.arg().empty() ? statement : place(cb.seen, e.keyword(), statement, e.arg()),
               e.detail());
       } catch (const ValueError& e) {
         error(place(cb.seen, e.field(), cb.at), e.what());
@@ -689,53 +768,73 @@ class Parser {
         warning(place(cb.seen, w.keyword, cb.at), w.message);
       }
     }
+    // The lexer's errors first, then the parser's, up to kErrorCap together.
+    const long long lexed = static_cast<long long>(lex_errors_.listed.size()) + lex_errors_.more;
+    result.diagnostics.reserve(diagnostics_.size() + lex_errors_.listed.size() + 2);
+    for (const LexError& e : lex_errors_.listed)
+      result.diagnostics.push_back({file_, e.line, e.column, true, e.message});
+    long long parsed = 0;  // the parser's errors so far
+    for (Diagnostic& d : diagnostics_) {
+      if (!d.error || lexed + parsed++ < kErrorCap) result.diagnostics.push_back(std::move(d));
+    }
+    errors_ += lexed;
     // One last line for what the cap left out, at the end of the file.
-    const Place end = at(tokens_.back());
+    const Place end = at(current_);
     if (errors_ > kErrorCap) {
-      diagnostics_.push_back({file_, end.line, end.column, true,
-                              std::to_string(errors_ - kErrorCap) +
-                                  " more errors (only the first " + std::to_string(kErrorCap) +
-                                  " are listed)"});
+      result.diagnostics.push_back({file_, end.line, end.column, true,
+                                    std::to_string(errors_ - kErrorCap) +
+                                        " more errors (only the first " +
+                                        std::to_string(kErrorCap) + " are listed)"});
     }
     if (warnings_ > kErrorCap) {
-      diagnostics_.push_back({file_, end.line, end.column, false,
-                              std::to_string(warnings_ - kErrorCap) +
-                                  " more warnings (only the first " + std::to_string(kErrorCap) +
-                                  " are listed)"});
+      result.diagnostics.push_back({file_, end.line, end.column, false,
+                                    std::to_string(warnings_ - kErrorCap) +
+                                        " more warnings (only the first " +
+                                        std::to_string(kErrorCap) + " are listed)"});
     }
-    result.diagnostics = diagnostics_;
     if (errors_ == 0) result.model = std::move(model);
     return result;
   }
 
   std::string file_;
-  std::vector<Token> tokens_;
-  size_t pos_ = 0;
+  LexErrors lex_errors_;
+  DclLexer lexer_;
+  Token current_;
+  std::vector<Mark> statements_;  // every block's marks, in order
   std::vector<Diagnostic> diagnostics_;
-  long long errors_ = 0;  // every error, listed or not
+  long long errors_ = 0;  // every error of the parser's, listed or not (the lexer's: in build())
   long long warnings_ = 0;
   std::vector<ObjectBlock> objects_;
   std::vector<ConstraintBlock> constraints_;
   std::vector<IncludeBlock> includes_;
-  std::vector<std::string> rigid_;  // the names of rigid includes
+  std::vector<std::string> rigid_;                 // the names of rigid includes
+  std::forward_list<std::string> included_names_;  // what `declared` views for included bodies
   IncludeStack& stack_;
 };
 
-// The file's text, or false and the reason in `text`.
+// The file's text, or false and the reason in `text`. In one go: sized from the file when it
+// says its size, in chunks otherwise (a pipe).
 bool read_file(const std::string& path, std::string& text) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     text = "is a directory, not a .dcl file";
     return false;
   }
-  std::ifstream in(path, std::ios::binary);
+  std::FILE* in = std::fopen(path.c_str(), "rb");
   if (!in) {
     text = std::string("cannot open the file (") + std::strerror(errno) + ")";
     return false;
   }
-  std::ostringstream out;
-  out << in.rdbuf();
-  text = out.str();
+  text.clear();
+  if (std::fseek(in, 0, SEEK_END) == 0) {
+    const long size = std::ftell(in);
+    if (size > 0) text.resize(static_cast<size_t>(size));
+    std::rewind(in);
+  }
+  text.resize(std::fread(text.data(), 1, text.size(), in));
+  char chunk[1 << 16];
+  for (size_t n; (n = std::fread(chunk, 1, sizeof chunk, in)) > 0;) text.append(chunk, n);
+  std::fclose(in);
   return true;
 }
 

@@ -207,7 +207,7 @@ const ComponentRow& component(Component id) {
   throw std::logic_error("component missing from the table");
 }
 
-const ComponentRow* find_component(const std::string& keyword) {
+const ComponentRow* find_component(std::string_view keyword) {
   for (const ComponentRow& r : components())
     if (keyword == r.keyword) return &r;
   return nullptr;

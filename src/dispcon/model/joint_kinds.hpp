@@ -16,6 +16,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "dispcon/model/joint.hpp"
@@ -83,7 +84,7 @@ struct ComponentRow {
 // Every component, in the order the writer writes them.
 const std::vector<ComponentRow>& components();
 const ComponentRow& component(Component id);
-const ComponentRow* find_component(const std::string& keyword);
+const ComponentRow* find_component(std::string_view keyword);
 const ComponentRow& component(GuideKind kind);
 const ComponentRow& component(CouplingKind kind);
 

@@ -64,6 +64,14 @@ class Model {
 
   std::optional<BodyId> find(std::string_view name) const;
 
+  // Room for this many bodies and joints in all (a reader that knows its file's counts: the
+  // model's vectors then never move their contents as they grow).
+  void reserve(size_t bodies, size_t joints) {
+    bodies_.reserve(bodies);
+    joints_.reserve(joints);
+    by_name_.reserve(bodies);
+  }
+
   const Body& body(BodyId id) const { return bodies_.at(static_cast<size_t>(id.value)); }
   const Joint& joint(JointId id) const { return joints_.at(static_cast<size_t>(id.value)); }
 

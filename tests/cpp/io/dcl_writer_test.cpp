@@ -17,10 +17,11 @@ namespace {
 // Strings a hostile user or a FreeCAD label might hold: the format's own punctuation, escapes,
 // new lines, UTF-8 (valid or cut short) and any byte at all.
 std::string arbitrary(std::mt19937& rng) {
-  static const char* pieces[] = {"\n",  "\"",  "\\",     ";",       "end",    "object evil; fixed;",
-                                 "//",  "/*",  "*/",     "\\x41",   "\\n",    "\r\n",
-                                 "\t",  " ",   "é",      "→",       "🙂",     "\xE2\x82",
-                                 "\xFF", "\0", "constraint", "label \"", "a",  "Z9_.-"};
+  static const char* pieces[] = {
+      "\n",   "\"", "\\",         ";",        "end",  "object evil; fixed;",
+      "//",   "/*", "*/",         "\\x41",    "\\n",  "\r\n",
+      "\t",   " ",  "é",          "→",        "🙂", "\xE2\x82",
+      "\xFF", "\0", "constraint", "label \"", "a",    "Z9_.-"};
   std::uniform_int_distribution<int> length(0, 12);
   std::uniform_int_distribution<int> which(0, static_cast<int>(std::size(pieces)));
   std::uniform_int_distribution<int> byte(0, 255);
@@ -139,7 +140,7 @@ TEST(DclWriter, NamesTheFormatCannotHoldAreRefusedWithTheRule) {
 
 TEST(DclLexer, StringEscapes) {
   LexErrors errors;
-  const std::vector<Token> t = lex_dcl(R"("a\"b\\c\n\t\r\x00\x7Fé" "x)", errors);
+  const Tokens t = lex_dcl(R"("a\"b\\c\n\t\r\x00\x7Fé" "x)", errors);
   ASSERT_GE(t.size(), 2u);
   EXPECT_EQ(t[0].kind, Token::String);
   EXPECT_EQ(t[0].text, std::string("a\"b\\c\n\t\r\0\x7F\xC3\xA9", 12));
@@ -148,7 +149,7 @@ TEST(DclLexer, StringEscapes) {
   EXPECT_EQ(errors.listed[0].column, 27);
   EXPECT_EQ(quote_string(t[0].text), R"("a\"b\\c\n\t\r\x00\x7Fé")");
   // A raw new line ends an unclosed string: the next line is read as usual.
-  const std::vector<Token> u = lex_dcl("\"abc\nend", errors);
+  const Tokens u = lex_dcl("\"abc\nend", errors);
   EXPECT_EQ(u[0].kind, Token::Bad);
   EXPECT_EQ(u[1].kind, Token::Word);
   EXPECT_EQ(u[1].text, "end");
