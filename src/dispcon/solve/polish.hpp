@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "dispcon/solve/block_ldlt.hpp"
 #include "dispcon/solve/group.hpp"
 
 namespace dispcon {
@@ -35,7 +36,7 @@ struct PolishWork {
   std::vector<int> pattern_;
   std::vector<double> rows_per_body_;
   std::vector<int> joint_rows_;  // the rows of the k-th joint with rows: joint_rows_[k] ...
-  std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows, a body)
+  std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows)
 };
 
 // Newton polish. The step is dq = M^-1 J^T y with (J M^-1 J^T + lambda I) y = -r: the
@@ -105,10 +106,12 @@ class Polisher {
   bool factor(const SolverState& s, double lambda);
   bool factor_dense(double lambda);
   bool factor_sparse(const SolverState& s, double lambda);
-  template <typename F>
-  void kkt_entries(const SolverState& s, double mu, F&& f) const;
   bool same_pattern();
   bool solve_factored();
+  // The saddle-point form on blocks (polish_blocks.cpp).
+  void analyze_blocks();
+  bool factor_blocks(const SolverState& s, double mu);
+  bool solve_blocks();
   template <typename Form>
   void analyze(int n, Form&& form);
   Eigen::Triplet<double> reordered(int a, int b, double v = 0) const;
@@ -126,6 +129,16 @@ class Polisher {
   bool factored_ = false;  // ... and its factorisation can serve a chord step
   bool reused_ = false;    // the last step was a chord step
   Eigen::VectorXi order_;  // fill-reducing order of the rows
+  // The saddle-point form's blocks: the bodies', then runs of up to six rows joining the same
+  // two bodies; run k holds rows run_start_[k] ... run_start_[k + 1].
+  BlockLdlt blocks_;
+  std::vector<int> run_start_;
+  struct RunSlots {
+    BlockLdlt::Slot diagonal, body1, body2;
+  };
+  std::vector<RunSlots> run_slots_;
+  std::vector<BlockLdlt::Slot> body_slots_;
+  std::vector<double> block_x_;  // right-hand side and solution, six values a block
   Eigen::VectorXd rhs_, solution_;
   std::vector<int> analyzed_pattern_;
   std::vector<int> slots_;

@@ -7,44 +7,14 @@
 
 namespace dispcon {
 
-// Large groups: the same step from the sparse saddle-point system
-//   [ -M   J^T    ] [dq]   [ 0]
-//   [  J   mu I   ] [ y] = [-r],   mu = lambda * max diag(J M^-1 J^T),
-// whose first block row is dq = M^-1 J^T y and whose second is (J M^-1 J^T + mu I) y = -r.
-// J M^-1 J^T couples every pair of rows that share a body (a body with many joints makes a
-// dense clique); this system only links each row to its two bodies, so its factor stays
-// sparse where loops share bodies. It is quasi-definite, so the LDLT needs no pivoting and
-// the fill-reducing order is found once per pattern.
-template <typename F>
-void Polisher::kkt_entries(const SolverState& s, double mu, F&& f) const {
-  const int base = 6 * nv_;
-  for (int v = 0; v < nv_; ++v) {
-    const BodyState& b = s.bodies[static_cast<size_t>(group_->bodies[static_cast<size_t>(v)])];
-    const Mat3 inertia = b.inverse_inertia().inverse();  // rotation block of M
-    for (int i = 0; i < 3; ++i) {
-      for (int k = 0; k <= i; ++k) f(6 * v + i, 6 * v + k, -inertia(i, k));
-      f(6 * v + 3 + i, 6 * v + 3 + i, -b.m);
-    }
-  }
-  for (int a = 0; a < static_cast<int>(w_->rows_.size()); ++a) {
-    const Entry& e = w_->rows_[static_cast<size_t>(a)];
-    if (e.v1 >= 0) {
-      for (int i = 0; i < 6; ++i) f(base + a, 6 * e.v1 + i, e.j1(i));
-    }
-    if (e.v2 >= 0) {
-      for (int i = 0; i < 6; ++i) f(base + a, 6 * e.v2 + i, e.j2(i));
-    }
-    f(base + a, base + a, mu);
-  }
-}
-
 // Large groups are solved sparse, in one of two forms with the same solution: J M^-1 J^T
-// itself (chains: a few rows per body), or the saddle-point system above when bodies carry
-// many rows (loops sharing bodies), whose every row only touches its two bodies. The form with
-// fewer entries is taken; that was also the faster one on the benchmarks' chains and grids.
-// While the pattern holds, the fill-reducing order (AMD) and the symbolic analysis are kept,
-// and the values are written in place, pre-ordered in the upper triangle (slots_ remembers
-// where each entry lands), so the factorisation reads the matrix without a copy.
+// itself (chains: a few rows per body), or the saddle-point system of polish_blocks.cpp when
+// bodies carry many rows (loops sharing bodies), whose every row only touches its two bodies.
+// The form with fewer entries is taken; that was also the faster one on the benchmarks' chains
+// and grids. J M^-1 J^T is factored by Eigen's simplicial LDLT: while the pattern holds, the
+// fill-reducing order (AMD) and the symbolic analysis are kept, and the values are written in
+// place, pre-ordered in the upper triangle (slots_ remembers where each entry lands), so the
+// factorisation reads the matrix without a copy.
 bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   const int m = static_cast<int>(w_->rows_.size());
   double scale = 0;  // the largest diagonal entry of J M^-1 J^T
@@ -57,7 +27,6 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
     couplings(f);
     for (int a = 0; a < m; ++a) f(a, a, mu);
   };
-  auto kkt_form = [&](auto&& f) { kkt_entries(s, mu, f); };
   factored_ = false;
   if (!same_pattern()) {
     std::vector<double>& per_body = w_->rows_per_body_;
@@ -71,25 +40,24 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
     const double kkt_entries = 9.0 * nv_ + 13.0 * m;
     kkt_ = kkt_entries < rows_entries;
     if (kkt_) {
-      analyze(6 * nv_ + m, kkt_form);
+      analyze_blocks();
     } else {
       analyze(m, rows_form);
     }
     analyzed_pattern_ = w_->pattern_;
     analyzed_ = true;
   }
+  if (kkt_) {
+    if (!factor_blocks(s, mu)) return false;
+    factored_ = true;
+    return solve_blocks();
+  }
   double* values = sparse_.valuePtr();
   std::fill(values, values + sparse_.nonZeros(), 0.0);
   size_t visit = 0;
-  auto write = [&](int, int, double v) { values[slots_[visit++]] += v; };
-  if (kkt_) {
-    kkt_form(write);
-  } else {
-    rows_form(write);
-  }
+  rows_form([&](int, int, double v) { values[slots_[visit++]] += v; });
   sparse_ldlt_.factorize(sparse_);
   if (sparse_ldlt_.info() != Eigen::Success) return false;
-  factored_ = kkt_;
   return solve_factored();
 }
 
@@ -102,43 +70,29 @@ bool Polisher::same_pattern() {
 
 // The step from the current residuals with the factorisation in hand.
 bool Polisher::solve_factored() {
+  if (kkt_) return solve_blocks();
   const int m = static_cast<int>(w_->rows_.size());
-  const int base = kkt_ ? 6 * nv_ : 0;
-  rhs_.setZero(base + m);
-  for (int a = 0; a < m; ++a) rhs_(order_(base + a)) = -w_->residual_[static_cast<size_t>(a)];
+  rhs_.setZero(m);
+  for (int a = 0; a < m; ++a) rhs_(order_(a)) = -w_->residual_[static_cast<size_t>(a)];
   solution_ = sparse_ldlt_.solve(rhs_);
-  if (kkt_) {
-    for (int v = 0; v < nv_; ++v) {
-      Vec6& d = w_->dq_[static_cast<size_t>(v)];
-      for (int i = 0; i < 6; ++i) d(i) = solution_(order_(6 * v + i));
-    }
-  } else {
-    w_->y_.resize(static_cast<size_t>(m));
-    for (int a = 0; a < m; ++a) w_->y_[static_cast<size_t>(a)] = solution_(order_(a));
-  }
+  w_->y_.resize(static_cast<size_t>(m));
+  for (int a = 0; a < m; ++a) w_->y_[static_cast<size_t>(a)] = solution_(order_(a));
   return solution_.allFinite();
 }
 
 // Orders, places and analyses an n x n system given by its lower-triangle entries (in a fixed
-// order). In large systems the fill-reducing order is found on blocks, each joint's rows and
-// (saddle-point form) each body's six unknowns, which share their neighbours: AMD on the 300,000
-// rows of a 100,000-link chain took 0.2 s, on its 100,000 joints 5 ms. Below kBlockOrdering
-// unknowns the analysis is cheap and AMD on single unknowns leaves less fill (the 105-link
-// grid's factor: 22,454 entries against 24,302 by blocks), which every drag frame pays.
+// order). In large systems the fill-reducing order is found on blocks, each joint's rows, which
+// share their neighbours: AMD on the 300,000 rows of a 100,000-link chain took 0.2 s, on its
+// 100,000 joints 5 ms. Below kBlockOrdering unknowns the analysis is cheap and AMD on single
+// unknowns leaves less fill, which every drag frame pays.
 template <typename Form>
 void Polisher::analyze(int n, Form&& form) {
   std::vector<int>& start = w_->block_start_;
   start.clear();
-  const int base = kkt_ ? 6 * nv_ : 0;
   if (n < kBlockOrdering) {
     for (int i = 0; i < n; ++i) start.push_back(i);
   } else {
-    if (kkt_) {
-      for (int v = 0; v < nv_; ++v) start.push_back(6 * v);
-    }
-    for (size_t k = 0; k + 1 < w_->joint_rows_.size(); ++k) {
-      start.push_back(base + w_->joint_rows_[k]);
-    }
+    for (size_t k = 0; k + 1 < w_->joint_rows_.size(); ++k) start.push_back(w_->joint_rows_[k]);
   }
   start.push_back(n);
   const int blocks = static_cast<int>(start.size()) - 1;

@@ -1,0 +1,253 @@
+#include "dispcon/solve/block_ldlt.hpp"
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace dispcon {
+
+// Column k of the factor holds the blocks of rows struct(k): A's non-zero blocks below the
+// diagonal in column k, and every row of a column eliminated earlier whose first row (its
+// parent in the elimination tree) is k. The update of column k, A_ab -= L_ak D_k L_bk^T for
+// every pair of rows a >= b in struct(k), lands in column b at row a, which is there by the
+// same rule; targets_ lists those places once, so factorize() only multiplies.
+void BlockLdlt::analyze(const std::vector<int>& sizes,
+                        const std::vector<std::pair<int, int>>& pairs) {
+  const int n = static_cast<int>(sizes.size());
+  for (int s : sizes) {
+    if (s < 1 || s > kSize) throw std::invalid_argument("BlockLdlt: block size out of range");
+  }
+  sizes_ = sizes;
+  // Fill-reducing order of the blocks (Eigen's orderings return the inverse permutation: the
+  // k-th index is the k-th block to eliminate).
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(pairs.size() + static_cast<size_t>(n));
+  for (int b = 0; b < n; ++b) triplets.emplace_back(b, b, 1.0);
+  for (const auto& [i, j] : pairs) triplets.emplace_back(std::max(i, j), std::min(i, j), 1.0);
+  Eigen::SparseMatrix<double> lower(n, n);
+  lower.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+  Eigen::AMDOrdering<int>()(lower.selfadjointView<Eigen::Lower>(), inverse);
+  order_.assign(inverse.indices().data(), inverse.indices().data() + n);
+  pos_.assign(static_cast<size_t>(n), 0);
+  for (int k = 0; k < n; ++k) pos_[static_cast<size_t>(order_[static_cast<size_t>(k)])] = k;
+
+  // The factor's structure, column by column: A's rows, then the children's.
+  std::vector<std::vector<int>> below(static_cast<size_t>(n)), children(static_cast<size_t>(n));
+  for (const auto& [i, j] : pairs) {
+    const int a = pos_[static_cast<size_t>(i)], b = pos_[static_cast<size_t>(j)];
+    if (a != b) below[static_cast<size_t>(std::min(a, b))].push_back(std::max(a, b));
+  }
+  std::vector<int> mark(static_cast<size_t>(n), -1);
+  start_.assign(1, 0);
+  row_.clear();
+  for (int k = 0; k < n; ++k) {
+    const size_t first = row_.size();
+    row_.push_back(k);
+    mark[static_cast<size_t>(k)] = k;
+    auto add = [&](int i) {
+      if (mark[static_cast<size_t>(i)] != k) {
+        mark[static_cast<size_t>(i)] = k;
+        row_.push_back(i);
+      }
+    };
+    for (int i : below[static_cast<size_t>(k)]) add(i);
+    for (int c : children[static_cast<size_t>(k)]) {
+      for (int p = start_[static_cast<size_t>(c)] + 1; p < start_[static_cast<size_t>(c) + 1];
+           ++p) {
+        add(row_[static_cast<size_t>(p)]);
+      }
+    }
+    std::sort(row_.begin() + static_cast<std::ptrdiff_t>(first) + 1, row_.end());
+    if (row_.size() > first + 1) children[static_cast<size_t>(row_[first + 1])].push_back(k);
+    start_.push_back(static_cast<int>(row_.size()));
+  }
+  values_.assign(kArea * row_.size(), 0.0);
+  pivots_.assign(static_cast<size_t>(kSize * n), 0.0);
+  z_.assign(static_cast<size_t>(kSize * n), 0.0);
+
+  // Where each update lands.
+  targets_.clear();
+  size_t widest = 0;
+  for (int k = 0; k < n; ++k) {
+    const int begin = start_[static_cast<size_t>(k)] + 1, end = start_[static_cast<size_t>(k) + 1];
+    widest = std::max(widest, static_cast<size_t>(end - begin));
+    for (int a = begin; a < end; ++a) {
+      for (int b = begin; b <= a; ++b) {
+        targets_.push_back(slot_of(row_[static_cast<size_t>(a)], row_[static_cast<size_t>(b)]));
+      }
+    }
+  }
+  w_.assign(kArea * widest, 0.0);
+}
+
+// Index of the stored block at row a of column b (elimination order, a >= b).
+int BlockLdlt::slot_of(int a, int b) const {
+  const auto first = row_.begin() + start_[static_cast<size_t>(b)];
+  const auto last = row_.begin() + start_[static_cast<size_t>(b) + 1];
+  const auto it = std::lower_bound(first, last, a);
+  if (it == last || *it != a) throw std::logic_error("BlockLdlt: block outside the pattern");
+  return static_cast<int>(it - row_.begin());
+}
+
+BlockLdlt::Slot BlockLdlt::slot(int i, int j) const {
+  const int a = pos_[static_cast<size_t>(i)], b = pos_[static_cast<size_t>(j)];
+  return a >= b ? Slot{slot_of(a, b), false} : Slot{slot_of(b, a), true};
+}
+
+void BlockLdlt::clear() {
+  std::fill(values_.begin(), values_.end(), 0.0);
+  for (int k = 0; k < blocks(); ++k) {
+    double* d = values_.data() + kArea * start_[static_cast<size_t>(k)];
+    for (int i = sizes_[static_cast<size_t>(order_[static_cast<size_t>(k)])]; i < kSize; ++i) {
+      d[kSize * i + i] = 1;
+    }
+  }
+}
+
+namespace {
+
+constexpr int kSize = BlockLdlt::kSize, kArea = BlockLdlt::kArea;
+
+// The kernels below run over every block of the factor; on x86-64 they are also compiled for
+// AVX2 and the processor picks (the same arithmetic in the same order, so the same bits).
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+#define DISPCON_KERNEL __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define DISPCON_KERNEL
+#endif
+
+// z -= L x, L a block.
+inline void subtract_product(double* __restrict z, const double* __restrict l,
+                             const double* __restrict x) {
+  for (int j = 0; j < kSize; ++j) {
+    const double xj = x[j];
+    for (int i = 0; i < kSize; ++i) z[i] -= l[kSize * j + i] * xj;
+  }
+}
+
+// z -= L^T x.
+inline void subtract_transposed_product(double* __restrict z, const double* __restrict l,
+                                        const double* __restrict x) {
+  for (int j = 0; j < kSize; ++j) {
+    double s = 0;
+    for (int i = 0; i < kSize; ++i) s += l[kSize * j + i] * x[i];
+    z[j] -= s;
+  }
+}
+
+// Factors the pivot block d = Lk dk Lk^T in place (Lk below the diagonal, dk in `pivot`),
+// without pivoting, as an entry-by-entry LDL^T would.
+bool factor_pivot(double* d, double* pivot) {
+  auto at = [d](int i, int j) -> double& { return d[kSize * j + i]; };
+  for (int j = 0; j < kSize; ++j) {
+    double s = at(j, j);
+    for (int p = 0; p < j; ++p) s -= at(j, p) * at(j, p) * pivot[p];
+    if (!(std::abs(s) > 0) || !std::isfinite(s)) return false;
+    pivot[j] = s;
+    for (int i = j + 1; i < kSize; ++i) {
+      double v = at(i, j);
+      for (int p = 0; p < j; ++p) v -= at(i, p) * at(j, p) * pivot[p];
+      at(i, j) = v / s;
+    }
+  }
+  return true;
+}
+
+// Right-looking, in the scalar LDL^T's arithmetic: column k's pivot block is final once the
+// columns before it are eliminated, and is factored D = Lk dk Lk^T. Its blocks W_ak become
+// Y_ak = W_ak Lk^-T and L_ak = Y_ak dk^-1 (the factor's entries), and update the blocks they
+// meet, A_ab -= L_ak Y_bk^T. An explicit inverse of D would be quicker to apply but is not
+// stable: where a joint's rows were eliminated before its bodies the body's pivot is
+// -M - J^T J / mu, with mu as small as 1e-12 of J M^-1 J^T, and its inverse is good to a few
+// digits only, which the next products multiply by 1/mu.
+DISPCON_KERNEL
+bool factor_columns(int n, const int* start, const int* targets, double* values, double* pivots,
+                    double* y) {
+  for (int k = 0; k < n; ++k) {
+    double* d = values + kArea * start[k];
+    double* dk = pivots + kSize * k;
+    if (!factor_pivot(d, dk)) return false;
+    double inverse[kSize];
+    for (int i = 0; i < kSize; ++i) inverse[i] = 1 / dk[i];
+    const int count = start[k + 1] - start[k] - 1;
+    double* column = d + kArea;
+    for (int q = 0; q < count; ++q) {
+      double* l = column + kArea * q;
+      double* yq = y + kArea * q;
+      for (int j = 0; j < kSize; ++j) {  // Y Lk^T = W, column by column
+        double* yj = yq + kSize * j;
+        for (int i = 0; i < kSize; ++i) yj[i] = l[kSize * j + i];
+        for (int p = 0; p < j; ++p) {
+          const double f = d[kSize * p + j];
+          const double* yp = yq + kSize * p;
+          for (int i = 0; i < kSize; ++i) yj[i] -= f * yp[i];
+        }
+        for (int i = 0; i < kSize; ++i) l[kSize * j + i] = yj[i] * inverse[j];
+      }
+    }
+    for (int a = 0; a < count; ++a) {
+      const double* la = column + kArea * a;
+      for (int b = 0; b <= a; ++b) {  // A_ab -= L_a Y_b^T
+        const double* yb = y + kArea * b;
+        double* t = values + kArea * *targets++;
+        for (int c = 0; c < kSize; ++c) {
+          for (int q = 0; q < kSize; ++q) {
+            const double f = yb[kSize * q + c];
+            for (int i = 0; i < kSize; ++i) t[kSize * c + i] -= la[kSize * q + i] * f;
+          }
+        }
+      }
+    }
+  }
+  return true;
+}
+
+// L z = b, then D, then L^T x = z, where L's diagonal blocks are the pivots' Lk.
+DISPCON_KERNEL
+void solve_columns(int n, const int* start, const int* row, const double* values,
+                   const double* pivots, double* z) {
+  for (int k = 0; k < n; ++k) {
+    double* zk = z + kSize * k;
+    const double* lk = values + kArea * start[k];
+    for (int j = 0; j < kSize; ++j) {
+      for (int i = j + 1; i < kSize; ++i) zk[i] -= lk[kSize * j + i] * zk[j];
+    }
+    for (int p = start[k] + 1; p < start[k + 1]; ++p) {
+      subtract_product(z + kSize * row[p], values + kArea * p, zk);
+    }
+  }
+  for (int i = 0; i < kSize * n; ++i) z[i] /= pivots[i];
+  for (int k = n - 1; k >= 0; --k) {
+    double* zk = z + kSize * k;
+    for (int p = start[k] + 1; p < start[k + 1]; ++p) {
+      subtract_transposed_product(zk, values + kArea * p, z + kSize * row[p]);
+    }
+    const double* lk = values + kArea * start[k];
+    for (int j = kSize - 2; j >= 0; --j) {
+      for (int i = j + 1; i < kSize; ++i) zk[j] -= lk[kSize * j + i] * zk[i];
+    }
+  }
+}
+
+}  // namespace
+
+bool BlockLdlt::factorize() {
+  return factor_columns(blocks(), start_.data(), targets_.data(), values_.data(), pivots_.data(),
+                        w_.data());
+}
+
+void BlockLdlt::solve(double* x) {
+  const int n = blocks();
+  for (int k = 0; k < n; ++k) {
+    std::copy_n(x + kSize * order_[static_cast<size_t>(k)], kSize, z_.data() + kSize * k);
+  }
+  solve_columns(n, start_.data(), row_.data(), values_.data(), pivots_.data(), z_.data());
+  for (int k = 0; k < n; ++k) {
+    std::copy_n(z_.data() + kSize * k, kSize, x + kSize * order_[static_cast<size_t>(k)]);
+  }
+}
+
+}  // namespace dispcon

@@ -1,0 +1,97 @@
+// The Newton polish's saddle-point form (groups whose loops share bodies, polish_sparse.cpp)
+// factored on blocks (block_ldlt.hpp): each body's six unknowns make a block, and so does each
+// run of up to six consecutive rows joining the same two bodies (a joint's rows, usually).
+#include "dispcon/solve/polish.hpp"
+
+namespace dispcon {
+
+// Blocks 0 ... nv_ - 1 are the bodies, nv_ + k the k-th run of rows. Analysed once per
+// pattern, which fixes the runs: a run's rows join the same bodies while the pattern holds.
+void Polisher::analyze_blocks() {
+  const int m = static_cast<int>(w_->rows_.size());
+  run_start_.clear();
+  for (int a = 0; a < m; ++a) {
+    const Entry& e = w_->rows_[static_cast<size_t>(a)];
+    const bool new_run = a == 0 || a - run_start_.back() == BlockLdlt::kSize ||
+                         e.v1 != w_->rows_[static_cast<size_t>(a) - 1].v1 ||
+                         e.v2 != w_->rows_[static_cast<size_t>(a) - 1].v2;
+    if (new_run) run_start_.push_back(a);
+  }
+  run_start_.push_back(m);
+  const int runs = static_cast<int>(run_start_.size()) - 1;
+  std::vector<int> sizes(static_cast<size_t>(nv_), BlockLdlt::kSize);
+  std::vector<std::pair<int, int>> pairs;
+  for (int k = 0; k < runs; ++k) {
+    sizes.push_back(run_start_[static_cast<size_t>(k) + 1] - run_start_[static_cast<size_t>(k)]);
+    const Entry& e = w_->rows_[static_cast<size_t>(run_start_[static_cast<size_t>(k)])];
+    if (e.v1 >= 0) pairs.emplace_back(nv_ + k, e.v1);
+    if (e.v2 >= 0) pairs.emplace_back(nv_ + k, e.v2);
+  }
+  blocks_.analyze(sizes, pairs);
+  body_slots_.resize(static_cast<size_t>(nv_));
+  for (int v = 0; v < nv_; ++v) body_slots_[static_cast<size_t>(v)] = blocks_.slot(v, v);
+  run_slots_.resize(static_cast<size_t>(runs));
+  for (int k = 0; k < runs; ++k) {
+    const Entry& e = w_->rows_[static_cast<size_t>(run_start_[static_cast<size_t>(k)])];
+    RunSlots& r = run_slots_[static_cast<size_t>(k)];
+    r.diagonal = blocks_.slot(nv_ + k, nv_ + k);
+    r.body1 = e.v1 >= 0 ? blocks_.slot(nv_ + k, e.v1) : BlockLdlt::Slot{};
+    r.body2 = e.v2 >= 0 ? blocks_.slot(nv_ + k, e.v2) : BlockLdlt::Slot{};
+  }
+  block_x_.assign(static_cast<size_t>(BlockLdlt::kSize * (nv_ + runs)), 0.0);
+}
+
+//   [ -M   J^T    ]
+//   [  J   mu I   ]
+bool Polisher::factor_blocks(const SolverState& s, double mu) {
+  blocks_.clear();
+  for (int v = 0; v < nv_; ++v) {
+    const BodyState& b = s.bodies[static_cast<size_t>(group_->bodies[static_cast<size_t>(v)])];
+    const Mat3 inertia = b.inverse_inertia().inverse();  // rotation block of M
+    const BlockLdlt::Slot d = body_slots_[static_cast<size_t>(v)];
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) blocks_.at(d, i, k) = -inertia(i, k);
+      blocks_.at(d, 3 + i, 3 + i) = -b.m;
+    }
+  }
+  const int runs = static_cast<int>(run_slots_.size());
+  for (int k = 0; k < runs; ++k) {
+    const RunSlots& r = run_slots_[static_cast<size_t>(k)];
+    const int first = run_start_[static_cast<size_t>(k)];
+    for (int a = first; a < run_start_[static_cast<size_t>(k) + 1]; ++a) {
+      const Entry& e = w_->rows_[static_cast<size_t>(a)];
+      const int o = a - first;
+      blocks_.at(r.diagonal, o, o) = mu;
+      if (e.v1 >= 0) {
+        for (int i = 0; i < 6; ++i) blocks_.at(r.body1, o, i) += e.j1(i);
+      }
+      if (e.v2 >= 0) {
+        for (int i = 0; i < 6; ++i) blocks_.at(r.body2, o, i) += e.j2(i);
+      }
+    }
+  }
+  return blocks_.factorize();
+}
+
+// The right-hand side [0; -r], and dq from the solution.
+bool Polisher::solve_blocks() {
+  std::fill(block_x_.begin(), block_x_.end(), 0.0);
+  const int runs = static_cast<int>(run_slots_.size());
+  for (int k = 0; k < runs; ++k) {
+    const int first = run_start_[static_cast<size_t>(k)];
+    double* x = block_x_.data() + BlockLdlt::kSize * (nv_ + k);
+    for (int a = first; a < run_start_[static_cast<size_t>(k) + 1]; ++a) {
+      x[a - first] = -w_->residual_[static_cast<size_t>(a)];
+    }
+  }
+  blocks_.solve(block_x_.data());
+  bool finite = true;
+  for (int v = 0; v < nv_; ++v) {
+    Vec6& d = w_->dq_[static_cast<size_t>(v)];
+    d = Eigen::Map<const Vec6>(block_x_.data() + BlockLdlt::kSize * v);
+    finite = finite && d.allFinite();
+  }
+  return finite;
+}
+
+}  // namespace dispcon
