@@ -49,9 +49,21 @@ int run_drag(const DragArgs& a) {
     auto steps = [&](JsonWriter& w) {
       w.begin_array();
       for (const SolveResult& s : d.steps) {
+        if (s.status != SolveStatus::OutOfReach) {
+          write_object(w, {{"iterations", [&](JsonWriter& v) { v.value(s.iterations); }},
+                           {"max_residual", [&](JsonWriter& v) { v.value(s.max_residual); }},
+                           {"converged", [&](JsonWriter& v) { v.value(s.converged); }}});
+          continue;
+        }
+        // An extension of cli.md's step: the body held out of reach and the distance left.
+        auto reach = [&](JsonWriter& v) {
+          write_object(v, {{"body", [&](JsonWriter& b) { b.value(m->body(s.held).name); }},
+                           {"distance_left", [&](JsonWriter& b) { b.value(s.distance_left); }}});
+        };
         write_object(w, {{"iterations", [&](JsonWriter& v) { v.value(s.iterations); }},
                          {"max_residual", [&](JsonWriter& v) { v.value(s.max_residual); }},
-                         {"converged", [&](JsonWriter& v) { v.value(s.converged); }}});
+                         {"converged", [&](JsonWriter& v) { v.value(s.converged); }},
+                         {"out_of_reach", reach}});
       }
       w.end_array();
     };

@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,8 @@ struct PySolveResult {
   double max_residual = 0;
   std::vector<int> violated;
   std::vector<Report> constraints;
+  std::optional<std::string> out_of_reach;  // a drag step's held body, when out of reach
+  double distance_left = 0;
 };
 
 PySolveResult convert(const Model& model, const SolveResult& r);

@@ -32,6 +32,8 @@ PySolveResult convert(const Model& model, const SolveResult& r) {
   out.max_residual = r.max_residual;
   out.violated = indices(r.violated());
   out.constraints = convert(model, r.constraints);
+  if (r.status == SolveStatus::OutOfReach) out.out_of_reach = model.body(r.held).name;
+  out.distance_left = r.distance_left;
   return out;
 }
 
@@ -147,6 +149,10 @@ void bind_results(pyb::module_& m) {
       .def_readonly("max_residual", &PySolveResult::max_residual)
       .def_readonly("violated", &PySolveResult::violated)
       .def_readonly("constraints", &PySolveResult::constraints)
+      .def_readonly("out_of_reach", &PySolveResult::out_of_reach,
+                    "A drag step whose target the linkage cannot reach: the held body's name "
+                    "(else None); distance_left is how far it stays from the target at least.")
+      .def_readonly("distance_left", &PySolveResult::distance_left)
       .def("__bool__", [](const PySolveResult& r) { return r.converged; })
       .def("__repr__", [](const PySolveResult& r) { return "<SolveResult " + r.message + ">"; });
 }

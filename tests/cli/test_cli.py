@@ -155,6 +155,24 @@ class Drag(unittest.TestCase):
         self.assertAlmostEqual(turn["g3"], 2.0, delta=1e-11)  # 2/3 of it
 
 
+    def test_drag_out_of_reach_tells_the_distance_left(self):
+        # The robot arm's hand is at most 2.5 from the base's pivot (0.5 + 1 + 1 along its
+        # links): held at (5, 0.5, 0) it stays sqrt(25.25) - 2.5 short, found before iterating.
+        r = run("drag", os.path.join(SRC, "samples", "robot-arm.dcl"), "--body", "hand",
+                "--to", "5", "0.5", "0", "--steps", "1", "--json")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertFalse(doc["converged"])
+        self.assertEqual(doc["failed_step"], 0)
+        step = doc["steps"][0]
+        self.assertFalse(step["converged"])
+        self.assertEqual(step["iterations"], 0)
+        self.assertEqual(step["out_of_reach"]["body"], "hand")
+        self.assertAlmostEqual(step["out_of_reach"]["distance_left"], math.sqrt(25.25) - 2.5,
+                               delta=1e-12)
+        self.assertIn("out of reach: 'hand'", doc["message"])
+
+
 class Check(unittest.TestCase):
     def test_pendulum_has_one_degree_of_freedom(self):
         r = run("check", os.path.join(DATA, "pendulum.dcl"), "--json")

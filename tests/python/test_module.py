@@ -145,6 +145,27 @@ class Solve(unittest.TestCase):
         np.testing.assert_array_equal(m.body("bar").position, [0.5, 0, 0])
         np.testing.assert_array_equal(m.body("bar").rotation_vector, [0, 0, 0])
 
+    def test_dragger_out_of_reach_tells_the_body_and_the_distance_left(self):
+        # A 2-link arm (2 and 1.5) with a hand at its tip, the hand held 3.905 from the shoulder.
+        m = dispcon.Model()
+        m.add_body("upper", position=(0, 0, 0))
+        m.add_body("fore", position=(2, 0, 0))
+        m.add_body("hand", position=(3.5, 0, 0))
+        m.add_joint("upper", hinge=((0, 0, 0), (0, 0, 0)))
+        m.add_joint("fore", object1="upper", hinge=((2, 0, 0), (0, 0, 0)))
+        m.add_joint("hand", object1="fore", hinge=((1.5, 0, 0), (0, 0, 0)))
+        self.assertTrue(m.assemble().converged)
+        drag = m.dragger("hand")
+        self.assertTrue(drag.move_to(position=(2, 2, 0)).converged)
+        before = m.body("fore").position.copy()
+        r = drag.move_to(position=(3, 2.5, 0))
+        self.assertFalse(r.converged)
+        self.assertEqual(r.status, "out-of-reach")
+        self.assertEqual(r.out_of_reach, "hand")
+        self.assertAlmostEqual(r.distance_left, math.sqrt(15.25) - 3.5, delta=1e-12)
+        np.testing.assert_array_equal(m.body("fore").position, before)
+        self.assertIsNone(drag.move_to(position=(2, 2.1, 0)).out_of_reach)
+
     def test_live_dragger(self):
         m = fourbar()
         m.assemble()

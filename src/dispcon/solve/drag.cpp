@@ -1,6 +1,8 @@
 // Dragging: one body held at a target (or along a path of targets) while the rest follows.
+#include <algorithm>
 #include <sstream>
 
+#include "dispcon/solve/reach.hpp"
 #include "dispcon/solve/solver.hpp"
 
 namespace dispcon {
@@ -22,14 +24,50 @@ std::vector<bool> held_only(const Model& model, BodyId body) {
 }  // namespace
 
 Dragger::Dragger(Model& model, BodyId body, const SolveOptions& options)
-    : model_(model), body_(body), session_(model, options, held_only(model, body)) {}
+    : model_(model),
+      body_(body),
+      options_(options),
+      session_(model, options, held_only(model, body)) {}
+Dragger::Dragger(Dragger&&) noexcept = default;
+Dragger::~Dragger() = default;
 
 SolveResult Dragger::move_to(const Pose& target) {
+  const Pose at = check_pose(target, "target", "drag: target of '" + model_.body(body_).name + "'");
+  // Out of reach by the joints' lengths: told now, not after the iterations give up (a
+  // stretched chain's Newton steps crawl, and a thousand links took thousands of them).
+  if (!reach_ || reach_->revision() != model_.revision()) {
+    reach_ = std::make_unique<ReachBound>(model_, body_, options_.time);
+  }
+  if (reach_->gap(at, options_.tolerance).joint.value >= 0) return out_of_reach(at);
   poses_ = model_.poses();
-  poses_[static_cast<size_t>(body_.value)] =
-      check_pose(target, "target", "drag: target of '" + model_.body(body_).name + "'");
+  poses_[static_cast<size_t>(body_.value)] = at;
   SolveResult r = session_.solve(poses_);
   if (r.converged) model_.set_poses(poses_);
+  return r;
+}
+
+// The step not tried: what is measured with the body at its target and the rest where it is (the
+// joints on the stretched path are open), and the least distance left.
+SolveResult Dragger::out_of_reach(const Pose& target) {
+  const ReachBound::Gap gap = reach_->gap(target, options_.tolerance);
+  SolveResult r;
+  r.status = SolveStatus::OutOfReach;
+  r.converged = false;
+  r.poses = model_.poses();
+  r.poses[static_cast<size_t>(body_.value)] = target;
+  r.constraints = measure(model_, r.poses, options_);
+  for (const ConstraintReport& c : r.constraints)
+    r.max_residual = std::max(r.max_residual, c.residual);
+  r.held = body_;
+  r.distance_left = gap.distance;
+  const Joint& j = model_.joint(gap.joint);
+  std::ostringstream msg;
+  msg << "out of reach: '" << model_.body(body_).name << "' stays at least " << gap.distance
+      << " from its target (the " << gap.joints << " joint" << (gap.joints == 1 ? "" : "s")
+      << " from joint " << gap.joint.value;
+  if (j.line) msg << " (line " << j.line << ")";
+  msg << " to a part that cannot move do not stretch that far)";
+  r.message = msg.str();
   return r;
 }
 

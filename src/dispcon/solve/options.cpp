@@ -15,6 +15,8 @@ const char* to_string(SolveStatus status) {
       return "stalled";
     case SolveStatus::Diverged:
       return "diverged";
+    case SolveStatus::OutOfReach:
+      return "out-of-reach";
   }
   return "?";
 }

@@ -59,6 +59,7 @@ enum class SolveStatus {
   IterationLimit,  // the cap was hit: over-constrained, unreachable, or too slow; see constraints
   Stalled,         // no progress for many iterations: over-constrained or unreachable
   Diverged,        // a non-finite residual or pose appeared; the poses were not changed
+  OutOfReach,      // a drag step whose target the linkage cannot reach (see distance_left)
 };
 
 const char* to_string(SolveStatus status);
@@ -74,6 +75,10 @@ struct SolveResult {
   std::vector<Pose> poses;                    // the poses reached (best effort when not converged)
   std::string message;                        // one line for people: what happened and where
   std::vector<double> history;  // largest violation after each iteration (record_history)
+  // OutOfReach (a drag step): the held body, and how far its point stays from where the target
+  // puts it at the least (length units): the joints cannot stretch that far.
+  BodyId held{-1};
+  double distance_left = 0;
 
   std::vector<JointId> violated() const;
 };
@@ -111,21 +116,30 @@ std::vector<ConstraintReport> measure(const Model& model, const std::vector<Pose
 // it reached.
 SolveResult assemble(Model& model, const SolveOptions& options = {});
 
+class ReachBound;
+
 // Interactive dragging (a mouse drag in the workbench): `body` is held at each target in turn
 // while the rest follows from the previous result; the session is built once.
 class Dragger {
  public:
   // Throws std::invalid_argument for the world, an unknown or a fixed body.
   Dragger(Model& model, BodyId body, const SolveOptions& options = {});
+  Dragger(Dragger&&) noexcept;
+  ~Dragger();
   // Holds the body at `target` (checked: a finite pose within range) and solves from the model's
   // poses. On success the model takes the new poses; otherwise it is left as it was, bit for bit,
-  // and the result names what is violated.
+  // and the result names what is violated. A target farther from the fixed parts than the joints
+  // can stretch is refused before any iteration: status OutOfReach, with the distance left.
   SolveResult move_to(const Pose& target);
 
  private:
+  SolveResult out_of_reach(const Pose& target);
+
   Model& model_;
   BodyId body_;
+  SolveOptions options_;
   Session session_;
+  std::unique_ptr<ReachBound> reach_;  // built at the first move, again when the model changed
   std::vector<Pose> poses_;
 };
 

@@ -1,0 +1,83 @@
+// Drag targets at the edge of reach: a gently curved chain of n unit links (link i turned by
+// 0.02 sin(0.05 i) rad, the first pinned to the world) whose last link is dragged by its start
+// point along x, as in docs/performance.md's 1,000-link case.
+//   BM_DragStep_OutOfReach/<n>  one step held 0.02 beyond the n - 1 links' reach: told, not solved
+//   BM_DragStep_NearStretch/<n> the reachable step before it (0.04 short of full stretch), from
+//                               the same curved pose each time
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <string>
+
+#include "dispcon/solve/solver.hpp"
+
+namespace {
+
+using namespace dispcon;
+
+Model curved_chain(int n) {
+  Model m;
+  BodyId last = Model::kWorld;
+  Vec3 at = Vec3::Zero();
+  for (int i = 1; i <= n; ++i) {
+    const double a = 0.02 * std::sin(0.05 * i);
+    Body b;
+    b.name = "bar" + std::to_string(i);
+    b.pose = Pose::from(at, Vec3(0, 0, a));
+    b.center = Vec3(0.5, 0, 0);
+    const BodyId id = m.add_body(b);
+    Joint j;
+    j.body1 = last;
+    j.body2 = id;
+    j.has_hinge = true;
+    j.p1 = last == Model::kWorld ? Vec3::Zero() : Vec3(1, 0, 0);
+    m.add_joint(j);
+    at += Vec3(std::cos(a), std::sin(a), 0);
+    last = id;
+  }
+  assemble(m);
+  return m;
+}
+
+// The end's start point, held at x along the line through the pinned point and it.
+Pose at_distance(const Pose& end, double x) {
+  return Pose{end.q, end.x.normalized() * x};
+}
+
+void BM_DragStep_OutOfReach(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Model m = curved_chain(n);
+  const BodyId end{n};
+  Dragger drag(m, end);
+  const Pose target = at_distance(m.body(end).pose, n - 1 + 0.02);
+  int iterations = 0;
+  for (auto _ : state) {
+    const SolveResult r = drag.move_to(target);
+    if (r.status != SolveStatus::OutOfReach) state.SkipWithError("not told out of reach");
+    iterations = r.iterations;
+  }
+  state.counters["iterations"] = iterations;
+}
+BENCHMARK(BM_DragStep_OutOfReach)->Arg(2)->Arg(1000)->Unit(benchmark::kMicrosecond);
+
+void BM_DragStep_NearStretch(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Model m = curved_chain(n);
+  const BodyId end{n};
+  const std::vector<Pose> start = m.poses();
+  Dragger drag(m, end);
+  const Pose target = at_distance(m.body(end).pose, n - 1 - 0.04);
+  int iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    m.set_poses(start);
+    state.ResumeTiming();
+    const SolveResult r = drag.move_to(target);
+    if (!r.converged) state.SkipWithError(r.message.c_str());
+    iterations = r.iterations;
+  }
+  state.counters["iterations"] = iterations;
+}
+BENCHMARK(BM_DragStep_NearStretch)->Arg(1000)->Iterations(3)->Unit(benchmark::kMillisecond);
+
+}  // namespace
