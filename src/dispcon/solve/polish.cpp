@@ -13,16 +13,21 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   w_->dq_.resize(static_cast<size_t>(nv_));
   for (int v = 0; v < nv_; ++v)
     s.bodies[static_cast<size_t>(group_->bodies[static_cast<size_t>(v)])].n_var = v;
-  gather(s, band);
-  const int m = static_cast<int>(w_->rows_.size());
+  // A chord step solves with the factorisation in hand: it needs the rows' residuals and the
+  // bodies they join, not the Jacobian nor M^-1 J^T.
+  if (reuse && factored_ && kkt_) {
+    gather_residuals(s, band);
+    reused_ = w_->pattern_ == analyzed_pattern_;
+  }
+  if (!reused_) gather(s, band);
+  const int m = static_cast<int>(reused_ ? w_->residual_.size() : w_->rows_.size());
   if (m == 0 || nv_ == 0) return false;
-  if (reuse && factored_ && m > kDenseRows && kkt_ && same_pattern()) {
-    reused_ = true;
-    if (!solve_factored()) return false;
+  if (reused_) {
+    if (!solve_blocks()) return false;
   } else if (!factor(s, lambda)) {
     return false;
   }
-  if (m <= kDenseRows || !kkt_) {
+  if (!reused_ && (m <= kDenseRows || !kkt_)) {
     // dq = M^-1 J^T y
     for (Vec6& d : w_->dq_) d.setZero();
     for (int a = 0; a < m; ++a) {
@@ -86,6 +91,28 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band) {
     w_->joint_rows_.push_back(static_cast<int>(w_->rows_.size()));
   }
   rows_hint_ = w_->rows_.size();
+}
+
+// The rows' residuals alone, and the bodies each row joins (the pattern).
+void Polisher::gather_residuals(const SolverState& s, const std::vector<double>& band) {
+  w_->residual_.clear();
+  w_->pattern_.clear();
+  PartRows parts[kPartSlots];
+  for (int c : group_->joints) {
+    const JointState& js = s.joints[static_cast<size_t>(c)];
+    const BodyState& s1 = s.bodies[static_cast<size_t>(js.b1)];
+    const BodyState& s2 = s.bodies[static_cast<size_t>(js.b2)];
+    const int v1 = s1.movable ? s1.n_var : -1;
+    const int v2 = s2.movable ? s2.n_var : -1;
+    s.rows(js, BoundTest{band[static_cast<size_t>(c)]}, parts);
+    for (const PartRows& p : parts) {
+      for (int k = 0; k < p.count; ++k) {
+        w_->residual_.push_back(p.residual[k]);
+        w_->pattern_.push_back(v1);
+        w_->pattern_.push_back(v2);
+      }
+    }
+  }
 }
 
 PolishWork::Vec6 Polisher::apply_inverse_mass(const BodyState& b, const Vec6& j) {

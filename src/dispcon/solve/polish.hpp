@@ -64,6 +64,7 @@ class Polisher {
   using Entry = PolishWork::Entry;
 
   void gather(const SolverState& s, const std::vector<double>& band);
+  void gather_residuals(const SolverState& s, const std::vector<double>& band);
   static Vec6 apply_inverse_mass(const BodyState& b, const Vec6& j);
   // Calls f(a, b, value) for every coupling a >= b of J M^-1 J^T, body by body. The rows of
   // each body are listed flat (counted, then placed), so nothing is allocated once warm.

@@ -68,9 +68,8 @@ bool Polisher::same_pattern() {
   return analyzed_ && w_->pattern_ == analyzed_pattern_;
 }
 
-// The step from the current residuals with the factorisation in hand.
+// The rows form's step from the current residuals with its factorisation.
 bool Polisher::solve_factored() {
-  if (kkt_) return solve_blocks();
   const int m = static_cast<int>(w_->rows_.size());
   rhs_.setZero(m);
   for (int a = 0; a < m; ++a) rhs_(order_(a)) = -w_->residual_[static_cast<size_t>(a)];
