@@ -32,8 +32,8 @@ struct PolishWork {
   std::vector<double> dense_;
   Eigen::MatrixXd full_;  // the fallback LDLT's copy
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
-  std::vector<Eigen::Triplet<double>> triplets_;
-  std::vector<int> pattern_;
+  std::vector<std::pair<int, int>> block_pairs_, column_;  // the analysis's scratch
+  std::vector<int> place_;
   std::vector<double> rows_per_body_;
   std::vector<int> joint_rows_;  // the rows of the k-th joint with rows: joint_rows_[k] ...
   std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows)
@@ -107,7 +107,7 @@ class Polisher {
   bool factor(const SolverState& s, double lambda);
   bool factor_dense(double lambda);
   bool factor_sparse(const SolverState& s, double lambda);
-  bool same_pattern();
+  bool same_pattern() const;
   bool solve_factored();
   // The saddle-point form on blocks (polish_blocks.cpp).
   void analyze_blocks();
@@ -115,8 +115,6 @@ class Polisher {
   bool solve_blocks();
   template <typename Form>
   void analyze(int n, Form&& form);
-  Eigen::Triplet<double> reordered(int a, int b, double v = 0) const;
-  int slot(const Eigen::Triplet<double>& t) const;
 
   static constexpr int kDenseRows = 120;
   static constexpr int kBlockOrdering = 20000;  // unknowns from which AMD orders blocks

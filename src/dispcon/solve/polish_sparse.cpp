@@ -44,7 +44,10 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
     } else {
       analyze(m, rows_form);
     }
-    analyzed_pattern_ = w_->pattern_;
+    analyzed_pattern_.clear();
+    for (const Entry& e : w_->rows_) {
+      analyzed_pattern_.push_back(e.v1), analyzed_pattern_.push_back(e.v2);
+    }
     analyzed_ = true;
   }
   if (kkt_) {
@@ -62,10 +65,15 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
 }
 
 // Whether the rows join the same bodies as when the sparse system was analysed.
-bool Polisher::same_pattern() {
-  w_->pattern_.clear();
-  for (const Entry& e : w_->rows_) w_->pattern_.push_back(e.v1), w_->pattern_.push_back(e.v2);
-  return analyzed_ && w_->pattern_ == analyzed_pattern_;
+bool Polisher::same_pattern() const {
+  const std::vector<Entry>& rows = w_->rows_;
+  if (!analyzed_ || analyzed_pattern_.size() != 2 * rows.size()) return false;
+  for (size_t a = 0; a < rows.size(); ++a) {
+    if (rows[a].v1 != analyzed_pattern_[2 * a] || rows[a].v2 != analyzed_pattern_[2 * a + 1]) {
+      return false;
+    }
+  }
+  return true;
 }
 
 // The rows form's step from the current residuals with its factorisation.
@@ -77,6 +85,51 @@ bool Polisher::solve_factored() {
   w_->y_.resize(static_cast<size_t>(m));
   for (int a = 0; a < m; ++a) w_->y_[static_cast<size_t>(a)] = solution_(order_(a));
   return solution_.allFinite();
+}
+
+// Lays out an n x n pattern in `matrix`, compressed, each column's rows sorted and repeats
+// merged, from the entries that `entries(f)` gives as f(row, column), the same ones in the same
+// order each time it is called: once to count them per column, once to place them. where[k] is
+// the index in matrix's values of the k-th entry. Built in place: a list of triplets and Eigen's
+// setFromTriplets (which sorts through a transposed copy) cost the 100,000-link chain's first
+// step about 0.35 s, most of it the first touch of their memory.
+template <typename Entries>
+void compress(int n, Entries&& entries, Eigen::SparseMatrix<double>& matrix,
+              std::vector<int>& where, std::vector<int>& scratch,
+              std::vector<std::pair<int, int>>& column) {
+  matrix.resize(n, n);
+  int* outer = matrix.outerIndexPtr();  // n + 1 zeros after resize
+  size_t count = 0;
+  entries([&](int, int c) { ++outer[c + 1], ++count; });
+  for (int c = 0; c < n; ++c) outer[c + 1] += outer[c];
+  matrix.resizeNonZeros(static_cast<Eigen::Index>(count));
+  int* inner = matrix.innerIndexPtr();
+  scratch.assign(outer, outer + n);  // the next free place of each column
+  where.resize(count);
+  size_t k = 0;
+  entries([&](int r, int c) {
+    const int at = scratch[static_cast<size_t>(c)]++;
+    inner[at] = r;
+    where[k++] = at;
+  });
+  // Each column sorted by row, its repeats merged, moved down over the places freed before it;
+  // scratch maps a place as counted to the place it ends in.
+  scratch.resize(count);
+  int kept = 0;
+  for (int c = 0; c < n; ++c) {
+    column.clear();
+    for (int at = outer[c]; at < outer[c + 1]; ++at) column.emplace_back(inner[at], at);
+    std::sort(column.begin(), column.end());
+    outer[c] = kept;
+    for (size_t i = 0; i < column.size(); ++i) {
+      if (i == 0 || column[i].first != column[i - 1].first) inner[kept++] = column[i].first;
+      scratch[static_cast<size_t>(column[i].second)] = kept - 1;
+    }
+  }
+  outer[n] = kept;
+  matrix.resizeNonZeros(kept);
+  std::fill(matrix.valuePtr(), matrix.valuePtr() + kept, 0.0);
+  for (int& at : where) at = scratch[static_cast<size_t>(at)];
 }
 
 // Orders, places and analyses an n x n system given by its lower-triangle entries (in a fixed
@@ -101,21 +154,23 @@ void Polisher::analyze(int n, Form&& form) {
     std::fill(block.begin() + start[static_cast<size_t>(b)],
               block.begin() + start[static_cast<size_t>(b) + 1], b);
   }
-  // The blocks' pattern; the entries come block pair by block pair, so repeats are mostly next
-  // to each other (setFromTriplets merges the rest).
-  w_->triplets_.clear();
-  int last_a = -1, last_b = -1;
-  size_t count = 0;
+  // The blocks' pattern (lower triangle); the entries come block pair by block pair, so repeats
+  // are mostly next to each other and are dropped there (compress merges the rest).
+  std::vector<std::pair<int, int>>& pairs = w_->block_pairs_;
+  pairs.clear();
   form([&](int a, int b, double) {
-    ++count;
     const int ba = block[static_cast<size_t>(a)], bb = block[static_cast<size_t>(b)];
-    if (ba == last_a && bb == last_b) return;
-    last_a = ba;
-    last_b = bb;
-    w_->triplets_.emplace_back(std::max(ba, bb), std::min(ba, bb), 1.0);
+    const std::pair<int, int> p(std::max(ba, bb), std::min(ba, bb));
+    if (pairs.empty() || pairs.back() != p) pairs.push_back(p);
   });
-  Eigen::SparseMatrix<double> lower(blocks, blocks);
-  lower.setFromTriplets(w_->triplets_.begin(), w_->triplets_.end());
+  Eigen::SparseMatrix<double> lower;
+  compress(
+      blocks,
+      [&](auto&& f) {
+        for (const auto& [r, c] : pairs) f(r, c);
+      },
+      lower, slots_, w_->place_, w_->column_);
+  std::fill(lower.valuePtr(), lower.valuePtr() + lower.nonZeros(), 1.0);
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
   Eigen::AMDOrdering<int>()(lower.selfadjointView<Eigen::Lower>(), inverse);
   // Eigen's orderings return the inverse permutation: inverse.indices()(k) is the k-th block
@@ -126,30 +181,17 @@ void Polisher::analyze(int n, Form&& form) {
     const auto b = static_cast<size_t>(inverse.indices()(k));
     for (int i = start[b]; i < start[b + 1]; ++i) order_(i) = at++;
   }
-  w_->triplets_.clear();
-  w_->triplets_.reserve(count);
-  form([&](int a, int b, double v) { w_->triplets_.push_back(reordered(a, b, v)); });
-  sparse_.resize(n, n);
-  sparse_.setFromTriplets(w_->triplets_.begin(), w_->triplets_.end());
-  sparse_.makeCompressed();
-  slots_.clear();
-  slots_.reserve(count);
-  form([&](int a, int b, double) { slots_.push_back(slot(reordered(a, b))); });
+  // The system itself, reordered, in the upper triangle; slots_ remembers where each entry lands.
+  compress(
+      n,
+      [&](auto&& f) {
+        form([&](int a, int b, double) {
+          const int pa = order_(a), pb = order_(b);
+          f(std::min(pa, pb), std::max(pa, pb));
+        });
+      },
+      sparse_, slots_, w_->place_, w_->column_);
   sparse_ldlt_.analyzePattern(sparse_);
-}
-
-// Entry (a, b) in the reordered matrix's upper triangle.
-Eigen::Triplet<double> Polisher::reordered(int a, int b, double v) const {
-  const int pa = order_(a), pb = order_(b);
-  return Eigen::Triplet<double>(std::min(pa, pb), std::max(pa, pb), v);
-}
-
-// Index in sparse_'s values of an upper-triangle entry (column-major).
-int Polisher::slot(const Eigen::Triplet<double>& t) const {
-  const int* inner = sparse_.innerIndexPtr();
-  const int* begin = inner + sparse_.outerIndexPtr()[t.col()];
-  const int* end = inner + sparse_.outerIndexPtr()[t.col() + 1];
-  return static_cast<int>(std::lower_bound(begin, end, t.row()) - inner);
 }
 
 }  // namespace dispcon
