@@ -9,6 +9,7 @@ namespace dispcon {
 bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>& band,
                     double lambda, double max_rotation, bool reuse) {
   w_ = &work;
+  s_ = &s;
   reused_ = false;
   w_->dq_.resize(static_cast<size_t>(nv_));
   for (int v = 0; v < nv_; ++v)
@@ -33,8 +34,10 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
     for (int a = 0; a < m; ++a) {
       const Entry& e = w_->rows_[static_cast<size_t>(a)];
       const double ya = w_->y_[static_cast<size_t>(a)];
-      if (e.v1 >= 0) w_->dq_[static_cast<size_t>(e.v1)] += ya * e.u1;
-      if (e.v2 >= 0) w_->dq_[static_cast<size_t>(e.v2)] += ya * e.u2;
+      if (e.v1 >= 0)
+        w_->dq_[static_cast<size_t>(e.v1)] += ya * apply_inverse_mass(body(e.v1), e.j1);
+      if (e.v2 >= 0)
+        w_->dq_[static_cast<size_t>(e.v2)] += ya * apply_inverse_mass(body(e.v2), e.j2);
     }
   }
   // Keep each body's turn small (seed 2.3): scale the whole step, never bend it.
@@ -80,8 +83,6 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band) {
         e.v2 = v2;
         e.j1 = p.J[k].segment<6>(0).transpose();
         e.j2 = p.J[k].segment<6>(6).transpose();
-        e.u1 = apply_inverse_mass(s.bodies[static_cast<size_t>(js.b1)], e.j1);
-        e.u2 = apply_inverse_mass(s.bodies[static_cast<size_t>(js.b2)], e.j2);
         w_->rows_.push_back(e);
         w_->residual_.push_back(p.residual[k]);
       }

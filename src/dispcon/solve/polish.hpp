@@ -16,16 +16,18 @@ namespace dispcon {
 // after another): warm after the first, so the iterations allocate nothing.
 struct PolishWork {
   using Vec6 = Eigen::Matrix<double, 6, 1>;
+  // A row of J. M^-1 times its blocks is computed where it is used rather than kept: the rows of a
+  // 100,000-link chain took 60 MB with it, and their first touch cost more than computing it.
   struct Entry {
     int v1 = -1, v2 = -1;  // unknowns of the two bodies, -1 when the body does not move
     Vec6 j1, j2;           // the row's two 6-blocks
-    Vec6 u1, u2;           // M^-1 times them
   };
   std::vector<Entry> rows_;
   std::vector<double> residual_;
   std::vector<int> var_start_, fill_;          // rows of body v: var_rows_[var_start_[v] ...]
   std::vector<std::pair<int, int>> var_rows_;  // (row, side 1 or 2)
   std::vector<Vec6> dq_;
+  std::vector<Vec6> u_;  // M^-1 times the blocks of one body's rows (couplings)
   // Plain buffers under Eigen maps: groups of different sizes share them, and an Eigen matrix
   // would reallocate at every change of size.
   std::vector<double> y_;
@@ -66,6 +68,10 @@ class Polisher {
   void gather(const SolverState& s, const std::vector<double>& band);
   void gather_residuals(const SolverState& s, const std::vector<double>& band);
   static Vec6 apply_inverse_mass(const BodyState& b, const Vec6& j);
+  // The state of unknown v's body (during step()).
+  const BodyState& body(int v) const {
+    return s_->bodies[static_cast<size_t>(group_->bodies[static_cast<size_t>(v)])];
+  }
   // Calls f(a, b, value) for every coupling a >= b of J M^-1 J^T, body by body. The rows of
   // each body are listed flat (counted, then placed), so nothing is allocated once warm.
   template <typename F>
@@ -89,14 +95,16 @@ class Polisher {
     for (int v = 0; v < nv_; ++v) {
       const int begin = w_->var_start_[static_cast<size_t>(v)];
       const int end = w_->var_start_[static_cast<size_t>(v) + 1];
+      if (w_->u_.size() < static_cast<size_t>(end - begin)) w_->u_.resize(end - begin);
+      const BodyState& b = body(v);
       for (int p = begin; p < end; ++p) {
         const auto [ra, sa] = w_->var_rows_[static_cast<size_t>(p)];
         const Entry& ea = w_->rows_[static_cast<size_t>(ra)];
         const Vec6& ja = sa == 1 ? ea.j1 : ea.j2;
+        w_->u_[static_cast<size_t>(p - begin)] = apply_inverse_mass(b, ja);
         for (int q = begin; q <= p; ++q) {
           const auto [rb, sb] = w_->var_rows_[static_cast<size_t>(q)];
-          const Entry& eb = w_->rows_[static_cast<size_t>(rb)];
-          f(ra, rb, ja.dot(sb == 1 ? eb.u1 : eb.u2));
+          f(ra, rb, ja.dot(w_->u_[static_cast<size_t>(q - begin)]));
         }
       }
     }
@@ -120,7 +128,8 @@ class Polisher {
   static constexpr int kBlockOrdering = 20000;  // unknowns from which AMD orders blocks
   const Group* group_;
   int nv_ = 0;
-  PolishWork* w_ = nullptr;  // the session's scratch space, during step()
+  PolishWork* w_ = nullptr;         // the session's scratch space, during step()
+  const SolverState* s_ = nullptr;  // the state, during step()
   Eigen::SparseMatrix<double> sparse_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>>
       sparse_ldlt_;

@@ -19,7 +19,9 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   const int m = static_cast<int>(w_->rows_.size());
   double scale = 0;  // the largest diagonal entry of J M^-1 J^T
   for (const Entry& e : w_->rows_) {
-    scale = std::max(scale, (e.v1 >= 0 ? e.j1.dot(e.u1) : 0) + (e.v2 >= 0 ? e.j2.dot(e.u2) : 0));
+    const double d1 = e.v1 >= 0 ? e.j1.dot(apply_inverse_mass(body(e.v1), e.j1)) : 0;
+    const double d2 = e.v2 >= 0 ? e.j2.dot(apply_inverse_mass(body(e.v2), e.j2)) : 0;
+    scale = std::max(scale, d1 + d2);
   }
   if (!(scale > 0)) return false;
   const double mu = lambda * scale;
