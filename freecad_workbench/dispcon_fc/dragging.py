@@ -15,6 +15,7 @@ modal tools: `_active` is that one."""
 import FreeCAD as App
 import FreeCADGui as Gui
 
+from . import markers
 from .objects import placed_parts
 from .operations import PointDrag
 
@@ -43,14 +44,29 @@ def _transform_of(part):
     return t
 
 
+def _placement_of(translation, rotation):
+    """The placement a part's SoTransform fields draw it at."""
+    return App.Placement(App.Vector(*translation.getValue().getValue()),
+                         App.Rotation(*rotation.getValue().getValue()))
+
+
 class Shown:
     """What a drag moves on screen: the Coin3D transforms of the objects that can move (parts,
-    and the parts of sub-assemblies: every object the adapter has a body frame for) and the
-    markers of the joints they carry, set from the engine's poses (`update()`, each frame), or
-    back from the Placements (`restore()`, after a cancelled drag). The document is not touched;
-    a part whose view has no transform that mirrors its Placement gets its Placement written,
-    outside any undo step, and put back before the drag's one undo step writes them all
-    (`put_back()`), so that undo returns it where it was."""
+    and the parts of sub-assemblies: every object the adapter has a body frame for), set from
+    the engine's poses (`update()`, each frame), or back from the Placements (`restore()`, after
+    a cancelled drag). The document is not touched; a part whose view has no transform that
+    mirrors its Placement gets its Placement written, outside any undo step, and put back before
+    the drag's one undo step writes them all (`put_back()`), so that undo returns it where it
+    was.
+
+    The joints' markers ride on their part 1's transform for the drag: that SoTransform is put
+    into the marker's own root, ahead of the marker's transform, which holds the marker's frame
+    in the part's frame meanwhile; `end()` takes it out again and puts the marker back in world
+    terms. So a frame sets one transform per part, not one per part and one per marker.
+
+    A frame sets each transform's translation with its field's notification off and its
+    rotation with it on: one notification per part (each walks up the scene graph, invalidating
+    caches) instead of two. `end()` turns them back on."""
 
     def __init__(self, adapter):
         from . import viewproviders
@@ -58,22 +74,29 @@ class Shown:
         model = adapter.model
         self.adapter = adapter
         doc = adapter.asm.Document
-        moving = {n: model.body(n) for n in {adapter.names[p.Name] for p in adapter.parts
-                                             if not getattr(p, "Grounded", False)}}
-        self.transforms = []  # (engine body, placement in its frame or None, translation, rotation, object)
+        rows = {n: k for k, n in enumerate(model.body_names())}  # poses() has a row per body
+        moving = {adapter.names[p.Name] for p in adapter.parts if not getattr(p, "Grounded", False)}
+        # Each object's transform: (row of its body, its placement in the body's frame or None,
+        # translation, rotation, object); the fields found once (pivy looks a field up by name
+        # at every access).
+        self.transforms = []
         self.written = []  # (part, its Placement before the drag): written each frame
+        shown = {}  # object name -> its SoTransform
         for name, (body, local) in adapter.frames.items():
             obj = doc.getObject(name)
             if body not in moving or obj is None:
                 continue
             t = _transform_of(obj)
             if t is not None:
-                # The fields, found once: pivy looks a field up by name at every access.
-                self.transforms.append((moving[body], local, t.translation, t.rotation, obj))
+                self.transforms.append((rows[body], local, t.translation, t.rotation, obj))
+                shown[name] = t
             elif hasattr(obj, "Shape") or obj.TypeId == "App::Link":  # drawn some other way
                 self.written.append((obj, obj.Placement))
-        # The markers as viewproviders' follow() places them: at part 1's point and axis.
-        self.markers = []  # (engine body, part 1 in its frame or None, marker, local point, local axis, joint)
+        # The markers, where viewproviders' follow() puts them, in part 1's frame: carried by
+        # part 1's transform when it has one, else placed each frame from its body's pose.
+        self.carried = []  # (marker, part 1's SoTransform)
+        self.markers = []  # (row, part 1 in its body's frame or None, marker, marker in part 1's frame)
+        self.joints = []  # (marker, joint): every marker the drag moves
         for j in adapter.joints:
             proxy = viewproviders.joint_view(j)
             ref = getattr(j, "Reference1", None)
@@ -81,51 +104,69 @@ class Shown:
             if proxy is None or part1 is None or part1.Name not in adapter.frames:
                 continue
             body, local = adapter.frames[part1.Name]
-            if body in moving:
-                self.markers.append((moving[body], local, proxy.marker, App.Vector(j.Point1),
-                                     App.Vector(j.Axis1), j))
+            at = markers.joint_placement(j)
+            if body not in moving or at is None:
+                continue
+            marker, on_part = proxy.marker, App.Placement(part1.Placement).inverse().multiply(at)
+            self.joints.append((marker, j))
+            if part1.Name in shown:
+                marker.root.insertChild(shown[part1.Name], 0)
+                marker.set_placement(on_part)
+                self.carried.append((marker, shown[part1.Name]))
+            else:
+                self.markers.append((rows[body], local, marker, on_part))
+        for _, _, translation, _, _ in self.transforms:
+            translation.enableNotify(False)
 
     @staticmethod
-    def _pose(body, local):
-        x = body.position
-        q = body.quaternion  # w, x, y, z
-        pl = App.Placement(App.Vector(x[0], x[1], x[2]), App.Rotation(q[1], q[2], q[3], q[0]))
+    def _pose(row, local):
+        pl = App.Placement(App.Vector(row[0], row[1], row[2]), App.Rotation(row[4], row[5], row[6], row[3]))
         return pl if local is None else pl.multiply(local)
 
     def update(self):
-        for body, local, translation, rotation, _ in self.transforms:
+        poses = self.adapter.model.poses().tolist()  # every body in one call
+        for k, local, translation, rotation, _ in self.transforms:
+            p = poses[k]
             if local is None:  # a body's own part: straight from the engine
-                x = body.position
-                q = body.quaternion  # w, x, y, z
-                translation.setValue(x[0], x[1], x[2])
-                rotation.setValue(q[1], q[2], q[3], q[0])
+                translation.setValue(p[0], p[1], p[2])
+                rotation.setValue(p[4], p[5], p[6], p[3])  # x, y, z, w; notifies for both
             else:
-                pl = self._pose(body, local)
+                pl = self._pose(p, local)
                 translation.setValue(pl.Base.x, pl.Base.y, pl.Base.z)
                 rotation.setValue(*pl.Rotation.Q)
         for p, _ in self.written:
             p.Placement = self.adapter.placement_of(p)
-        for body, local, marker, point, axis, _ in self.markers:
-            pl = self._pose(body, local)
-            marker.place(pl.multVec(point), pl.Rotation.multVec(axis))
+        for k, local, marker, on_part in self.markers:
+            marker.set_placement(self._pose(poses[k], local).multiply(on_part))
 
     def put_back(self):
         for p, start in self.written:
             p.Placement = start
 
+    def end(self):
+        """The drag is over: the transforms notify again, and the markers stand on their own
+        where they are drawn now (the Placements written next put them there again)."""
+        for _, _, translation, _, _ in self.transforms:
+            translation.enableNotify(True)
+            translation.touch()
+        for marker, t in self.carried:
+            on_part = _placement_of(marker._translation, marker._rotation)
+            marker.root.removeChild(t)
+            marker.set_placement(_placement_of(t.translation, t.rotation).multiply(on_part))
+        self.carried = []
+
     def restore(self):
         """Everything drawn back where the document has it (the Placements were never written)."""
-        from . import markers
-
+        self.end()
         self.put_back()
         for _, _, translation, rotation, obj in self.transforms:
             pl = obj.Placement
             translation.setValue(pl.Base.x, pl.Base.y, pl.Base.z)
             rotation.setValue(*pl.Rotation.Q)
-        for _, _, marker, _, _, j in self.markers:
-            frame = markers.joint_frame(j)
-            if frame is not None:
-                marker.place(*frame)
+        for marker, j in self.joints:
+            at = markers.joint_placement(j)
+            if at is not None:
+                marker.set_placement(at)
 
 
 class DragMode:
@@ -144,6 +185,7 @@ class DragMode:
         self.solver_seconds = self.solver_cpu = 0.0
         self.write_seconds = self.write_cpu = 0.0
         self.release_seconds = 0.0
+        self.highlight = None  # the selection node's highlight mode during a drag
         self.callbacks = [
             self.view.addEventCallbackPivy(coin.SoMouseButtonEvent.getClassTypeId(), self.button),
             self.view.addEventCallbackPivy(coin.SoLocation2Event.getClassTypeId(), self.motion),
@@ -201,8 +243,12 @@ class DragMode:
 
         t0 = time.perf_counter()
         drag, shown, self.drag, self.shown = self.drag, self.shown, None, None
+        shown.end()
         shown.put_back()
-        drag.finish()
+        try:
+            drag.finish()
+        finally:
+            self._preselection(True)
         self.release_seconds += time.perf_counter() - t0
 
     def cancel(self):
@@ -210,6 +256,22 @@ class DragMode:
         drag, shown, self.drag, self.shown = self.drag, self.shown, None, None
         drag.cancel()
         shown.restore()
+        self._preselection(True)
+
+    def _preselection(self, on):
+        """FreeCAD's preselection (the part under the cursor highlighted) is off during a drag:
+        its selection node picks through the whole scene at every mouse move before drag mode
+        sees the move (3-4 ms a frame for a hundred parts), and the part under the cursor is the
+        one being dragged. The node's own mode is put back after: no preference changes."""
+        field = self.view.getViewer().getSceneGraph().getField("highlightMode")
+        if field is None:  # not FreeCAD's selection node: nothing to turn off
+            return
+        if not on:
+            self.highlight = field.getValue()
+            field.setValue(2)  # SoFCUnifiedSelection's OFF (AUTO, ON, OFF)
+        elif self.highlight is not None:
+            field.setValue(self.highlight)
+            self.highlight = None
 
     def button(self, event_cb):
         event = event_cb.getEvent()
@@ -229,6 +291,7 @@ class DragMode:
                 App.Console.PrintMessage("Dispcon: %s\n" % e)
                 return
             self.shown = Shown(self.drag.adapter)
+            self._preselection(False)
             self.part = part
             self.normal = self.view.getViewDirection()
             event_cb.setHandled()

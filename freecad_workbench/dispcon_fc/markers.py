@@ -310,6 +310,12 @@ class Marker:
         (a, angle) = _turn_z_to((axis.x, axis.y, axis.z))
         self._rotation.setValue(self._vec(*a), angle)
 
+    def set_placement(self, placement):
+        """The glyph at `placement` (its z along the joint's axis), as joint_placement() gives."""
+        b = placement.Base
+        self._translation.setValue(b.x, b.y, b.z)
+        self._rotation.setValue(*placement.Rotation.Q)
+
     def set_look(self, look):
         if look not in LOOKS:
             raise ValueError("unknown marker look %r (expected one of %s)" % (look, ", ".join(LOOKS)))
@@ -333,3 +339,19 @@ def joint_frame(joint):
         share = joint.Ratio / (1.0 + joint.Ratio) if joint.JointType == "Gears" and joint.Ratio > 0 else 0.5
         point = point + (centre2 - point) * share
     return point, axis
+
+
+def joint_placement(joint):
+    """Where the joint's marker is drawn: at joint_frame()'s point with its z along the axis,
+    turned about the axis with part 1. The glyph is fixed on part 1, so it looks the same
+    whether a drag carries it on the part's transform or it is placed from the Placements; None
+    when a reference is missing."""
+    frame = joint_frame(joint)
+    if frame is None:
+        return None
+    point, axis = frame
+    # A copy: FreeCAD writes a property's Placement back after any call that may change it
+    # (multiply() among them), which would move the part and call this again.
+    turn = App.Rotation(joint.Reference1[0].Placement.Rotation)
+    a, angle = _turn_z_to(turn.inverted().multVec(axis))
+    return App.Placement(point, turn.multiply(App.Rotation(App.Vector(*a), math.degrees(angle))))

@@ -109,9 +109,9 @@ class ViewProviderJoint(_ViewProxy):
 
     def follow(self, obj):
         """Puts the marker at the joint's point and axis as the parts now stand."""
-        frame = markers.joint_frame(obj)
-        if frame is not None:
-            self.marker.place(*frame)
+        placement = markers.joint_placement(obj)
+        if placement is not None:
+            self.marker.set_placement(placement)
 
     def set_error(self, on):
         self.error = bool(on)

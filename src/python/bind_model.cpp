@@ -359,6 +359,43 @@ ModelClass bind_model(pyb::module_& m) {
           },
           pyb::arg("name"), pyb::arg("position") = pyb::none(), pyb::arg("rotation") = pyb::none(),
           "Places a body: position, and rotation as a rotation vector or a 3x3 matrix.")
+      // Every pose in one call: a live drag reads a hundred bodies a frame, and a call per
+      // body and per value (body(n).position, .quaternion) cost more than the solve.
+      .def(
+          "poses",
+          [](const Model& model) {
+            const auto n = static_cast<pyb::ssize_t>(model.body_count() - 1);
+            pyb::array_t<double> out({n, pyb::ssize_t{7}});
+            auto a = out.mutable_unchecked<2>();
+            for (pyb::ssize_t i = 0; i < n; ++i) {
+              const Pose& p = model.body(BodyId{static_cast<int>(i) + 1}).pose;
+              const double row[7] = {p.x.x(), p.x.y(), p.x.z(), p.q.w(), p.q.x(), p.q.y(), p.q.z()};
+              for (pyb::ssize_t k = 0; k < 7; ++k) a(i, k) = row[k];
+            }
+            return out;
+          },
+          "Every body's pose as one array, a row per body in body_names() order: x, y, z and "
+          "the quaternion w, x, y, z as the model holds it (q and -q are the same turn).")
+      .def(
+          "set_poses",
+          [](Model& model,
+             const pyb::array_t<double, pyb::array::c_style | pyb::array::forcecast>& poses) {
+            const auto n = static_cast<pyb::ssize_t>(model.body_count() - 1);
+            if (poses.ndim() != 2 || poses.shape(0) != n || poses.shape(1) != 7)
+              throw std::invalid_argument("set_poses: an array of " + std::to_string(n) +
+                                          " rows (one per body) of 7 numbers expected");
+            auto a = poses.unchecked<2>();
+            std::vector<Pose> all = model.poses();
+            for (pyb::ssize_t i = 0; i < n; ++i) {
+              if (model.body(BodyId{static_cast<int>(i) + 1}).fixed) continue;
+              Pose& p = all[static_cast<size_t>(i) + 1];
+              p.x = Vec3(a(i, 0), a(i, 1), a(i, 2));
+              p.q = Quat(a(i, 3), a(i, 4), a(i, 5), a(i, 6));
+            }
+            model.set_poses(all);  // checked there, the couplings' turns counted
+          },
+          pyb::arg("poses"),
+          "Places every body from an array as poses() gives (a fixed body keeps its pose).")
       .def("joint_count", &Model::joint_count)
       .def(
           "joint",

@@ -71,10 +71,26 @@ def same_placement(p, q, tol=1e-12):
     return (p.Base - q.Base).Length <= tol and turn <= tol
 
 
+def drawn(view, marker):
+    """Where a joint marker's glyph is drawn: the point and z axis of the transforms on the path
+    from the marker's root to its glyph, whichever node holds them."""
+    from pivy import coin
+
+    path = coin.SoPath(marker.root)
+    path.append(marker.annotation)
+    action = coin.SoGetMatrixAction(view.getViewer().getSoRenderManager().getViewportRegion())
+    action.apply(path)
+    m = action.getMatrix()
+    at, axis = m.multVecMatrix(coin.SbVec3f(0, 0, 0)), m.multDirMatrix(coin.SbVec3f(0, 0, 1))
+    return App.Vector(*at.getValue()), App.Vector(*axis.getValue())
+
+
 def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
-    """Drags `part` by its point `local_grab` along `path` (a function of the frame k = 1, 2 ...
-    giving the cursor: pixels from the grab point on the screen, or a 3D point to put the grab
-    point at; path(None) is the number of frames) in the document's own maximised window (seen
+    """Drags `part` by its point `local_grab` (or by the first of a list of points that shows
+    on the screen: a joint's marker, drawn over the parts, may hide one) along `path` (a
+    function of the frame k = 1, 2 ... giving the cursor: pixels from the grab point on the
+    screen, or a 3D displacement of the grab point from where it starts; path(None) is the
+    number of frames) in the document's own maximised window (seen
     isometric, or from the top), each frame's redraw waited for (the view's frames swapped);
     returns the split per frame. With check: Esc cancels a first drag (everything back, no undo
     step), the drawn parts and markers follow the engine during the drag while the document
@@ -119,9 +135,12 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
     idle_cpu, cpu[0] = cpu[0] / len(idle), 0.0
     Gui.runCommand("Dispcon_Drag", 1)
     mode = dragging._active
-    x, y = view.getPointOnScreen(part.Placement.multVec(local_grab))
-    x, y = int(x), int(y)
-    info = view.getObjectInfo((x, y))
+    for grab in local_grab if isinstance(local_grab, list) else [local_grab]:
+        grab = part.Placement.multVec(grab)
+        x, y = (int(c) for c in view.getPointOnScreen(grab))
+        info = view.getObjectInfo((x, y))
+        if info and info["Object"] == part.Name:
+            break
     assert info and info["Object"] == part.Name, "%s is not under the cursor: %s" % (part.Label, info)
     moving = [p for p in da.parts(asm) if not p.Grounded]
     start = {p.Name: p.Placement for p in moving}
@@ -131,8 +150,21 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
     def cursor(k):
         to = path(k)
         if isinstance(to, App.Vector):
-            return tuple(int(round(c)) for c in view.getPointOnScreen(to))
+            return tuple(int(round(c)) for c in view.getPointOnScreen(grab + to))
         return x + to[0], y + to[1]
+
+    selection = view.getViewer().getSceneGraph().getField("highlightMode")
+    highlight = selection.getValue()
+
+    def markers_in_place(after):
+        """After a drag: every marker drawn where the Placements put its joint, and the
+        preselection (off during the drag) back as it was."""
+        for j in da.joints(asm):
+            at, axis = drawn(view, viewproviders.joint_view(j).marker)
+            pl = j.Reference1[0].Placement
+            assert (at - pl.multVec(j.Point1)).Length < 1e-5 and (axis - pl.Rotation.multVec(j.Axis1)).Length < 1e-5, \
+                "%s's marker is not in place after %s" % (j.Label, after)
+        assert selection.getValue() == highlight, "the preselection was not put back after %s" % after
 
     if check:
         # Esc during a drag: everything drawn goes back, the document never changed.
@@ -148,6 +180,7 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
             shown = App.Placement(App.Vector(*t.translation.getValue().getValue()),
                                   App.Rotation(*t.rotation.getValue().getValue()))
             assert same_placement(shown, p.Placement, 1e-5), "%s is not drawn back in place" % p.Label
+        markers_in_place("Esc")
         mode.frames, mode.solver_seconds, mode.write_seconds, mode.release_seconds = 0, 0.0, 0.0, 0.0
         mode.solver_cpu = mode.write_cpu = cpu[0] = 0.0
     t0 = time.perf_counter()
@@ -174,18 +207,21 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
                                   App.Rotation(*t.rotation.getValue().getValue()))
             # (Coin3D holds single precision: 4e-6 apart at 40 units)
             assert same_placement(shown, drag.adapter.placement_of(p), 1e-5), "%s is not drawn where solved" % p.Label
-        # The markers follow: each where its joint's part 1 is drawn.
+        # The markers follow: each drawn (every transform on its way from the marker's root to
+        # its glyph) at its joint's point and axis on part 1 where the engine has part 1.
         followed = 0
         for j in drag.adapter.joints:
             proxy = viewproviders.joint_view(j)
             part1 = j.Reference1[0]
             if proxy is None or part1.Grounded:
                 continue
-            where = drag.adapter.placement_of(part1).multVec(j.Point1)
-            at = App.Vector(*proxy.marker.transform.translation.getValue().getValue())
-            assert (at - where).Length < 1e-5, "%s's marker did not follow" % j.Label
+            pl = drag.adapter.placement_of(part1)
+            at, axis = drawn(view, proxy.marker)
+            assert (at - pl.multVec(j.Point1)).Length < 1e-5, "%s's marker did not follow" % j.Label
+            assert (axis - pl.Rotation.multVec(j.Axis1)).Length < 1e-5, "%s's marker did not turn" % j.Label
             followed += 1
         assert followed > 0, "no marker to follow"
+        assert selection.getValue() == 2, "the preselection stayed on during the drag"
     gw.mouse(view, "release", *cursor(frames))
     release_redraw = redraw() or 0.0
     Gui.runCommand("Dispcon_Drag", 0)
@@ -194,6 +230,7 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
     if check:
         for p in da.parts(asm):
             assert same_placement(p.Placement, drag.adapter.placement_of(p)), "%s is not where solved" % p.Label
+        markers_in_place("release")
         # Every joint holds to 1e-9 as the document now stands (the chain's are revolutes: the
         # pins' points meet and their axes are parallel).
         for j in da.joints(asm):
@@ -368,16 +405,16 @@ try:
     # The cursor where the grabbed point goes when the cranks turn from 60 to 150 degrees (the
     # coupler translates on a circle), away from the chain's change point at 180 degrees,
     # where the parallelograms could fold into crossed ones.
-    grab = grabbed.Placement.multVec(App.Vector(0.75, 0, 0.1))
-
     def along(k):
         if k is None:
             return 60
         a, a0 = math.radians(60 + 1.5 * k), math.radians(60)
-        return grab + App.Vector(math.cos(a) - math.cos(a0), math.sin(a) - math.sin(a0), 0)
+        return App.Vector(math.cos(a) - math.cos(a0), math.sin(a) - math.sin(a0), 0)
 
-    # Seen from the top, the cursor's plane is the chain's.
-    hundred = drag_timed(doc4, asm4, grabbed, App.Vector(0.75, 0, 0.1), along, check=True, top=True)
+    # Seen from the top, the cursor's plane is the chain's; pressed on the coupler's middle, or
+    # beside it where the markers' rings at its ends cross the middle.
+    on_coupler = [App.Vector(0.75 + d, 0, 0.1) for d in (0, 0.1, -0.1, 0.2, -0.2, 0.3, -0.3)]
+    hundred = drag_timed(doc4, asm4, grabbed, on_coupler, along, check=True, top=True)
     # One degree of freedom: every crank turned with the first, by about the cursor's 90.
     turned = [math.degrees(angle_of(c)) for c in cranks4]
     assert all(abs(t - turned[0]) < 1e-6 for t in turned), "the cranks did not turn together"

@@ -206,6 +206,32 @@ class Poses(unittest.TestCase):
             m.set_pose("nobody", position=(0, 0, 0))
         np.testing.assert_array_equal(m.body("bar").rotation, np.eye(3))
 
+    def test_poses_in_one_array_and_back(self):
+        m = fourbar()
+        self.assertTrue(m.assemble().converged)
+        a = m.poses()
+        self.assertEqual(a.shape, (3, 7))
+        for row, name in zip(a, m.body_names()):
+            b = m.body(name)
+            np.testing.assert_array_equal(row[:3], b.position)
+            q = row[3:] if row[3] >= 0 else -row[3:]  # quaternion keeps w >= 0
+            np.testing.assert_array_equal(q, b.quaternion)
+        moved = a.copy()
+        moved[:, 0] += 1.0
+        m.set_poses(moved)
+        np.testing.assert_array_equal(m.poses()[:, 0], a[:, 0] + 1.0)
+        m.set_poses(a)
+        np.testing.assert_array_equal(m.poses(), a)  # back bit for bit
+        for bad in (a[:2], a[:, :6], np.full((3, 7), np.nan)):
+            with self.assertRaises(ValueError):
+                m.set_poses(bad)
+        np.testing.assert_array_equal(m.poses(), a)  # a refused array changes nothing
+        m.body("crank").fixed = True
+        moved = a.copy()
+        moved[0, :3] += 5.0
+        m.set_poses(moved)
+        np.testing.assert_array_equal(m.body("crank").position, a[0, :3])  # fixed: kept
+
     def test_joint_info_names_the_bodies(self):
         m = fourbar()
         self.assertEqual(m.joint_count(), 4)
