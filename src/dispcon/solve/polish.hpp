@@ -36,6 +36,7 @@ struct PolishWork {
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
   std::vector<std::pair<int, int>> block_pairs_, column_;  // the analysis's scratch
   std::vector<int> place_;
+  std::vector<int> pattern_;  // the bodies each row joins, as a chord step gathers them
   std::vector<double> rows_per_body_;
   std::vector<int> joint_rows_;  // the rows of the k-th joint with rows: joint_rows_[k] ...
   std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows)
