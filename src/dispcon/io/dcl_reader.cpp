@@ -56,19 +56,6 @@ struct Statements {
   size_t begin = 0, end = 0;
 };
 
-// What a number is read for, as messages name it ("hinge P1", "angle min"): two words joined
-// with a space, put together only when a message is written.
-struct What {
-  std::string_view head, tail;
-  What(const char* head) : head(head) {}  // NOLINT: a plain name reads as one
-  What(std::string_view head, std::string_view tail = {}) : head(head), tail(tail) {}
-  std::string str() const {
-    std::string s(head);
-    if (!tail.empty()) s.append(" ").append(tail);
-    return s;
-  }
-};
-
 struct ObjectBlock {
   Place at;
   std::string_view name;  // a view of the text; the Body's own copy is made once, at the end
@@ -285,7 +272,7 @@ class Parser {
         throw StatementError{};
       }
       (is_min ? seen_min : seen_max) = true;
-      (is_min ? lo : hi) = number(What(what, kw.text), true);
+      (is_min ? lo : hi) = number(What(what, " ", kw.text), true);
     }
     if (peek().kind != Token::Semicolon) {
       error(at(peek()),
@@ -422,7 +409,7 @@ class Parser {
   void component_statement(const ComponentRow& row, std::string_view k, ConstraintBlock& cb) {
     ComponentValues v;
     for (const ArgSpec& a : row.args) {
-      const What what(k, a.name);
+      const What what(k, " ", a.name);
       mark(cb.seen, k, a.name, at(peek()));
       switch (a.kind) {
         case Arg::Point:
@@ -497,7 +484,7 @@ class Parser {
       if (a.kind == Arg::Flag) {
         v.flags[flag] = true;
       } else {
-        v.options[option] = number(What(k, a.name));
+        v.options[option] = number(What(k, " ", a.name));
       }
     }
     if (peek().kind != Token::Semicolon) {

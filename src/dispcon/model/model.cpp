@@ -2,8 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <cctype>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -19,16 +19,17 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-void check_inertia(const Mat3& J, const std::string& who) {
+// `who` names the object ("object 'crank'"), in three pieces.
+void check_inertia(const Mat3& J, const What& who) {
   for (int i = 0; i < 9; ++i) check_number(J.data()[i], "inertia", who + ": inertia");
   if ((J - J.transpose()).norm() > 1e-12 * std::max(1.0, J.norm()))
-    throw ValueError("inertia", who + ": inertia is not symmetric");
+    throw ValueError("inertia", who.str() + ": inertia is not symmetric");
   // Its principal moments: positive (positive definite) and within range, since the solver
   // inverts it.
   const Eigen::SelfAdjointEigenSolver<Mat3> eig(J, Eigen::EigenvaluesOnly);
   const Vec3 moments = eig.eigenvalues();
   if (!(moments.minCoeff() > 0))
-    throw ValueError("inertia", who + ": inertia is not positive definite");
+    throw ValueError("inertia", who.str() + ": inertia is not positive definite");
   check_positive(moments.minCoeff(), "inertia", who + ": smallest principal inertia");
   check_positive(moments.maxCoeff(), "inertia", who + ": largest principal inertia");
 }
@@ -66,18 +67,25 @@ bool is_utf8(std::string_view s) {
   return true;
 }
 
+// "constraint at line N" (or "constraint", built in code): what a joint's refusal begins with,
+// built only for a refusal.
+std::string joint_who(int line) {
+  return "constraint" + (line ? " at line " + std::to_string(line) : "");
+}
+
 // Checks and normalises one component of a joint by its row: every argument, then the bounds
 // (NaN and min above max are errors; outside the natural range is clamped with a warning).
 class ComponentCheck {
  public:
-  ComponentCheck(const std::string& who, const ComponentRow& row,
+  // `who`: what a refusal begins with ("constraint at line 12"), called only for a refusal.
+  ComponentCheck(const std::function<std::string()>& who, const ComponentRow& row,
                  std::vector<std::string>& warnings)
       : who_(who), row_(row), warnings_(warnings) {}
 
   void operator()(ComponentValues& v) const {
     size_t vec = 0, scalar = 0, option = 0;
     for (const ArgSpec& a : row_.args) {
-      const std::string what = std::string(row_.keyword) + " " + a.name;
+      const What what(row_.keyword, " ", a.name);
       switch (a.kind) {
         case Arg::Point:
           door(a, [&] { check_vector(v.vectors.at(vec), row_.keyword, what); });
@@ -95,13 +103,13 @@ class ComponentCheck {
           const bool positive = a.kind != Arg::NonNegativeLength;
           door(a, [&] { check_number(r, row_.keyword, what); });
           if (r < 0 || (positive && r == 0))
-            fail(what + (positive ? " must be positive" : " must not be negative") + ", found " +
-                     format_number(r),
+            fail(what.str() + (positive ? " must be positive" : " must not be negative") +
+                     ", found " + format_number(r),
                  a.name);
           break;
         }
         case Arg::Points:
-          if (v.points.size() < 2) fail(what + ": at least two points are needed", a.name);
+          if (v.points.size() < 2) fail(what.str() + ": at least two points are needed", a.name);
           for (const Vec3& p : v.points)
             door(a, [&] { check_vector(p, row_.keyword, what + " point"); });
           break;
@@ -119,7 +127,7 @@ class ComponentCheck {
 
  private:
   [[noreturn]] void fail(const std::string& detail, const std::string& arg = "") const {
-    throw JointError(who_, row_.keyword, detail, arg);
+    throw JointError(who_(), row_.keyword, detail, arg);
   }
 
   // The door's checks (numbers.hpp), their message placed at this argument of the statement.
@@ -134,12 +142,13 @@ class ComponentCheck {
 
   // Each bound a number within range or an infinity (no bound); min not above max.
   void bounds(Range& b) const {
-    const std::string what = row_.keyword;
+    const std::string_view what = row_.keyword;
     const ArgSpec lo{Arg::NamedOption, "min"}, hi{Arg::NamedOption, "max"};
-    if (!std::isinf(b.min)) door(lo, [&] { check_number(b.min, row_.keyword, what + " min"); });
-    if (!std::isinf(b.max)) door(hi, [&] { check_number(b.max, row_.keyword, what + " max"); });
+    if (!std::isinf(b.min)) door(lo, [&] { check_number(b.min, what, What(what, " min")); });
+    if (!std::isinf(b.max)) door(hi, [&] { check_number(b.max, what, What(what, " max")); });
     if (b.min > b.max)
-      fail(what + ": min " + format_number(b.min) + " is above max " + format_number(b.max));
+      fail(std::string(what) + ": min " + format_number(b.min) + " is above max " +
+           format_number(b.max));
     clamp(b.min, "min");
     clamp(b.max, "max");
   }
@@ -154,18 +163,10 @@ class ComponentCheck {
     v = c;
   }
 
-  const std::string& who_;
+  const std::function<std::string()>& who_;
   const ComponentRow& row_;
   std::vector<std::string>& warnings_;
 };
-
-}  // namespace
-
-bool is_name_char(char c) {
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
-}
-
-namespace {
 
 Frame frame(const Body& b) {
   return Frame{b.pose.rotation(), b.pose.x, b.world_center()};
@@ -174,7 +175,8 @@ Frame frame(const Body& b) {
 }  // namespace
 
 bool is_valid_name(std::string_view name) {
-  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
+  const char first = name.empty() ? '\0' : name[0];
+  if (!((first >= 'a' && first <= 'z') || (first >= 'A' && first <= 'Z'))) return false;
   return std::all_of(name.begin(), name.end(), is_name_char);
 }
 
@@ -193,14 +195,18 @@ Model::Model() {
 }
 
 BodyId Model::add_body(Body body) {
-  const std::string who = "object '" + body.name + "'";
+  // Messages are built only for a refusal: a model of thousands of bodies is read at memory speed.
+  const What who("object '", body.name, "'");
   require(!body.name.empty(), "an object needs a name");
-  require(is_valid_name(body.name),
-          "object name '" + body.name +
-              "' cannot be written in a .dcl file: a name starts with a letter and holds only "
-              "letters, digits, '-', '_' and '.'");
+  if (!is_valid_name(body.name)) {
+    throw std::invalid_argument(
+        "object name '" + body.name +
+        "' cannot be written in a .dcl file: a name starts with a letter and holds only "
+        "letters, digits, '-', '_' and '.'");
+  }
   require(body.name != "world", "'world' is reserved for the fixed world frame");
-  require(by_name_.count(body.name) == 0, "duplicate object '" + body.name + "'");
+  if (by_name_.count(body.name))
+    throw std::invalid_argument("duplicate object '" + body.name + "'");
   body.pose = check_pose(body.pose, "position", who);
   check_vector(body.center, "center", who + ": center");
   if (body.rotate) check_positive(*body.rotate, "rotate", who + ": rotate");
@@ -218,9 +224,9 @@ BodyId Model::add_body(Body body) {
 }
 
 JointId Model::add_joint(Joint j) {
-  const std::string who = "constraint" + (j.line ? " at line " + std::to_string(j.line) : "");
+  const std::function<std::string()> who = [&j] { return joint_who(j.line); };
   auto fail = [&](const char* keyword, const std::string& detail) {
-    throw JointError(who, keyword, detail);
+    throw JointError(who(), keyword, detail);
   };
   auto valid = [&](BodyId b) { return b.value >= 0 && b.value < body_count(); };
   if (!valid(j.body1)) fail("object1", "object1 is not a body of the model");
@@ -292,7 +298,7 @@ void Model::set_poses(const std::vector<Pose>& poses) {
   require(poses.size() == bodies_.size(), "set_poses: one pose per body expected");
   std::vector<Pose> checked(poses.size());
   for (size_t i = 1; i < bodies_.size(); ++i)
-    checked[i] = check_pose(poses[i], "position", "object '" + bodies_[i].name + "'");
+    checked[i] = check_pose(poses[i], "position", What("object '", bodies_[i].name, "'"));
   // A coupling's phase moves on by the whole turns its wrapped turns drop on the way (each turn
   // taken the short way round), so the couplings hold through full turns.
   std::vector<CouplingMeasure> before;
@@ -332,8 +338,8 @@ void Model::set_pose(BodyId id, const Pose& pose) {
 
 void Model::set_speeds(BodyId id, const Vec3& velocity, const Vec3& spin) {
   Body& b = movable_body(id, "set_speeds");
-  check_vector(velocity, "velocity", "object '" + b.name + "': velocity");
-  check_vector(spin, "spin", "object '" + b.name + "': spin");
+  check_vector(velocity, "velocity", What("object '", b.name, "': velocity"));
+  check_vector(spin, "spin", What("object '", b.name, "': spin"));
   b.velocity = velocity;
   b.spin = spin;
 }
@@ -345,14 +351,14 @@ void Model::set_fixed(BodyId id, bool fixed) {
 
 void Model::set_mass(BodyId id, std::optional<double> mass) {
   Body& b = movable_body(id, "set_mass");
-  if (mass) check_positive(*mass, "mass", "object '" + b.name + "': mass");
+  if (mass) check_positive(*mass, "mass", What("object '", b.name, "': mass"));
   b.mass = mass;
   ++revision_;
 }
 
 void Model::set_rotate(BodyId id, std::optional<double> rotate) {
   Body& b = movable_body(id, "set_rotate");
-  if (rotate) check_positive(*rotate, "rotate", "object '" + b.name + "': rotate");
+  if (rotate) check_positive(*rotate, "rotate", What("object '", b.name, "': rotate"));
   b.rotate = rotate;
   ++revision_;
 }
@@ -379,7 +385,7 @@ void Model::set_twist_range(JointId id, double min, double max) {
   ComponentValues v = get_component(j, Component::Twist);
   v.bounds = {min, max};
   std::vector<std::string> messages;
-  ComponentCheck(who, component(Component::Twist), messages)(v);
+  ComponentCheck([&who] { return who; }, component(Component::Twist), messages)(v);
   for (std::string& m : messages) warnings_.push_back({id, "twist", std::move(m)});
   j.twist->min = v.bounds.min;
   j.twist->max = v.bounds.max;

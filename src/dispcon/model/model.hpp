@@ -15,9 +15,13 @@
 
 namespace dispcon {
 
-// Names of bodies are what the .dcl format can hold (format.md): a letter, then letters, digits,
-// '-', '_' or '.'. The lexer reads names with the same rule.
-bool is_name_char(char c);
+// Names of bodies are what the .dcl format can hold (format.md): an ASCII letter, then letters,
+// digits, '-', '_' or '.'. The lexer reads names with the same rule (inline: it asks of every
+// byte of a name).
+inline bool is_name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+         c == '_' || c == '.';
+}
 bool is_valid_name(std::string_view name);
 
 // A joint refused by the model: a ValueError whose field() is the statement ("axial", "move",

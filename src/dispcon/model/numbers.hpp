@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "dispcon/math/rotation.hpp"
 
@@ -33,24 +34,42 @@ constexpr double kSmallest = 1e-15;
 // Largest angle of a rotation vector, radians: beyond, sin and cos keep no correct digit.
 constexpr double kLargestAngle = 1e6;
 
+// What a checked value is, as the message of its refusal names it ("object 'crank': center",
+// "hinge P1"): up to four pieces, joined only when a message is written, so that a value that
+// passes costs no string. It views its pieces: made for a call, never kept.
+class What {
+ public:
+  What(const char* s) : What(std::string_view(s)) {}         // NOLINT: any text reads as one
+  What(const std::string& s) : What(std::string_view(s)) {}  // NOLINT
+  What(std::string_view a, std::string_view b = {}, std::string_view c = {},
+       std::string_view d = {})
+      : pieces_{a, b, c, d} {}
+  // These pieces and `more` after them (the last piece must be free).
+  What operator+(std::string_view more) const;
+  std::string str() const;
+
+ private:
+  std::string_view pieces_[4];
+};
+
 // A number as people read it: at most 6 significant digits ("1e+300", "0.25", "-3.14159").
 std::string format_number(double v);
 std::string format_vector(const Vec3& v);
 
 // Each returns its (checked) value or throws ValueError "WHAT VALUE is ...".
 // Finite with |v| <= kLargest.
-double check_number(double v, const std::string& field, const std::string& what);
+double check_number(double v, std::string_view field, const What& what);
 // In [kSmallest, kLargest].
-double check_positive(double v, const std::string& field, const std::string& what);
-Vec3 check_vector(const Vec3& v, const std::string& field, const std::string& what);
+double check_positive(double v, std::string_view field, const What& what);
+Vec3 check_vector(const Vec3& v, std::string_view field, const What& what);
 // A direction of any finite length but zero; returns it as a unit vector.
-Vec3 check_direction(const Vec3& v, const std::string& field, const std::string& what);
+Vec3 check_direction(const Vec3& v, std::string_view field, const What& what);
 // A rotation vector (axis times angle, |v| <= kLargestAngle) as a unit quaternion.
-Quat rotation_from_vector(const Vec3& v, const std::string& field);
+Quat rotation_from_vector(const Vec3& v, std::string_view field);
 // A 3x3 matrix that is a rotation (orthonormal within 1e-6, determinant +1) as a quaternion.
-Quat rotation_from_matrix(const Mat3& R, const std::string& field);
+Quat rotation_from_matrix(const Mat3& R, std::string_view field);
 // A placement: position by check_vector, a finite non-zero quaternion, returned normalised
-// (unchanged, bit for bit, when it is already of unit length).
-Pose check_pose(const Pose& p, const std::string& field, const std::string& what);
+// (unchanged, bit for bit, when it is already of unit length). `what` has a piece free.
+Pose check_pose(const Pose& p, std::string_view field, const What& what);
 
 }  // namespace dispcon
