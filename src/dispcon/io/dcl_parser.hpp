@@ -1,0 +1,236 @@
+// The .dcl reader's parser, inside src/dispcon/io only (format.md). Two passes: the statements are
+// parsed into blocks with their places (dcl_parser.cpp: the pieces of a statement; dcl_blocks.cpp:
+// object and constraint blocks; dcl_include.cpp: include statements), then names are resolved and
+// the model is built (dcl_build.cpp), so objects may be declared after the constraints that name
+// them. Every problem becomes a diagnostic naming its place; parsing resumes at the next `;` or
+// `end`.
+//
+// Memory speed: tokens are views of the file's text pulled one at a time, each name becomes a
+// string once (in its object's Body), and a message is built only when it is written.
+#pragma once
+
+#include <forward_list>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "dispcon/io/dcl_lexer.hpp"
+#include "dispcon/io/dcl_reader.hpp"
+#include "dispcon/io/include.hpp"
+#include "dispcon/model/joint_kinds.hpp"
+
+namespace dispcon::dcl {
+
+struct Place {
+  int line = 0, column = 0;
+};
+
+// Where each statement of a block was, by keyword, and each argument of a component's statement,
+// by keyword and argument name: a value the model refuses (a ValueError naming its statement, a
+// JointError its argument) is reported there. Blocks do not nest, so each block's marks are a
+// run [begin, end) of the parser's one list (a handful each: searched in order).
+struct Mark {
+  std::string_view keyword, arg;  // arg empty: the statement itself
+  Place at;
+};
+struct Statements {
+  size_t begin = 0, end = 0;
+};
+
+struct ObjectBlock {
+  Place at;
+  std::string_view name;  // a view of the text; the Body's own copy is made once, at the end
+  Body body;
+  Statements seen;
+  bool ok = true;  // parsed without error: the model checks it
+};
+
+struct ConstraintBlock {
+  Place at;
+  std::string_view object1 = "world", object2;  // views of the text
+  bool has_object2 = false;
+  Joint joint;
+  Statements seen;
+  std::string_view guide;     // the keyword of its translation guide
+  std::string_view coupling;  // the keyword of its coupling
+  bool ok = true;
+};
+
+// `include "file" as NAME {position x y z} {rotation r} {on BODY} {rigid};` (format.md).
+struct IncludeBlock {
+  Place at;
+  std::string path;
+  Inclusion inc;
+  Vec3 position = Vec3::Zero(), rotation = Vec3::Zero();
+  std::string_view on = "world";
+  Statements seen;
+};
+
+// The files being read, outermost first (canonical paths): an include of one of them is a cycle.
+using IncludeStack = std::vector<std::string>;
+
+// Every declared name, once: where it was declared and the body it became (none when its block
+// had an error, reported there). The names view the text, or included_names_.
+struct Declared {
+  Place at;
+  std::optional<BodyId> body;
+};
+using Declarations = std::unordered_map<std::string_view, Declared>;
+
+// Thrown inside the parser to abandon one statement; caught at statement level.
+struct StatementError {};
+
+class Parser {
+ public:
+  Parser(std::string_view text, const std::string& file, IncludeStack& stack)
+      : file_(file), lexer_(text, lex_errors_), current_(lexer_.next()), stack_(stack) {
+    // Room for every block at once (a count of the words, in comments too, is an upper bound):
+    // blocks of half a kilobyte copied at each growth cost more than the count.
+    objects_.reserve(occurrences(text, "object"));
+    constraints_.reserve(occurrences(text, "constraint"));
+  }
+
+  ParseResult run();
+
+ private:
+  // Tokens, read as the parser goes: peek() is valid until the next call of next().
+  const Token& peek() const { return current_; }
+  Token next() {
+    const Token t = current_;
+    if (t.kind != Token::End) current_ = lexer_.next();
+    return t;
+  }
+  static Place at(const Token& t) { return {t.line, t.column}; }
+  static size_t occurrences(std::string_view text, std::string_view word) {
+    size_t n = 0;
+    for (size_t i = text.find(word); i != std::string_view::npos; i = text.find(word, i + 1)) ++n;
+    return n;
+  }
+  static std::string quote(const Token& t) {
+    switch (t.kind) {
+      case Token::End:
+        return "the end of the file";
+      case Token::Semicolon:
+        return "';'";
+      case Token::String:
+        return "a string";
+      default:
+        return "'" + std::string(t.text) + "'";
+    }
+  }
+  static std::string object_label(std::string_view name) {
+    return "object '" + std::string(name) + "'";
+  }
+
+  // Marks a block's statement `keyword` (or its argument `arg`) at `p`.
+  void mark(Statements& seen, std::string_view keyword, std::string_view arg, Place p) {
+    statements_.push_back({keyword, arg, p});
+    seen.end = statements_.size();
+  }
+  // The place of a block's statement `keyword` (or its argument `arg`), or null. The last mark
+  // wins: an argument is marked where its value starts, then again at its number.
+  const Place* statement(const Statements& seen, std::string_view keyword,
+                         std::string_view arg = {}) const {
+    for (size_t i = seen.end; i-- > seen.begin;) {
+      const Mark& m = statements_[i];
+      if (m.keyword == keyword && m.arg == arg) return &m.at;
+    }
+    return nullptr;
+  }
+  // The place of a block's statement `keyword` (or its argument `arg`), or `fallback`.
+  Place place(const Statements& seen, std::string_view keyword, Place fallback,
+              std::string_view arg = {}) const {
+    const Place* p = statement(seen, keyword, arg);
+    return p ? *p : fallback;
+  }
+  // A new block's (empty) run of marks.
+  Statements statements() const { return {statements_.size(), statements_.size()}; }
+
+  // Past kErrorCap, errors (and warnings) are counted, not listed: a binary file or 200,000
+  // duplicate objects print about a hundred lines, then one line with the count of the rest.
+  // The lexer's errors come first, and how many it finds is known only at the end: the parser's
+  // first kErrorCap are kept, the cap applied to both in build().
+  void error(Place p, const std::string& message) {
+    if (errors_++ < kErrorCap) diagnostics_.push_back({file_, p.line, p.column, true, message});
+  }
+  void warning(Place p, const std::string& message) {
+    if (warnings_++ < kErrorCap) diagnostics_.push_back({file_, p.line, p.column, false, message});
+  }
+
+  // Skips to just after the next ';', or to (not past) `end`, `object`, `constraint`.
+  void recover();
+
+  // A number (`inf` only when `allow_inf`: a bound); `what` names it in messages ("hinge P1").
+  double number(const What& what, bool allow_inf = false);
+
+  Vec3 vec3(const What& what);
+
+  std::string_view name(const char* what);
+
+  // `;` after `after` (in quotes when `quoted`: a statement's keyword).
+  void semicolon(std::string_view after, bool quoted = false);
+
+  // `{min a} {max b}` then `;`.
+  void bounds(std::string_view what, double& lo, double& hi);
+
+  // A statement's keyword: a word, not given before in its block or include (`seen` records
+  // it). `object_name`: the object block's name, for messages ("this constraint", "this
+  // include" otherwise).
+  std::string_view keyword(const Token& t, const char* block, std::string_view object_name,
+                           Statements& seen);
+
+  // `end` (with an optional `;`) closing a block opened at `open`: an object block (named
+  // `object_name`) or a constraint block.
+  bool block_end(bool object, std::string_view object_name, Place open);
+
+  void object_block();
+
+  // A component's statement (hinge, a guide, angle, twist, a coupling) as its row of
+  // components() says: its arguments, then `{min} {max}` or its optional words and `;`. The model
+  // checks the values; the place of each argument is marked in `cb.seen`, so that a value the
+  // model refuses is reported where it is written.
+  void component_statement(const ComponentRow& row, std::string_view k, ConstraintBlock& cb);
+
+  // The optional words of a statement (`left`, `phase f`), each at most once and in any order,
+  // then `;`.
+  void options(const ComponentRow& row, std::string_view k, ComponentValues& v,
+               ConstraintBlock& cb);
+
+  // `include "file" as NAME` then, in any order and each at most once, `position x y z`,
+  // `rotation rx ry rz`, `on BODY`, `rigid`; then `;`.
+  void include_statement();
+
+  // Reads, checks and adds the model an include names, its names declared; every problem is
+  // reported at the include statement (and the included file's own errors at their places).
+  void include_into(Model& model, IncludeBlock& ib, Declarations& declared);
+
+  void constraint_block();
+
+  // Names are resolved and the model checks every block that parsed cleanly, so that each
+  // problem is reported once, at the statement it is about.
+  ParseResult build();
+
+  std::string file_;
+  LexErrors lex_errors_;
+  DclLexer lexer_;
+  Token current_;
+  std::vector<Mark> statements_;  // every block's marks, in order
+  std::vector<Diagnostic> diagnostics_;
+  long long errors_ = 0;  // every error of the parser's, listed or not (the lexer's: in build())
+  long long warnings_ = 0;
+  std::vector<ObjectBlock> objects_;
+  std::vector<ConstraintBlock> constraints_;
+  std::vector<IncludeBlock> includes_;
+  std::vector<std::string> rigid_;                 // the names of rigid includes
+  std::forward_list<std::string> included_names_;  // what `declared` views for included bodies
+  IncludeStack& stack_;
+};
+
+// The text's model or diagnostics; `stack` holds the files being read (include cycles).
+ParseResult parse_text(std::string_view text, const std::string& filename, IncludeStack& stack);
+// The file's text, or false and the reason in `text`.
+bool read_file(const std::string& path, std::string& text);
+
+}  // namespace dispcon::dcl
