@@ -86,6 +86,7 @@ void Parser::object_block() {
 
 void Parser::component_statement(const ComponentRow& row, std::string_view k, ConstraintBlock& cb) {
   ComponentValues v;
+  v.vectors.reserve(row.args.size());  // grown one at a time, a hinge's two would move once
   for (const ArgSpec& a : row.args) {
     const What what(k, " ", a.name);
     mark(cb.seen, k, a.name, at(peek()));
