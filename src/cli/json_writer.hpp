@@ -36,6 +36,7 @@ class JsonWriter {
 
  private:
   void item();  // the comma, new line and indent before an array's item or an object's key
+  void new_line();
   void open(char bracket);
   void close(char bracket);
   void string(std::string_view s);
