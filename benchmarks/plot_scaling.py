@@ -47,6 +47,11 @@ def collect(runs, table, value):
 def draw(series, dst, unit, log_y, title=""):
     xs = [p for _, _, s in series for p, _ in s]
     ys = [t for _, _, s in series for _, t in s]
+    # A filtered run (scripts/bench --benchmark_filter=...) may leave one size or none: there is
+    # no axis to draw then, and the run's figures are still printed.
+    if len(set(xs)) < 2:
+        print("plot_scaling: fewer than two sizes in this run, %s not drawn" % dst)
+        return
     x0, x1 = math.log10(min(xs)), math.log10(max(xs))
     if log_y:
         y0, y1 = math.floor(math.log10(min(ys))), math.ceil(math.log10(max(ys)))
