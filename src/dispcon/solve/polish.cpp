@@ -55,6 +55,30 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   return true;
 }
 
+namespace {
+
+// Every row of the group's joints, in order: `row(c, v1, v2, part, k)` for row k of a part of
+// joint c between the variables v1 and v2 (-1 for a body that does not move). One walk serves
+// the full gather and the chord step's, which keep different things of each row.
+template <typename Row>
+void for_each_row(const SolverState& s, const std::vector<int>& joints,
+                  const std::vector<double>& band, Row&& row) {
+  PartRows parts[kPartSlots];
+  for (int c : joints) {
+    const JointState& js = s.joints[static_cast<size_t>(c)];
+    const BodyState& s1 = s.bodies[static_cast<size_t>(js.b1)];
+    const BodyState& s2 = s.bodies[static_cast<size_t>(js.b2)];
+    const int v1 = s1.movable ? s1.n_var : -1;
+    const int v2 = s2.movable ? s2.n_var : -1;
+    s.rows(js, BoundTest{band[static_cast<size_t>(c)]}, parts);
+    for (const PartRows& p : parts) {
+      for (int k = 0; k < p.count; ++k) row(c, v1, v2, p, k);
+    }
+  }
+}
+
+}  // namespace
+
 void Polisher::gather(const SolverState& s, const std::vector<double>& band) {
   w_->rows_.clear();
   w_->residual_.clear();
@@ -65,32 +89,27 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band) {
   w_->rows_.reserve(expected);
   w_->residual_.reserve(expected);
   w_->joint_rows_.clear();
-  PartRows parts[kPartSlots];
-  for (int c : group_->joints) {
+  // joint_rows_: where each joint's rows begin (a joint without rows adds no entry), then the end.
+  auto mark_boundary = [&] {
     if (w_->joint_rows_.empty() || w_->joint_rows_.back() != static_cast<int>(w_->rows_.size())) {
       w_->joint_rows_.push_back(static_cast<int>(w_->rows_.size()));
     }
-    const JointState& js = s.joints[static_cast<size_t>(c)];
-    const BodyState& s1 = s.bodies[static_cast<size_t>(js.b1)];
-    const BodyState& s2 = s.bodies[static_cast<size_t>(js.b2)];
-    const int v1 = s1.movable ? s1.n_var : -1;
-    const int v2 = s2.movable ? s2.n_var : -1;
-    s.rows(js, BoundTest{band[static_cast<size_t>(c)]}, parts);
-    for (const PartRows& p : parts) {
-      for (int k = 0; k < p.count; ++k) {
-        Entry e;
-        e.v1 = v1;
-        e.v2 = v2;
-        e.j1 = p.J[k].segment<6>(0).transpose();
-        e.j2 = p.J[k].segment<6>(6).transpose();
-        w_->rows_.push_back(e);
-        w_->residual_.push_back(p.residual[k]);
-      }
+  };
+  int last = -1;
+  for_each_row(s, group_->joints, band, [&](int c, int v1, int v2, const PartRows& p, int k) {
+    if (c != last) {
+      mark_boundary();
+      last = c;
     }
-  }
-  if (w_->joint_rows_.empty() || w_->joint_rows_.back() != static_cast<int>(w_->rows_.size())) {
-    w_->joint_rows_.push_back(static_cast<int>(w_->rows_.size()));
-  }
+    Entry e;
+    e.v1 = v1;
+    e.v2 = v2;
+    e.j1 = p.J[k].segment<6>(0).transpose();
+    e.j2 = p.J[k].segment<6>(6).transpose();
+    w_->rows_.push_back(e);
+    w_->residual_.push_back(p.residual[k]);
+  });
+  mark_boundary();
   rows_hint_ = w_->rows_.size();
 }
 
@@ -98,22 +117,11 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band) {
 void Polisher::gather_residuals(const SolverState& s, const std::vector<double>& band) {
   w_->residual_.clear();
   w_->pattern_.clear();
-  PartRows parts[kPartSlots];
-  for (int c : group_->joints) {
-    const JointState& js = s.joints[static_cast<size_t>(c)];
-    const BodyState& s1 = s.bodies[static_cast<size_t>(js.b1)];
-    const BodyState& s2 = s.bodies[static_cast<size_t>(js.b2)];
-    const int v1 = s1.movable ? s1.n_var : -1;
-    const int v2 = s2.movable ? s2.n_var : -1;
-    s.rows(js, BoundTest{band[static_cast<size_t>(c)]}, parts);
-    for (const PartRows& p : parts) {
-      for (int k = 0; k < p.count; ++k) {
-        w_->residual_.push_back(p.residual[k]);
-        w_->pattern_.push_back(v1);
-        w_->pattern_.push_back(v2);
-      }
-    }
-  }
+  for_each_row(s, group_->joints, band, [&](int, int v1, int v2, const PartRows& p, int k) {
+    w_->residual_.push_back(p.residual[k]);
+    w_->pattern_.push_back(v1);
+    w_->pattern_.push_back(v2);
+  });
 }
 
 PolishWork::Vec6 Polisher::apply_inverse_mass(const BodyState& b, const Vec6& j) {
