@@ -7,7 +7,9 @@ During the drag only what is drawn moves: each moving part's Coin3D transform (t
 sets from its Placement) and the joints' markers take the solved poses every frame, and the
 Placements are written once, at release. Writing a Placement goes through FreeCAD's document
 (change signals, the undo record, the tree, the observers): for a hundred parts that cost more
-than the solve and the redraw together (docs/performance.md).
+than the solve and the redraw together (docs/performance.md). The view is drawn lighter
+meanwhile (Lighter: no navigation cube, no markers, the parts' edges only), as CAD tools draw a
+moving model, and whole again at release.
 
 The mode shows: the Drag command's button stays pressed, the status bar says so, and Esc in the 3D
 view (or the button again) leaves it. One drag mode at a time in a session, as FreeCAD's own
@@ -169,6 +171,94 @@ class Shown:
                 marker.set_placement(at)
 
 
+def _holding(node, type_name):
+    """Whether the Coin subgraph `node` holds a node of the type named `type_name`."""
+    from pivy import coin
+
+    kind = coin.SoType.fromName(type_name)
+    if kind.isBad():
+        return False
+    search = coin.SoSearchAction()
+    search.setType(kind)
+    search.apply(node)
+    return search.getPath() is not None
+
+
+def _wireframe_child(switch):
+    """For a part's display-mode switch showing faces and edges (FreeCAD's "Flat Lines"), the
+    index of its child that shows the same edges without the faces ("Wireframe"); else None."""
+    shown = switch.whichChild.getValue()
+    if not 0 <= shown < switch.getNumChildren():
+        return None
+    child = switch.getChild(shown)
+    if not (_holding(child, "SoBrepFaceSet") and _holding(child, "SoBrepEdgeSet")):
+        return None
+    for k in range(switch.getNumChildren()):
+        other = switch.getChild(k)
+        if k != shown and _holding(other, "SoBrepEdgeSet") and not _holding(other, "SoBrepFaceSet"):
+            return k
+    return None
+
+
+class Lighter:
+    """What the view leaves out during a drag, put back as it was by `restore()`: the
+    navigation cube and the joints' markers are not drawn, the parts are drawn as their edges
+    without their faces (FreeCAD's "Wireframe": the links stay told apart, where shaded faces
+    without edges merge into one grey band), and FreeCAD's selection node neither preselects
+    (its pick through the whole scene at every mouse move) nor selects (it took the button's
+    release over another part, which then never reached drag mode and left the drag on).
+
+    Under software OpenGL a frame of a hundred parts spent more on these than on anything
+    else: the navigation cube, the 148 markers and the faces with their edges about 6-10,
+    9-13 and 4-5 ms of CPU a frame (docs/performance.md). Everything here is state of the
+    view: no document property, no preference changes."""
+
+    def __init__(self, view, adapter):
+        from pivy import coin
+
+        from . import viewproviders
+
+        self.viewer = view.getViewer()
+        self.cube = self.viewer.isEnabledNaviCube()
+        if self.cube:
+            self.viewer.setEnabledNaviCube(False)
+        # The selection node's modes, by name (the enums' values are FreeCAD's business).
+        self.modes = []
+        selection = self.viewer.getSceneGraph()
+        for name, off in (("highlightMode", "OFF"), ("selectionMode", "SEL_OFF")):
+            field = selection.getField(name)
+            if field is not None:  # FreeCAD's selection node: its mode, then off
+                self.modes.append((field, field.getValue()))
+                field.set(off)
+        self.markers = []
+        for j in adapter.joints + [j for j, _ in adapter.skipped]:
+            proxy = viewproviders.joint_view(j)
+            if proxy is not None and proxy.marker.is_visible():
+                proxy.marker.set_visible(False)
+                self.markers.append(proxy.marker)
+        self.switches = []  # (a part's display-mode switch, the child it showed)
+        doc = adapter.asm.Document
+        for name in adapter.frames:
+            root = getattr(getattr(doc.getObject(name), "ViewObject", None), "RootNode", None)
+            for k in range(root.getNumChildren() if root is not None else 0):
+                switch = root.getChild(k)
+                lines = _wireframe_child(switch) if isinstance(switch, coin.SoSwitch) else None
+                if lines is not None:
+                    self.switches.append((switch, switch.whichChild.getValue()))
+                    switch.whichChild.setValue(lines)
+
+    def restore(self):
+        for switch, shown in self.switches:
+            switch.whichChild.setValue(shown)
+        for marker in self.markers:
+            marker.set_visible(True)
+        for field, value in self.modes:
+            field.setValue(value)
+        if self.cube:
+            self.viewer.setEnabledNaviCube(True)
+        self.switches, self.markers, self.modes, self.cube = [], [], [], False
+
+
 class DragMode:
     def __init__(self, asm):
         from pivy import coin
@@ -185,7 +275,7 @@ class DragMode:
         self.solver_seconds = self.solver_cpu = 0.0
         self.write_seconds = self.write_cpu = 0.0
         self.release_seconds = 0.0
-        self.highlight = None  # the selection node's highlight mode during a drag
+        self.lighter = None  # what the view leaves out during a drag (Lighter)
         self.callbacks = [
             self.view.addEventCallbackPivy(coin.SoMouseButtonEvent.getClassTypeId(), self.button),
             self.view.addEventCallbackPivy(coin.SoLocation2Event.getClassTypeId(), self.motion),
@@ -248,7 +338,7 @@ class DragMode:
         try:
             drag.finish()
         finally:
-            self._preselection(True)
+            self._full_view()
         self.release_seconds += time.perf_counter() - t0
 
     def cancel(self):
@@ -256,22 +346,13 @@ class DragMode:
         drag, shown, self.drag, self.shown = self.drag, self.shown, None, None
         drag.cancel()
         shown.restore()
-        self._preselection(True)
+        self._full_view()
 
-    def _preselection(self, on):
-        """FreeCAD's preselection (the part under the cursor highlighted) is off during a drag:
-        its selection node picks through the whole scene at every mouse move before drag mode
-        sees the move (3-4 ms a frame for a hundred parts), and the part under the cursor is the
-        one being dragged. The node's own mode is put back after: no preference changes."""
-        field = self.view.getViewer().getSceneGraph().getField("highlightMode")
-        if field is None:  # not FreeCAD's selection node: nothing to turn off
-            return
-        if not on:
-            self.highlight = field.getValue()
-            field.setValue(2)  # SoFCUnifiedSelection's OFF (AUTO, ON, OFF)
-        elif self.highlight is not None:
-            field.setValue(self.highlight)
-            self.highlight = None
+    def _full_view(self):
+        """The view drawn and picked as before the drag (Lighter)."""
+        lighter, self.lighter = self.lighter, None
+        if lighter is not None:
+            lighter.restore()
 
     def button(self, event_cb):
         event = event_cb.getEvent()
@@ -291,7 +372,7 @@ class DragMode:
                 App.Console.PrintMessage("Dispcon: %s\n" % e)
                 return
             self.shown = Shown(self.drag.adapter)
-            self._preselection(False)
+            self.lighter = Lighter(self.view, self.drag.adapter)
             self.part = part
             self.normal = self.view.getViewDirection()
             event_cb.setHandled()

@@ -286,8 +286,13 @@ class Marker:
                 grow.scaleFactor.setValue(1.5, 1.5, 1.5)
                 g.addChild(grow)
             self.look_switch.addChild(g)
+        # Drawn or not, as a view's own state (a drag hides the markers: docs/performance.md);
+        # above the annotation, so a hidden marker costs no delayed-render path.
+        self.visible = coin.SoSwitch()
+        self.visible.whichChild.setValue(coin.SO_SWITCH_ALL)
+        self.root.addChild(self.visible)
         self.annotation = coin.SoAnnotation()
-        self.root.addChild(self.annotation)
+        self.visible.addChild(self.annotation)
         self.annotation.addChild(self.look_switch)
         # The glyph goes into `holder`, which the screen scale draws at `pixels` per unit.
         self.holder = coin.SoSeparator()
@@ -315,6 +320,13 @@ class Marker:
         b = placement.Base
         self._translation.setValue(b.x, b.y, b.z)
         self._rotation.setValue(*placement.Rotation.Q)
+
+    def set_visible(self, on):
+        """Draws the marker or not (nothing else changes: it still follows its placement)."""
+        self.visible.whichChild.setValue(_coin().SO_SWITCH_ALL if on else _coin().SO_SWITCH_NONE)
+
+    def is_visible(self):
+        return self.visible.whichChild.getValue() != _coin().SO_SWITCH_NONE
 
     def set_look(self, look):
         if look not in LOOKS:

@@ -77,12 +77,70 @@ def drawn(view, marker):
     from pivy import coin
 
     path = coin.SoPath(marker.root)
+    path.append(marker.visible)
     path.append(marker.annotation)
     action = coin.SoGetMatrixAction(view.getViewer().getSoRenderManager().getViewportRegion())
     action.apply(path)
     m = action.getMatrix()
     at, axis = m.multVecMatrix(coin.SbVec3f(0, 0, 0)), m.multDirMatrix(coin.SbVec3f(0, 0, 1))
     return App.Vector(*at.getValue()), App.Vector(*axis.getValue())
+
+
+def shown_modes(asm):
+    """Each part's display mode as drawn: the child its view's mode switch shows, named by what
+    it holds ("Flat Lines": faces and edges, "Shaded": faces only, "Wireframe": edges only,
+    "Other")."""
+    from pivy import coin
+
+    def holds(node, kind):
+        search = coin.SoSearchAction()
+        search.setType(coin.SoType.fromName(kind))
+        search.apply(node)
+        return search.getPath() is not None
+
+    out = {}
+    for p in da.parts(asm):
+        root = p.ViewObject.RootNode
+        for k in range(root.getNumChildren()):
+            switch = root.getChild(k)
+            if isinstance(switch, coin.SoSwitch) and switch.whichChild.getValue() >= 0:
+                child = switch.getChild(switch.whichChild.getValue())
+                faces, edges = holds(child, "SoBrepFaceSet"), holds(child, "SoBrepEdgeSet")
+                out[p.Name] = "Flat Lines" if faces and edges else "Shaded" if faces else \
+                    "Wireframe" if edges else "Other"
+    return out
+
+
+def save_near(view, point, path, height=8.0):
+    """A screenshot of the view's camera moved over `point` and zoomed to `height` units (an
+    orthographic camera's field), the camera put back after."""
+    camera = view.getCameraNode()
+    position, size = tuple(camera.position.getValue().getValue()), camera.height.getValue()
+    direction = view.getViewDirection()
+    shift = point - App.Vector(*position)
+    at = App.Vector(*position) + shift - direction * shift.dot(direction)  # at the same depth
+    camera.position.setValue(at.x, at.y, at.z)
+    camera.height.setValue(height)
+    try:
+        view.saveImage(path, 1280, 900, "White")
+    finally:
+        camera.position.setValue(*position)
+        camera.height.setValue(size)
+
+
+def other_part_on_screen(view, asm, part):
+    """A pixel where another part than `part` is under the cursor: the middle of a grounded
+    part's top face, or of any other part's."""
+    others = sorted((p for p in da.parts(asm) if p is not part), key=lambda p: not p.Grounded)
+    for p in others:
+        bb = p.Shape.BoundBox
+        for fx in (0.5, 0.3, 0.7, 0.1, 0.9):
+            at = App.Vector(bb.XMin + fx * bb.XLength, bb.Center.y, bb.ZMax)
+            x, y = (int(c) for c in view.getPointOnScreen(at))
+            info = view.getObjectInfo((x, y))
+            if info and info["Object"] == p.Name:
+                return x, y
+    raise AssertionError("no other part on the screen")
 
 
 def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
@@ -153,18 +211,23 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
             return tuple(int(round(c)) for c in view.getPointOnScreen(grab + to))
         return x + to[0], y + to[1]
 
-    selection = view.getViewer().getSceneGraph().getField("highlightMode")
-    highlight = selection.getValue()
+    viewer = view.getViewer()
+    modes = [viewer.getSceneGraph().getField(f) for f in ("highlightMode", "selectionMode")]
+    full = dict(modes=[m.getValue() for m in modes], cube=viewer.isEnabledNaviCube(), parts=shown_modes(asm))
+    assert full["cube"] and "Flat Lines" in full["parts"].values(), "not the view a drag makes lighter: %s" % full
 
     def markers_in_place(after):
-        """After a drag: every marker drawn where the Placements put its joint, and the
-        preselection (off during the drag) back as it was."""
+        """After a drag: every marker drawn, where the Placements put its joint, and the view
+        drawn and picked as before (the drag made it lighter: Lighter)."""
         for j in da.joints(asm):
-            at, axis = drawn(view, viewproviders.joint_view(j).marker)
+            marker = viewproviders.joint_view(j).marker
+            assert marker.is_visible(), "%s's marker is hidden after %s" % (j.Label, after)
+            at, axis = drawn(view, marker)
             pl = j.Reference1[0].Placement
             assert (at - pl.multVec(j.Point1)).Length < 1e-5 and (axis - pl.Rotation.multVec(j.Axis1)).Length < 1e-5, \
                 "%s's marker is not in place after %s" % (j.Label, after)
-        assert selection.getValue() == highlight, "the preselection was not put back after %s" % after
+        now = dict(modes=[m.getValue() for m in modes], cube=viewer.isEnabledNaviCube(), parts=shown_modes(asm))
+        assert now == full, "the view is not put back after %s: %s, before the drag %s" % (after, now, full)
 
     if check:
         # Esc during a drag: everything drawn goes back, the document never changed.
@@ -221,8 +284,25 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
             assert (axis - pl.Rotation.multVec(j.Axis1)).Length < 1e-5, "%s's marker did not turn" % j.Label
             followed += 1
         assert followed > 0, "no marker to follow"
-        assert selection.getValue() == 2, "the preselection stayed on during the drag"
-    gw.mouse(view, "release", *cursor(frames))
+        # The view is lighter: no navigation cube, no markers, the parts' edges without their
+        # faces, no preselection nor selection.
+        assert not viewer.isEnabledNaviCube(), "the navigation cube is drawn during the drag"
+        hidden = [j.Label for j in da.joints(asm) if viewproviders.joint_view(j).marker.is_visible()]
+        assert not hidden, "markers drawn during the drag: %s" % hidden[:3]
+        solid = [n for n, m in shown_modes(asm).items() if m != "Wireframe"]
+        assert not solid, "parts drawn with their faces during the drag: %s" % solid[:3]
+        assert [m.get() for m in modes] == ["OFF", "SEL_OFF"], \
+            "preselection or selection on during the drag: %s" % [m.get() for m in modes]
+        view.saveImage(os.path.join(OUT, "hundred-during.png"), 1280, 900, "White")
+        save_near(view, part.Placement.Base, os.path.join(OUT, "hundred-during-near.png"))
+        # Released over another part (the linkage lags the cursor): the drag ends all the same,
+        # and nothing is selected (FreeCAD's selection node took that release before).
+        Gui.Selection.clearSelection()
+        release = other_part_on_screen(view, asm, part)
+    else:
+        release = cursor(frames)
+    gw.mouse(view, "release", *release)
+    assert mode.drag is None, "the release at %s did not end the drag" % (release,)
     release_redraw = redraw() or 0.0
     Gui.runCommand("Dispcon_Drag", 0)
     moved = max((p.Placement.Base - start[p.Name].Base).Length for p in moving)
@@ -231,6 +311,8 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
         for p in da.parts(asm):
             assert same_placement(p.Placement, drag.adapter.placement_of(p)), "%s is not where solved" % p.Label
         markers_in_place("release")
+        save_near(view, part.Placement.Base, os.path.join(OUT, "hundred-near.png"))
+        assert not Gui.Selection.getSelection(), "the release selected %s" % Gui.Selection.getSelection()[0].Label
         # Every joint holds to 1e-9 as the document now stands (the chain's are revolutes: the
         # pins' points meet and their axes are parallel).
         for j in da.joints(asm):
