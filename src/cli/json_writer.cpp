@@ -1,38 +1,58 @@
 #include "json_writer.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 namespace dispcon::cli {
 
-void JsonWriter::item() {
-  if (sink_ && out_.size() >= (1 << 16)) {
-    std::fwrite(out_.data(), 1, out_.size(), sink_);
-    out_.clear();
+void JsonWriter::flush() {
+  if (sink_) {
+    std::fwrite(buffer_, 1, size_, sink_);
+  } else {
+    out_.append(buffer_, size_);
   }
+  size_ = 0;
+}
+
+void JsonWriter::put(const char* s, size_t n) {
+  while (n > 0) {
+    const size_t part = std::min(n, kBuffer);
+    std::memcpy(room(part), s, part);
+    size_ += part;
+    s += part;
+    n -= part;
+  }
+}
+
+void JsonWriter::item() {
   if (after_key_) {  // the value of a member: on the key's line
     after_key_ = false;
     return;
   }
   if (items_.empty()) return;  // the document itself
-  if (items_.back()++ > 0) out_ += ',';
+  if (items_.back()++ > 0) put(',');
   new_line();
 }
 
-// A new line and the indent of the open containers (copied from spaces, not filled a byte at a
-// time: a document of 400 four-bars has some 60,000 of them).
+// A new line and the indent of the open containers (a document of 400 four-bars has some 60,000
+// of them).
 void JsonWriter::new_line() {
-  static const std::string kSpaces(64, ' ');
+  put('\n');
   size_t indent = 2 * items_.size();
-  out_ += '\n';
-  for (; indent > kSpaces.size(); indent -= kSpaces.size()) out_ += kSpaces;
-  out_.append(kSpaces.data(), indent);
+  while (indent > 0) {
+    const size_t part = std::min(indent, size_t{256});
+    std::memset(room(part), ' ', part);
+    size_ += part;
+    indent -= part;
+  }
 }
 
 void JsonWriter::open(char bracket) {
   item();
-  out_ += bracket;
+  put(bracket);
   items_.push_back(0);
 }
 
@@ -40,7 +60,7 @@ void JsonWriter::close(char bracket) {
   const int items = items_.back();
   items_.pop_back();
   if (items > 0) new_line();
-  out_ += bracket;
+  put(bracket);
 }
 
 void JsonWriter::begin_object() {
@@ -59,44 +79,49 @@ void JsonWriter::end_array() {
 void JsonWriter::key(std::string_view k) {
   item();
   string(k);
-  out_ += ": ";
+  std::memcpy(room(2), ": ", 2);
+  size_ += 2;
   after_key_ = true;
 }
 
 void JsonWriter::value(double v) {
   item();
   if (!std::isfinite(v)) {
-    out_ += "null";
+    put("null", 4);
     return;
   }
-  char buf[64];
+  char* const buf = room(64);  // written in place: the longest double takes 25 bytes
   char* end = buf;
   if (v == std::trunc(v) && std::abs(v) < 1e15) {
     // A whole number (a planar model's zeros and ones: half its rotations) as nlohmann writes
     // it, its digits and ".0" (-0.0 too), without its conversion: cli.JsonNumbers compares
     // them on millions of values.
     if (std::signbit(v)) *end++ = '-';
-    end = std::to_chars(end, buf + sizeof buf, static_cast<long long>(std::abs(v))).ptr;
+    end = std::to_chars(end, buf + 64, static_cast<long long>(std::abs(v))).ptr;
     *end++ = '.';
     *end++ = '0';
   } else {
     // nlohmann's own conversion (Grisu2): its digits are not always the shortest (std::to_chars
     // writes 1.542053954523393 where it writes 1.5420539545233929), and the documents must not
     // change by a digit.
-    end = nlohmann::detail::to_chars(buf, buf + sizeof buf, v);
+    end = nlohmann::detail::to_chars(buf, buf + 64, v);
   }
-  out_.append(buf, static_cast<size_t>(end - buf));
+  size_ += static_cast<size_t>(end - buf);
 }
 
 void JsonWriter::value(int v) {
   item();
-  char buf[16];
-  out_.append(buf, static_cast<size_t>(std::to_chars(buf, buf + sizeof buf, v).ptr - buf));
+  char* const buf = room(16);
+  size_ += static_cast<size_t>(std::to_chars(buf, buf + 16, v).ptr - buf);
 }
 
 void JsonWriter::value(bool v) {
   item();
-  out_ += v ? "true" : "false";
+  if (v) {
+    put("true", 4);
+  } else {
+    put("false", 5);
+  }
 }
 
 void JsonWriter::value(std::string_view s) {
@@ -108,42 +133,60 @@ void JsonWriter::value(std::string_view s) {
 // else as it is: the engine's strings are UTF-8 (names are ASCII, labels are checked).
 void JsonWriter::string(std::string_view s) {
   static const char kHex[] = "0123456789abcdef";
-  out_ += '"';
+  const auto plain_byte = [](char ch) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    return c >= 0x20 && c != '"' && c != '\\';
+  };
+  if (s.size() + 2 <= kBuffer && std::all_of(s.begin(), s.end(), plain_byte)) {
+    char* const out = room(s.size() + 2);  // a name or a key: nothing to escape
+    out[0] = '"';
+    std::memcpy(out + 1, s.data(), s.size());
+    out[s.size() + 1] = '"';
+    size_ += s.size() + 2;
+    return;
+  }
+  put('"');
   size_t plain = 0;  // start of the run of bytes written as they are
   for (size_t i = 0; i < s.size(); ++i) {
+    if (plain_byte(s[i])) continue;
     const unsigned char c = static_cast<unsigned char>(s[i]);
-    if (c >= 0x20 && c != '"' && c != '\\') continue;
-    out_.append(s.data() + plain, i - plain);
+    put(s.data() + plain, i - plain);
     plain = i + 1;
-    out_ += '\\';
+    char* const e = room(6);
+    e[0] = '\\';
+    size_t n = 2;
     switch (c) {
       case '"':
       case '\\':
-        out_ += static_cast<char>(c);
+        e[1] = static_cast<char>(c);
         break;
       case '\b':
-        out_ += 'b';
+        e[1] = 'b';
         break;
       case '\t':
-        out_ += 't';
+        e[1] = 't';
         break;
       case '\n':
-        out_ += 'n';
+        e[1] = 'n';
         break;
       case '\f':
-        out_ += 'f';
+        e[1] = 'f';
         break;
       case '\r':
-        out_ += 'r';
+        e[1] = 'r';
         break;
       default:
-        out_ += "u00";
-        out_ += kHex[c >> 4];
-        out_ += kHex[c & 15];
+        e[1] = 'u';
+        e[2] = '0';
+        e[3] = '0';
+        e[4] = kHex[c >> 4];
+        e[5] = kHex[c & 15];
+        n = 6;
     }
+    size_ += n;
   }
-  out_.append(s.data() + plain, s.size() - plain);
-  out_ += '"';
+  put(s.data() + plain, s.size() - plain);
+  put('"');
 }
 
 }  // namespace dispcon::cli

@@ -16,9 +16,13 @@ namespace dispcon::cli {
 // the order given (the documents give them sorted: see write_object in report.hpp).
 class JsonWriter {
  public:
-  // With a `sink`, what is written goes out to it in pieces of about 64 kB as it is written
-  // (the rest stays in `out`): a long document never sits whole in memory.
+  // What is written is kept in the writer's own buffer and appended to `out` in pieces, the last
+  // when the writer is destroyed. With a `sink`, each full piece (64 kB) goes out to it instead:
+  // a long document never sits whole in memory (the last piece still goes to `out`).
   explicit JsonWriter(std::string& out, std::FILE* sink = nullptr) : out_(out), sink_(sink) {}
+  ~JsonWriter() { out_.append(buffer_, size_); }
+  JsonWriter(const JsonWriter&) = delete;
+  JsonWriter& operator=(const JsonWriter&) = delete;
 
   void begin_object();
   void end_object();
@@ -35,6 +39,21 @@ class JsonWriter {
   void value(const std::string& s) { value(std::string_view(s)); }
 
  private:
+  static constexpr size_t kBuffer = size_t{1} << 16;
+
+  // Room for `n` more bytes (n at most kBuffer) at the end of the buffer, which goes out first
+  // when it has not that much left; the caller writes there and adds what it wrote to size_.
+  char* room(size_t n) {
+    if (size_ + n > kBuffer) flush();
+    return buffer_ + size_;
+  }
+  void put(char c) {
+    *room(1) = c;
+    ++size_;
+  }
+  void put(const char* s, size_t n);
+  void flush();
+
   void item();  // the comma, new line and indent before an array's item or an object's key
   void new_line();
   void open(char bracket);
@@ -45,6 +64,8 @@ class JsonWriter {
   std::FILE* sink_;
   std::vector<int> items_;  // per open container, its items so far
   bool after_key_ = false;
+  size_t size_ = 0;  // bytes in buffer_
+  char buffer_[kBuffer];
 };
 
 }  // namespace dispcon::cli

@@ -117,8 +117,10 @@ std::vector<Member> solve_members(const Model& model, const SolveResult& r,
 
 void print_json(const std::function<void(JsonWriter&)>& write) {
   std::string out;
-  JsonWriter w(out, stdout);
-  write(w);
+  {
+    JsonWriter w(out, stdout);
+    write(w);
+  }  // its last piece is in `out`
   out += '\n';
   std::fwrite(out.data(), 1, out.size(), stdout);
 }

@@ -26,12 +26,38 @@ int hex_digit(char c) {
   return -1;
 }
 
+// What each byte can be, looked up once a byte (the lexer's loops test a class, not a chain of
+// comparisons): white space, a name's byte (is_name_char), a number's (digits, letters, '.', '_').
+enum : unsigned char { kSpace = 1, kDigit = 2, kAlpha = 4, kName = 8, kNumber = 16 };
+
+struct ByteClasses {
+  unsigned char of[256] = {};
+  ByteClasses() {
+    for (const char c : {' ', '\t', '\n', '\r', '\f', '\v'})
+      of[static_cast<unsigned char>(c)] = kSpace;
+    for (int c = 0; c < 256; ++c) {
+      const char ch = static_cast<char>(c);
+      const bool digit = ch >= '0' && ch <= '9';
+      const bool alpha = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z');
+      if (digit) of[c] |= kDigit;
+      if (alpha) of[c] |= kAlpha;
+      if (is_name_char(ch)) of[c] |= kName;
+      if (digit || alpha || ch == '.' || ch == '_') of[c] |= kNumber;
+    }
+  }
+};
+const ByteClasses kBytes;
+
+bool is(char c, unsigned char what) {
+  return (kBytes.of[static_cast<unsigned char>(c)] & what) != 0;
+}
+
 bool is_digit(char c) {
-  return c >= '0' && c <= '9';
+  return is(c, kDigit);
 }
 
 bool is_alpha(char c) {
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+  return is(c, kAlpha);
 }
 
 }  // namespace
@@ -55,7 +81,7 @@ Token DclLexer::next() {
       string(t);
     } else if (is_alpha(c)) {
       size_t j = i_;
-      while (j < text_.size() && is_name_char(text_[j])) ++j;
+      while (j < text_.size() && is(text_[j], kName)) ++j;
       t.kind = Token::Word;
       t.text = text_.substr(i_, j - i_);
       take(j - i_);
@@ -98,14 +124,29 @@ void DclLexer::error(std::string message) {
   errors_.add({line_, column_, std::move(message)});
 }
 
-// Skips white space and comments; false at the end of the text.
+// Skips white space and comments; false at the end of the text. Runs of blanks are the bulk of
+// a file: they are walked with the place kept in locals.
 bool DclLexer::skip_space_and_comments() {
   while (i_ < text_.size()) {
     const char c = text_[i_];
-    if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v') {
-      step();
+    if (is(c, kSpace)) {
+      const char* p = text_.data() + i_;
+      const char* const end = text_.data() + text_.size();
+      int line = line_, column = column_;
+      for (; p < end && is(*p, kSpace); ++p) {
+        if (*p == '\n') {
+          ++line;
+          column = 1;
+        } else {
+          ++column;
+        }
+      }
+      i_ = static_cast<size_t>(p - text_.data());
+      line_ = line;
+      column_ = column;
     } else if (c == '/' && i_ + 1 < text_.size() && text_[i_ + 1] == '/') {
-      while (i_ < text_.size() && text_[i_] != '\n') take(1);
+      const size_t eol = text_.find('\n', i_);
+      take((eol == std::string_view::npos ? text_.size() : eol) - i_);
     } else if (c == '/' && i_ + 1 < text_.size() && text_[i_ + 1] == '*') {
       const int l0 = line_, c0 = column_;
       take(2);
@@ -136,9 +177,9 @@ void DclLexer::number(Token& t) {
   size_t j = sign ? i_ + 1 : i_;
   while (j < text_.size()) {
     const char ch = text_[j];
-    const bool exponent_sign =
-        (ch == '-' || ch == '+') && (text_[j - 1] == 'e' || text_[j - 1] == 'E');
-    if (!(is_digit(ch) || is_alpha(ch) || ch == '.' || ch == '_' || exponent_sign)) break;
+    if (!is(ch, kNumber) &&
+        !((ch == '-' || ch == '+') && (text_[j - 1] == 'e' || text_[j - 1] == 'E')))
+      break;
     ++j;
   }
   t.text = text_.substr(i_, j - i_);
@@ -229,9 +270,9 @@ bool parse_number(std::string_view text, double& value) {
     return true;
   }
   // strtod's syntax, which the format names, would also take hexadecimal, nan and infinity.
-  if (body.empty() || body[0] == '-' || body[0] == '+' ||
-      body.find_first_of("xXnN") != std::string_view::npos) {
-    return false;
+  if (body.empty() || body[0] == '-' || body[0] == '+') return false;
+  for (const char c : body) {
+    if (c == 'x' || c == 'X' || c == 'n' || c == 'N') return false;
   }
   double v = 0;
   const char* last = body.data() + body.size();
