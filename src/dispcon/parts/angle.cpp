@@ -40,19 +40,21 @@ void angle_rotations(const Vec3& a1, const Vec3& a2, double min, double max, con
   opposite_turns(rotation_axis(a1, a2), delta, b1, b2, dR1, dR2);
 }
 
-PartRows angle_rows(const Vec3& a1, const Vec3& a2, double min, double max, BoundTest bound) {
+PartRows angle_rows(const Vec3& a1, const Vec3& a2, double min, double max, BoundTest bound,
+                    bool jacobian) {
   PartRows out;
   const double theta = angle_between(a1, a2);
   const double b = active_bound(theta, min, max, bound);
   if (std::isnan(b)) return out;
   out.at_limit = !(min == max);
   if (b > 1e-6 && b < kPi - 1e-6) {
-    const Vec3 n = rotation_axis(a1, a2);
     out.count = 1;
+    out.residual[0] = theta - b;
+    if (!jacobian) return out;
+    const Vec3 n = rotation_axis(a1, a2);
     out.J[0].setZero();
     out.J[0].segment<3>(0) = -n.transpose();
     out.J[0].segment<3>(6) = n.transpose();
-    out.residual[0] = theta - b;
     return out;
   }
   // Bound 0 or pi: c = a1 x a2 must vanish. For a direction e,
@@ -63,10 +65,11 @@ PartRows angle_rows(const Vec3& a1, const Vec3& a2, double min, double max, Boun
   const double cos = a1.dot(a2);
   out.count = 2;
   for (int k = 0; k < 2; ++k) {
+    out.residual[k] = e[k].dot(c);
+    if (!jacobian) continue;
     out.J[k].setZero();
     out.J[k].segment<3>(0) = (e[k].dot(a1) * a2 - cos * e[k]).transpose();
     out.J[k].segment<3>(6) = (cos * e[k] - e[k].dot(a2) * a1).transpose();
-    out.residual[k] = e[k].dot(c);
   }
   return out;
 }

@@ -25,6 +25,7 @@ void angle_rotations(const Vec3& a1, const Vec3& a2, double min, double max, con
                      const Mobility& b2, Vec3& dR1, Vec3& dR2);
 
 // Rows of the bound in contact (or violated); none when the angle is strictly inside.
-PartRows angle_rows(const Vec3& a1, const Vec3& a2, double min, double max, BoundTest bound = {});
+PartRows angle_rows(const Vec3& a1, const Vec3& a2, double min, double max, BoundTest bound = {},
+                    bool jacobian = true);
 
 }  // namespace dispcon

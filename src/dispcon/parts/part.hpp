@@ -21,7 +21,8 @@ struct Mobility {
   double mu = 0;          // share of a translation (mu12 for body 1, 1 - mu12 for body 2)
 };
 
-// Up to three rows of one part.
+// Up to three rows of one part. The row functions take `jacobian`: false leaves J unset and
+// gives the rows' residuals alone (a chord step's right-hand side), the same values and count.
 struct PartRows {
   int count = 0;
   Row J[3];

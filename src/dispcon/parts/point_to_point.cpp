@@ -17,7 +17,7 @@ void point_translations(const Vec3& P1, const Vec3& P2, const Mobility& b1, cons
 }
 
 PartRows point_rows(const Vec3& Q, const Vec3& P2, const Vec3& G1, const Vec3& G2,
-                    const Nearest& nearest) {
+                    const Nearest& nearest, bool jacobian) {
   PartRows out;
   out.count = nearest.rows;
   out.at_limit = nearest.at_limit;
@@ -26,13 +26,14 @@ PartRows point_rows(const Vec3& Q, const Vec3& P2, const Vec3& G1, const Vec3& G
   const Vec3 r2 = P2 - G2;
   for (int k = 0; k < nearest.rows; ++k) {
     const Vec3& n = nearest.normals[static_cast<size_t>(k)];
+    out.residual[k] = n.dot(e);
+    if (!jacobian) continue;
     Row& J = out.J[k];
     // d(n . e) = n . (dR2 x r2 + dx2 - dR1 x r1 - dx1);  n . (w x r) = w . (r x n)
     J.segment<3>(0) = -r1.cross(n).transpose();
     J.segment<3>(3) = -n.transpose();
     J.segment<3>(6) = r2.cross(n).transpose();
     J.segment<3>(9) = n.transpose();
-    out.residual[k] = n.dot(e);
   }
   return out;
 }

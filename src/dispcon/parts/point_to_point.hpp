@@ -32,6 +32,6 @@ void point_translations(const Vec3& P1, const Vec3& P2, const Mobility& b1, cons
 
 // Rows n . (P2 - Q) for each constrained direction n (world) of a guide's nearest point Q.
 PartRows point_rows(const Vec3& Q, const Vec3& P2, const Vec3& G1, const Vec3& G2,
-                    const Nearest& world_nearest);
+                    const Nearest& world_nearest, bool jacobian = true);
 
 }  // namespace dispcon

@@ -50,7 +50,7 @@ void twist_rotations(const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3&
 }
 
 PartRows twist_rows(const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2, double min,
-                    double max, BoundTest bound) {
+                    double max, BoundTest bound, bool jacobian) {
   PartRows out;
   Vec3 h;
   if (!bisector(a1, a2, h)) return out;
@@ -63,10 +63,11 @@ PartRows twist_rows(const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& 
   const double residual = violation != 0 ? violation : upper ? twist - max : twist - min;
   out.count = 1;
   out.at_limit = min != max;
+  out.residual[0] = residual;
+  if (!jacobian) return out;
   out.J[0].setZero();
   out.J[0].segment<3>(0) = -h.transpose();
   out.J[0].segment<3>(6) = h.transpose();
-  out.residual[0] = residual;
   return out;
 }
 

@@ -27,6 +27,6 @@ void twist_rotations(const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3&
                      Vec3& dR2);
 
 PartRows twist_rows(const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2, double min,
-                    double max, BoundTest bound = {});
+                    double max, BoundTest bound = {}, bool jacobian = true);
 
 }  // namespace dispcon

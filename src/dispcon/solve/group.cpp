@@ -50,7 +50,7 @@ double max_residual(const SolverState& s, const std::vector<int>& joints,
   for (int c : joints) {
     const double rc = s.residual(s.joints[static_cast<size_t>(c)]);
     store[static_cast<size_t>(c)] = rc;
-    if (!(rc <= r)) r = std::isnan(rc) ? std::numeric_limits<double>::infinity() : rc;
+    r = larger_residual(r, rc);
   }
   return r;
 }

@@ -4,6 +4,8 @@
 // can be solved on several threads. Internal to the solver.
 #pragma once
 
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "dispcon/solve/state.hpp"
@@ -22,6 +24,10 @@ std::vector<Group> find_groups(const SolverState& s);
 // (std::max would drop a NaN).
 double max_residual(const SolverState& s, const std::vector<int>& joints,
                     std::vector<double>& store);
+// The larger of a largest violation so far and one more joint's, as max_residual() folds them.
+inline double larger_residual(double r, double rc) {
+  return rc <= r ? r : std::isnan(rc) ? std::numeric_limits<double>::infinity() : rc;
+}
 
 // A group's size: the diagonal of the box around its bodies and its joints' points. The switch to
 // Newton steps is relative to it, so a group solves the same whatever else is in the model.

@@ -7,7 +7,7 @@
 namespace dispcon {
 
 bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>& band,
-                    double lambda, double max_rotation, bool reuse) {
+                    double lambda, double max_rotation, bool reuse, bool measured) {
   w_ = &work;
   s_ = &s;
   reused_ = false;
@@ -15,16 +15,18 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   for (int v = 0; v < nv_; ++v)
     s.bodies[static_cast<size_t>(group_->bodies[static_cast<size_t>(v)])].n_var = v;
   // A chord step solves with the factorisation in hand: it needs the rows' residuals and the
-  // bodies they join, not the Jacobian nor M^-1 J^T.
+  // bodies they join (measured with the joints' residuals when the poses have not changed
+  // since), not the Jacobian nor M^-1 J^T.
   if (reuse && factored_ && kkt_) {
-    gather_residuals(s, band);
-    reused_ = w_->pattern_ == analyzed_pattern_;
+    if (!(measured && measured_)) gather_residuals(s, band, nullptr);
+    reused_ = chord_pattern_ == analyzed_pattern_;
   }
+  measured_ = false;  // the poses move below
   if (!reused_) gather(s, band);
-  const int m = static_cast<int>(reused_ ? w_->residual_.size() : w_->rows_.size());
+  const int m = static_cast<int>(reused_ ? chord_residual_.size() : w_->rows_.size());
   if (m == 0 || nv_ == 0) return false;
   if (reused_) {
-    if (!solve_blocks()) return false;
+    if (!solve_blocks(chord_residual_)) return false;
   } else if (!factor(s, lambda)) {
     return false;
   }
@@ -59,22 +61,34 @@ namespace {
 
 // Every row of the group's joints, in order: `row(c, v1, v2, part, k)` for row k of a part of
 // joint c between the variables v1 and v2 (-1 for a body that does not move). One walk serves
-// the full gather and the chord step's, which keep different things of each row.
+// the full gather and the chord step's, which keep different things of each row (the chord
+// step's, without `jacobian`, the residuals alone). With `joint_r`, each joint's residual is
+// measured in the same look at its geometry (as max_residual() does) and the largest returned.
 template <typename Row>
-void for_each_row(const SolverState& s, const std::vector<int>& joints,
-                  const std::vector<double>& band, Row&& row) {
+double for_each_row(const SolverState& s, const std::vector<int>& joints,
+                    const std::vector<double>& band, bool jacobian, std::vector<double>* joint_r,
+                    Row&& row) {
   PartRows parts[kPartSlots];
+  double largest = 0;
   for (int c : joints) {
     const JointState& js = s.joints[static_cast<size_t>(c)];
     const BodyState& s1 = s.bodies[static_cast<size_t>(js.b1)];
     const BodyState& s2 = s.bodies[static_cast<size_t>(js.b2)];
     const int v1 = s1.movable ? s1.n_var : -1;
     const int v2 = s2.movable ? s2.n_var : -1;
-    s.rows(js, BoundTest{band[static_cast<size_t>(c)]}, parts);
+    const BoundTest bound{band[static_cast<size_t>(c)]};
+    if (joint_r) {
+      const double rc = s.rows_and_residual(js, bound, parts, jacobian);
+      (*joint_r)[static_cast<size_t>(c)] = rc;
+      largest = larger_residual(largest, rc);
+    } else {
+      s.rows(js, bound, parts, jacobian);
+    }
     for (const PartRows& p : parts) {
       for (int k = 0; k < p.count; ++k) row(c, v1, v2, p, k);
     }
   }
+  return largest;
 }
 
 }  // namespace
@@ -96,32 +110,43 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band) {
     }
   };
   int last = -1;
-  for_each_row(s, group_->joints, band, [&](int c, int v1, int v2, const PartRows& p, int k) {
-    if (c != last) {
-      mark_boundary();
-      last = c;
-    }
-    Entry e;
-    e.v1 = v1;
-    e.v2 = v2;
-    e.j1 = p.J[k].segment<6>(0).transpose();
-    e.j2 = p.J[k].segment<6>(6).transpose();
-    w_->rows_.push_back(e);
-    w_->residual_.push_back(p.residual[k]);
-  });
+  for_each_row(s, group_->joints, band, true, nullptr,
+               [&](int c, int v1, int v2, const PartRows& p, int k) {
+                 if (c != last) {
+                   mark_boundary();
+                   last = c;
+                 }
+                 Entry e;
+                 e.v1 = v1;
+                 e.v2 = v2;
+                 e.j1 = p.J[k].segment<6>(0).transpose();
+                 e.j2 = p.J[k].segment<6>(6).transpose();
+                 w_->rows_.push_back(e);
+                 w_->residual_.push_back(p.residual[k]);
+               });
   mark_boundary();
   rows_hint_ = w_->rows_.size();
 }
 
-// The rows' residuals alone, and the bodies each row joins (the pattern).
-void Polisher::gather_residuals(const SolverState& s, const std::vector<double>& band) {
-  w_->residual_.clear();
-  w_->pattern_.clear();
-  for_each_row(s, group_->joints, band, [&](int, int v1, int v2, const PartRows& p, int k) {
-    w_->residual_.push_back(p.residual[k]);
-    w_->pattern_.push_back(v1);
-    w_->pattern_.push_back(v2);
-  });
+// The rows' residuals alone, and the bodies each row joins (the pattern); with `joint_r`, the
+// joints' residuals too (the largest returned).
+double Polisher::gather_residuals(const SolverState& s, const std::vector<double>& band,
+                                  std::vector<double>* joint_r) {
+  chord_residual_.clear();
+  chord_pattern_.clear();
+  return for_each_row(s, group_->joints, band, false, joint_r,
+                      [&](int, int v1, int v2, const PartRows& p, int k) {
+                        chord_residual_.push_back(p.residual[k]);
+                        chord_pattern_.push_back(v1);
+                        chord_pattern_.push_back(v2);
+                      });
+}
+
+double Polisher::measure(const SolverState& s, const std::vector<double>& band,
+                         std::vector<double>& joint_r) {
+  measured_ = factored_ && kkt_;
+  if (!measured_) return max_residual(s, group_->joints, joint_r);
+  return gather_residuals(s, band, &joint_r);
 }
 
 PolishWork::Vec6 Polisher::apply_inverse_mass(const BodyState& b, const Vec6& j) {

@@ -36,7 +36,6 @@ struct PolishWork {
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
   std::vector<std::pair<int, int>> block_pairs_, column_;  // the analysis's scratch
   std::vector<int> place_;
-  std::vector<int> pattern_;  // the bodies each row joins, as a chord step gathers them
   std::vector<double> rows_per_body_;
   std::vector<int> joint_rows_;  // the rows of the k-th joint with rows: joint_rows_[k] ...
   std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows)
@@ -58,16 +57,23 @@ class Polisher {
   // With `reuse`, a large group in the saddle-point form may solve with the factorisation of its
   // last step instead of a new one (a chord step: the Jacobian moved little since); reused()
   // tells whether it did.
+  // `measured`: the poses have not changed since the last measure().
   bool step(SolverState& s, PolishWork& work, const std::vector<double>& band, double lambda,
-            double max_rotation, bool reuse);
+            double max_rotation, bool reuse, bool measured);
   bool reused() const { return reused_; }
+  // Each joint's residual at the current poses into `joint_r` and the largest, as max_residual()
+  // gives them; when a chord step may follow (a factorisation to reuse), the same pass over the
+  // joints' geometry also keeps the rows' residuals, so that step need not measure again.
+  double measure(const SolverState& s, const std::vector<double>& band,
+                 std::vector<double>& joint_r);
 
  private:
   using Vec6 = PolishWork::Vec6;
   using Entry = PolishWork::Entry;
 
   void gather(const SolverState& s, const std::vector<double>& band);
-  void gather_residuals(const SolverState& s, const std::vector<double>& band);
+  double gather_residuals(const SolverState& s, const std::vector<double>& band,
+                          std::vector<double>* joint_r);
   static Vec6 apply_inverse_mass(const BodyState& b, const Vec6& j);
   // The state of unknown v's body (during step()).
   const BodyState& body(int v) const {
@@ -121,7 +127,7 @@ class Polisher {
   // The saddle-point form on blocks (polish_blocks.cpp).
   void analyze_blocks();
   bool factor_blocks(const SolverState& s, double mu);
-  bool solve_blocks();
+  bool solve_blocks(const std::vector<double>& residual);
   template <typename Form>
   void analyze(int n, Form&& form);
 
@@ -137,6 +143,12 @@ class Polisher {
   bool kkt_ = false;       // the sparse system is the saddle-point form
   bool factored_ = false;  // ... and its factorisation can serve a chord step
   bool reused_ = false;    // the last step was a chord step
+  bool measured_ = false;  // measure() kept the rows' residuals: chord_residual_, chord_pattern_
+  // A chord step's right-hand side (the rows' residuals) and the bodies each row joins, which
+  // must be the analysed ones. Per group, not in PolishWork: measured at the start of a frame,
+  // before the groups are shared among threads.
+  std::vector<double> chord_residual_;
+  std::vector<int> chord_pattern_;
   Eigen::VectorXi order_;  // fill-reducing order of the rows
   // The saddle-point form's blocks: the bodies', then runs of up to six rows joining the same
   // two bodies; run k holds rows run_start_[k] ... run_start_[k + 1].

@@ -74,14 +74,14 @@ bool Polisher::factor_blocks(const SolverState& s, double mu) {
 }
 
 // The right-hand side [0; -r], and dq from the solution.
-bool Polisher::solve_blocks() {
+bool Polisher::solve_blocks(const std::vector<double>& residual) {
   std::fill(block_x_.begin(), block_x_.end(), 0.0);
   const int runs = static_cast<int>(run_slots_.size());
   for (int k = 0; k < runs; ++k) {
     const int first = run_start_[static_cast<size_t>(k)];
     double* x = block_x_.data() + BlockLdlt::kSize * (nv_ + k);
     for (int a = first; a < run_start_[static_cast<size_t>(k) + 1]; ++a) {
-      x[a - first] = -w_->residual_[static_cast<size_t>(a)];
+      x[a - first] = -residual[static_cast<size_t>(a)];
     }
   }
   blocks_.solve(block_x_.data());

@@ -55,7 +55,7 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   if (kkt_) {
     if (!factor_blocks(s, mu)) return false;
     factored_ = true;
-    return solve_blocks();
+    return solve_blocks(w_->residual_);
   }
   double* values = sparse_.valuePtr();
   std::fill(values, values + sparse_.nonZeros(), 0.0);

@@ -53,6 +53,7 @@ struct GroupRun {
   double size = 1;    // the group's size when the session was made: where the polish begins
   double lambda = 1e-12;
   bool chord = false;  // the next Newton step may reuse the last factorisation (kept across solves)
+  bool measured = false;  // the polisher measured the current poses (Polisher::measure)
   int iterations = 0, seed = 0, polish = 0;
   int seed_only_until = 0;   // after a failed polish, let the seed iterations work a while
   int last_progress = 0;     // the iteration at which the best violation last shrank by 0.1 %
@@ -66,6 +67,7 @@ struct GroupRun {
     lambda = 1e-12;
     iterations = seed = polish = seed_only_until = last_progress = 0;
     stalled = false;
+    measured = false;
     done = false;
     history.clear();
   }
@@ -90,14 +92,19 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
     }
     ++p.seed;
     p.r = max_residual(s, group.joints, joint_r);
+    p.measured = false;
     return;
   }
   ++p.polish;
   save_poses(s, group, before);
-  const bool stepped = p.polisher.step(s, work, band, p.lambda, o.max_rotation_step, p.chord);
+  const bool stepped =
+      p.polisher.step(s, work, band, p.lambda, o.max_rotation_step, p.chord, p.measured);
+  p.measured = false;
   const bool chord = p.polisher.reused();
-  const double next = stepped ? max_residual(s, group.joints, joint_r) : p.r;
+  // The residuals, with what a chord step from here needs, in one pass over the joints.
+  const double next = stepped ? p.polisher.measure(s, band, joint_r) : p.r;
   if (stepped && next < p.r) {
+    p.measured = true;
     // After a Newton step the next may reuse its factorisation; a chord step that gained less
     // than a hundredfold asks for a new one.
     p.chord = !chord || next < 0.01 * p.r;
@@ -224,15 +231,17 @@ void Session::Impl::start(const std::vector<Pose>& poses) {
   s.read_poses(poses);
   joint_r.assign(s.joints.size(), 0.0);
   finite = true;
+  std::fill(band.begin(), band.end(), -0.5 * o.tolerance);
   for (GroupRun& p : runs) {
     p.reset();
-    p.r = p.best_r = p.progress_mark = max_residual(s, p.group->joints, joint_r);
+    // With what a first chord step needs, when the group has a factorisation from a last solve.
+    p.r = p.best_r = p.progress_mark = p.polisher.measure(s, band, joint_r);
+    p.measured = true;
     p.done = p.r <= o.tolerance;
     if (!std::isfinite(p.r)) finite = false;
   }
   best = poses;
   before = poses;
-  std::fill(band.begin(), band.end(), -0.5 * o.tolerance);
 }
 
 // Each group runs to the end before the next starts, so its working set stays in cache; with

@@ -204,8 +204,11 @@ JointGeometry SolverState::geometry(const JointState& js, BoundTest bound) const
 
 double SolverState::residual(const JointState& js) const {
   if (!js.active) return 0;
+  return residual_at(js, geometry(js));
+}
+
+double SolverState::residual_at(const JointState& js, const JointGeometry& g) const {
   const Joint& j = *js.joint;
-  const JointGeometry g = geometry(js);
   double r = g.translation ? (g.P2 - g.Q).norm() : 0.0;
   if (j.angle) r = std::max(r, angle_violation(g.a1, g.a2, j.angle->min, j.angle->max));
   if (j.twist) {
@@ -223,17 +226,34 @@ bool SolverState::at_limit(const JointState& js, double band) const {
   return parts[0].at_limit || parts[1].at_limit || parts[2].at_limit;
 }
 
-void SolverState::rows(const JointState& js, BoundTest bound, PartRows out[kPartSlots]) const {
+void SolverState::rows(const JointState& js, BoundTest bound, PartRows out[kPartSlots],
+                       bool jacobian) const {
+  rows_at(js, geometry(js, bound), bound, out, jacobian);
+}
+
+double SolverState::rows_and_residual(const JointState& js, BoundTest bound,
+                                      PartRows out[kPartSlots], bool jacobian) const {
+  const Guide* guide = js.joint->guide ? &*js.joint->guide : nullptr;
+  if (guide && guide->kind != GuideKind::Point && guide->kind != GuideKind::Circle) {
+    rows(js, bound, out, jacobian);  // the nearest point of a guide with ends depends on the band
+    return residual(js);
+  }
+  const JointGeometry g = geometry(js);
+  rows_at(js, g, bound, out, jacobian);
+  return js.active ? residual_at(js, g) : 0.0;
+}
+
+void SolverState::rows_at(const JointState& js, const JointGeometry& g, BoundTest bound,
+                          PartRows out[kPartSlots], bool jacobian) const {
   const Joint& j = *js.joint;
-  const JointGeometry g = geometry(js, bound);
   for (int p = 0; p < kPartSlots; ++p) out[p].count = 0, out[p].at_limit = false;
   if (g.translation) {
     out[0] = point_rows(g.Q, g.P2, bodies[static_cast<size_t>(js.b1)].G,
-                        bodies[static_cast<size_t>(js.b2)].G, g.nearest);
+                        bodies[static_cast<size_t>(js.b2)].G, g.nearest, jacobian);
   }
-  if (j.angle) out[1] = angle_rows(g.a1, g.a2, j.angle->min, j.angle->max, bound);
+  if (j.angle) out[1] = angle_rows(g.a1, g.a2, j.angle->min, j.angle->max, bound, jacobian);
   if (j.twist) {
-    out[2] = twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max, bound);
+    out[2] = twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max, bound, jacobian);
   }
   if (j.coupling) out[3] = coupling_rows(coupling(js, true), js.last, js.phase);
 }

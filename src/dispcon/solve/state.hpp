@@ -93,13 +93,22 @@ class SolverState {
   void propose_rotations(const JointState& js, Vec3& dR1, Vec3& dR2) const;
   // The translations one joint proposes from the current poses (eq. 19 after rotation).
   void propose_translations(const JointState& js, Vec3& dx1, Vec3& dx2) const;
-  // Appends the rows of one joint (translation part, angle, twist, coupling) to `out`.
-  void rows(const JointState& js, BoundTest bound, PartRows out[kPartSlots]) const;
+  // Appends the rows of one joint (translation part, angle, twist, coupling) to `out`; without
+  // J when `jacobian` is false (the rows' residuals alone).
+  void rows(const JointState& js, BoundTest bound, PartRows out[kPartSlots],
+            bool jacobian = true) const;
+  // rows() and residual() together, from one look at the joint's geometry where both see the
+  // same (the nearest point of a guide without ends does not depend on the bound test).
+  double rows_and_residual(const JointState& js, BoundTest bound, PartRows out[kPartSlots],
+                           bool jacobian) const;
   // A coupling's equation at the current poses (the joint must have one).
   CouplingMeasure coupling(const JointState& js, bool with_rows) const;
 
  private:
   void unwrap_couplings();
+  double residual_at(const JointState& js, const JointGeometry& g) const;
+  void rows_at(const JointState& js, const JointGeometry& g, BoundTest bound,
+               PartRows out[kPartSlots], bool jacobian) const;
 };
 
 }  // namespace dispcon
