@@ -9,11 +9,13 @@ namespace dispcon {
 
 namespace {
 
-// The bound a violated (or touching) angle is held to; NaN when neither is in contact.
-double active_bound(double theta, double min, double max, BoundTest bound) {
+// The bound a violated (or touching) angle is held to; NaN when neither is in contact. The
+// angle is measured (`theta()`) only when an equality does not decide.
+template <typename Angle>
+double active_bound(Angle&& theta, double min, double max, BoundTest bound) {
   // 0 and pi are the natural ends of the range: only a real bound can be in contact.
-  if (max < kPi && (theta >= max - bound.band || max == 0 || min == max)) return max;
-  if (min > 0 && (theta <= min + bound.band || min == kPi)) return min;
+  if (max < kPi && (max == 0 || min == max || theta() >= max - bound.band)) return max;
+  if (min > 0 && (min == kPi || theta() <= min + bound.band)) return min;
   return std::nan("");
 }
 
@@ -43,13 +45,19 @@ void angle_rotations(const Vec3& a1, const Vec3& a2, double min, double max, con
 PartRows angle_rows(const Vec3& a1, const Vec3& a2, double min, double max, BoundTest bound,
                     bool jacobian) {
   PartRows out;
-  const double theta = angle_between(a1, a2);
-  const double b = active_bound(theta, min, max, bound);
+  // An angle held at 0 or pi (a hinge's axes) needs no angle, only the axes' cross product: an
+  // atan2 less per joint and pass.
+  double theta = std::nan("");
+  auto angle = [&] {
+    if (std::isnan(theta)) theta = angle_between(a1, a2);
+    return theta;
+  };
+  const double b = active_bound(angle, min, max, bound);
   if (std::isnan(b)) return out;
   out.at_limit = !(min == max);
   if (b > 1e-6 && b < kPi - 1e-6) {
     out.count = 1;
-    out.residual[0] = theta - b;
+    out.residual[0] = angle() - b;
     if (!jacobian) return out;
     const Vec3 n = rotation_axis(a1, a2);
     out.J[0].setZero();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 #include "dispcon/parts/angle.hpp"
 #include "dispcon/parts/circle.hpp"
@@ -247,15 +248,21 @@ void SolverState::rows_at(const JointState& js, const JointGeometry& g, BoundTes
                           PartRows out[kPartSlots], bool jacobian) const {
   const Joint& j = *js.joint;
   for (int p = 0; p < kPartSlots; ++p) out[p].count = 0, out[p].at_limit = false;
+  // Each part's rows are built where they go (placement new of the returned value, which C++17
+  // builds in place): assigning it copied a PartRows of 324 bytes (rep movsq), about 5 % of a
+  // drag step of the grid.
   if (g.translation) {
-    out[0] = point_rows(g.Q, g.P2, bodies[static_cast<size_t>(js.b1)].G,
-                        bodies[static_cast<size_t>(js.b2)].G, g.nearest, jacobian);
+    new (&out[0]) PartRows(point_rows(g.Q, g.P2, bodies[static_cast<size_t>(js.b1)].G,
+                                      bodies[static_cast<size_t>(js.b2)].G, g.nearest, jacobian));
   }
-  if (j.angle) out[1] = angle_rows(g.a1, g.a2, j.angle->min, j.angle->max, bound, jacobian);
+  if (j.angle) {
+    new (&out[1]) PartRows(angle_rows(g.a1, g.a2, j.angle->min, j.angle->max, bound, jacobian));
+  }
   if (j.twist) {
-    out[2] = twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max, bound, jacobian);
+    new (&out[2])
+        PartRows(twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max, bound, jacobian));
   }
-  if (j.coupling) out[3] = coupling_rows(coupling(js, true), js.last, js.phase);
+  if (j.coupling) new (&out[3]) PartRows(coupling_rows(coupling(js, true), js.last, js.phase));
 }
 
 // The rotations one joint proposes (seed 4.2.3 order): the translation part's eq. 18 first,
