@@ -20,6 +20,12 @@ struct PyDragger {
   BodyId body;
 };
 
+// A mouse drag by a grabbed point: each pull_to is one frame.
+struct PyPuller {
+  Model* model;
+  Puller puller;
+};
+
 // Repeated solves of one model whose structure stays (a mouse drag with a moving target joint).
 struct PySession {
   Model* model;
@@ -67,6 +73,19 @@ void bind_solve(pyb::module_& m, ModelClass& model) {
           pyb::arg("position") = pyb::none(), pyb::arg("rotation") = pyb::none(),
           "Holds the body at this pose (rotation vector or 3x3 matrix) while the rest follows. "
           "The model changes only when the solve converged.");
+
+  pyb::class_<PyPuller>(
+      m, "Puller", "A pull by a point of one body (a mouse drag): call pull_to once per frame.")
+      .def(
+          "pull_to",
+          [](PyPuller& p, const pyb::object& target) {
+            return convert(*p.model, p.puller.pull_to(vec3(target, "target")));
+          },
+          pyb::arg("target"),
+          "Draws the point toward this world point as near as the joints let it, joints exact. "
+          "The model takes the poses reached when the joints hold there: converged when the point "
+          "got there, status 'out-of-reach' (distance_left: how far it stays) at the nearest "
+          "pose; otherwise the model is left as it was.");
 
   pyb::class_<PySession>(m, "Session", "Repeated solves of a model whose joints keep their number.")
       .def("solve", &PySession::solve, pyb::arg("keep_best") = false,
@@ -135,6 +154,16 @@ void bind_solve(pyb::module_& m, ModelClass& model) {
           pyb::arg("steps") = 50,
           "Like `dispcon drag`: assembles, then moves the body in equal steps to the target "
           "(rotation vector or 3x3 matrix) while the rest follows.")
+      .def(
+          "puller",
+          [](Model& self, const std::string& name, const pyb::object& point,
+             const pyb::kwargs& kw) {
+            const BodyId body = body_id(self, name);
+            return new PyPuller{&self, Puller(self, body, vec3(point, "point"), solve_options(kw))};
+          },
+          pyb::arg("name"), pyb::arg("point"), pyb::keep_alive<0, 1>(),
+          "A pull of the body's point (local coordinates) toward world points, the body free to "
+          "turn (a mouse drag by a grabbed point; the model is not otherwise changed).")
       .def(
           "dragger",
           [](Model& self, const std::string& name, const pyb::kwargs& kw) {

@@ -166,6 +166,36 @@ class Solve(unittest.TestCase):
         np.testing.assert_array_equal(m.body("fore").position, before)
         self.assertIsNone(drag.move_to(position=(2, 2.1, 0)).out_of_reach)
 
+    def test_puller_moves_the_model_to_the_nearest_pose(self):
+        # The same arm pulled by its hand's point: past the links' reach the arm stretches toward
+        # the target and the model takes that pose, joints exact; a reachable point is met.
+        m = dispcon.Model()
+        m.add_body("upper", position=(0, 0, 0))
+        m.add_body("fore", position=(2, 0, 0), rotation=(0, 0, 0.5))
+        m.add_body("hand", position=(2 + 1.5 * math.cos(0.5), 1.5 * math.sin(0.5), 0))
+        m.add_joint("upper", hinge=((0, 0, 0), (0, 0, 0)))
+        m.add_joint("fore", object1="upper", hinge=((2, 0, 0), (0, 0, 0)))
+        m.add_joint("hand", object1="fore", hinge=((1.5, 0, 0), (0, 0, 0)))
+        self.assertTrue(m.assemble().converged)
+        pull = m.puller("hand", point=(0, 0, 0))
+        r = pull.pull_to((3, 2.5, 0))
+        self.assertFalse(r.converged)
+        self.assertEqual(r.status, "out-of-reach")
+        self.assertEqual(r.out_of_reach, "hand")
+        # A stretched chain is where the pull is slowest (the distance is of second order in
+        # the elbow's bend there): 78 iterations for this jump of 0.7 rad (docs/performance.md).
+        self.assertLessEqual(r.iterations, 100)
+        self.assertAlmostEqual(r.distance_left, math.sqrt(15.25) - 3.5, delta=1e-8)
+        self.assertEqual(r.violated, [])
+        t = np.array([3, 2.5, 0]) / math.sqrt(15.25)
+        np.testing.assert_allclose(m.body("hand").position, 3.5 * t, atol=1e-4)
+        self.assertLess(max(c.residual for c in m.residuals()), 1e-9)
+        back = pull.pull_to((2, 2, 0))
+        self.assertTrue(back.converged, back.message)
+        np.testing.assert_allclose(m.body("hand").position, [2, 2, 0], atol=1e-9)
+        with self.assertRaises(ValueError):
+            pull.pull_to((math.nan, 0, 0))
+
     def test_live_dragger(self):
         m = fourbar()
         m.assemble()

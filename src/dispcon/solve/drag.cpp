@@ -1,5 +1,6 @@
 // Dragging: one body held at a target (or along a path of targets) while the rest follows.
 #include <algorithm>
+#include <optional>
 #include <sstream>
 
 #include "dispcon/solve/reach.hpp"
@@ -8,6 +9,9 @@
 namespace dispcon {
 
 namespace {
+
+// Newton steps a drag step's pull may take before the held solve takes over (Dragger::pull).
+constexpr int kPullIterations = 40;
 
 std::vector<bool> held_only(const Model& model, BodyId body) {
   if (body.value <= 0 || body.value >= model.body_count()) {
@@ -23,11 +27,62 @@ std::vector<bool> held_only(const Model& model, BodyId body) {
 
 }  // namespace
 
+Puller::Puller(Model& model, BodyId body, const Vec3& point, const SolveOptions& options)
+    : model_(model),
+      body_(body),
+      point_(check_vector(point, "point", "pull: point of '" + model.body(body).name + "'")),
+      options_(options) {
+  held_only(model, body);  // the same door as a drag's
+  validate(options);
+}
+Puller::Puller(Puller&&) noexcept = default;
+Puller::~Puller() = default;
+
+SolveResult Puller::pull_to(const Vec3& target, bool move) {
+  const Vec3 at =
+      check_vector(target, "target", "pull: target of '" + model_.body(body_).name + "'");
+  if (!session_ || revision_ != model_.revision()) {
+    // The model and a joint from the target to the point, solved by a session of its own: the
+    // model itself is not touched (its revision, its other sessions).
+    pulled_ = model_;
+    Joint j;
+    j.body2 = body_;
+    j.has_hinge = true;
+    j.p2 = point_;
+    j.label = "pull";
+    joint_ = pulled_.add_joint(j);
+    session_ = std::make_unique<Session>(pulled_, options_);
+    revision_ = model_.revision();
+  }
+  pulled_.set_hinge(joint_, at, std::nullopt);
+  std::vector<Pose> poses = model_.poses();
+  SolveResult r = session_->pull(poses, joint_);
+  // Reported as the model's joints: the pull's own is the last.
+  r.constraints.pop_back();
+  r.max_residual = 0;
+  for (const ConstraintReport& c : r.constraints)
+    r.max_residual = std::max(r.max_residual, c.residual);
+  r.held = body_;
+  const bool holds =
+      r.status != SolveStatus::Diverged && r.status != SolveStatus::Stalled && r.violated().empty();
+  if (!holds) r.distance_left = 0;
+  std::ostringstream msg;
+  if (r.status == SolveStatus::OutOfReach) {
+    msg << "out of reach: '" << model_.body(body_).name << "' stays " << r.distance_left
+        << " from its target at the nearest pose its joints allow";
+    r.message = msg.str();
+  } else if (!holds) {
+    r.message = "pull: " + r.message;
+  }
+  if (move && holds) model_.set_poses(r.poses);
+  return r;
+}
+
 Dragger::Dragger(Model& model, BodyId body, const SolveOptions& options)
     : model_(model),
       body_(body),
       options_(options),
-      session_(model, options, held_only(model, body)) {}
+      session_(model, options, held_only(model, body), Session::Stuck::Stop) {}
 Dragger::Dragger(Dragger&&) noexcept = default;
 Dragger::~Dragger() = default;
 
@@ -42,8 +97,52 @@ SolveResult Dragger::move_to(const Pose& target) {
   poses_ = model_.poses();
   poses_[static_cast<size_t>(body_.value)] = at;
   SolveResult r = session_.solve(poses_);
-  if (r.converged) model_.set_poses(poses_);
-  return r;
+  if (r.converged) {
+    model_.set_poses(poses_);
+    return r;
+  }
+  if (r.status == SolveStatus::Diverged) return r;
+  return pull(at, std::move(r));
+}
+
+// The held step's Newton steps failed: the body's origin is pulled toward the target's from the
+// model's poses. Where that gets there the held step is made from the pose reached (a step too
+// long for Newton, or a nearly stretched linkage, whose Newton steps crawl); else the target is
+// out of reach and the pose reached is the nearest.
+SolveResult Dragger::pull(const Pose& target, SolveResult held) {
+  if (!puller_) {
+    SolveOptions capped = options_;
+    capped.max_iterations = std::min(options_.max_iterations, kPullIterations);
+    puller_ = std::make_unique<Puller>(model_, body_, Vec3::Zero(), capped);
+  }
+  SolveResult near = puller_->pull_to(target.x, false);
+  const int tried = held.iterations + near.iterations;
+  if (near.status != SolveStatus::OutOfReach) {
+    // The held solve that persists (seed iterations between Newton's, the stall rule): from the
+    // pose the pull reached when it got there, else from where the step began (a pull that
+    // crawls: a nearly stretched linkage; or a step the pull does not describe: a turn).
+    const bool reached = near.status == SolveStatus::Converged;
+    poses_ = reached ? near.poses : model_.poses();
+    poses_[static_cast<size_t>(body_.value)] = target;
+    if (!persist_) persist_ = std::make_unique<Session>(model_, options_, held_only(model_, body_));
+    SolveResult r = persist_->solve(poses_);
+    if (r.converged) model_.set_poses(poses_);
+    r.iterations += tried;
+    r.polish_iterations += held.polish_iterations + near.polish_iterations;
+    r.seed_iterations += held.seed_iterations;
+    return r;
+  }
+  // What holding the body at its target leaves open, from the nearest pose.
+  std::vector<Pose> at_target = near.poses;
+  at_target[static_cast<size_t>(body_.value)] = target;
+  near.constraints = measure(model_, at_target, options_);
+  near.max_residual = 0;
+  for (const ConstraintReport& c : near.constraints)
+    near.max_residual = std::max(near.max_residual, c.residual);
+  near.iterations = tried;
+  near.seed_iterations = held.seed_iterations;
+  near.polish_iterations += held.polish_iterations;
+  return near;
 }
 
 // The step not tried: what is measured with the body at its target and the rest where it is (the

@@ -7,7 +7,8 @@
 namespace dispcon {
 
 bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>& band,
-                    double lambda, double max_rotation, bool reuse, bool measured) {
+                    double lambda, double max_rotation, bool reuse, bool measured,
+                    const std::vector<double>* soft) {
   w_ = &work;
   s_ = &s;
   reused_ = false;
@@ -17,12 +18,12 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   // A chord step solves with the factorisation in hand: it needs the rows' residuals and the
   // bodies they join (measured with the joints' residuals when the poses have not changed
   // since), not the Jacobian nor M^-1 J^T.
-  if (reuse && factored_ && kkt_) {
+  if (reuse && factored_ && kkt_ && !soft) {
     if (!(measured && measured_)) gather_residuals(s, band, nullptr);
     reused_ = chord_pattern_ == analyzed_pattern_;
   }
   measured_ = false;  // the poses move below
-  if (!reused_) gather(s, band);
+  if (!reused_) gather(s, band, soft);
   const int m = static_cast<int>(reused_ ? chord_residual_.size() : w_->rows_.size());
   if (m == 0 || nv_ == 0) return false;
   if (reused_) {
@@ -93,9 +94,11 @@ double for_each_row(const SolverState& s, const std::vector<int>& joints,
 
 }  // namespace
 
-void Polisher::gather(const SolverState& s, const std::vector<double>& band) {
+void Polisher::gather(const SolverState& s, const std::vector<double>& band,
+                      const std::vector<double>* soft) {
   w_->rows_.clear();
   w_->residual_.clear();
+  w_->soft_.clear();
   // Room for as many rows as last time, and at least three a joint (a point's): grown entry by
   // entry, the first gather of a 100,000-link chain copied its 300,000 rows some twenty times
   // (most of a second, in fresh pages).
@@ -123,6 +126,7 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band) {
                  e.j2 = p.J[k].segment<6>(6).transpose();
                  w_->rows_.push_back(e);
                  w_->residual_.push_back(p.residual[k]);
+                 if (soft) w_->soft_.push_back((*soft)[static_cast<size_t>(c)]);
                });
   mark_boundary();
   rows_hint_ = w_->rows_.size();

@@ -39,6 +39,7 @@ struct PolishWork {
   std::vector<double> rows_per_body_;
   std::vector<int> joint_rows_;  // the rows of the k-th joint with rows: joint_rows_[k] ...
   std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows)
+  std::vector<double> soft_;  // each row's own damping (a pull's rows), empty when none
 };
 
 // Newton polish. The step is dq = M^-1 J^T y with (J M^-1 J^T + lambda I) y = -r: the
@@ -58,8 +59,13 @@ class Polisher {
   // last step instead of a new one (a chord step: the Jacobian moved little since); reused()
   // tells whether it did.
   // `measured`: the poses have not changed since the last measure().
+  // `soft`, when given, damps joint c's rows by soft[c] more than lambda (relative alike): a
+  // pull's rows, which the step then meets only as far as the other joints let it (the step
+  // minimises |dq|_M^2 + |J_soft dq + r_soft|^2 / soft while it meets the other rows). No chord
+  // step then.
   bool step(SolverState& s, PolishWork& work, const std::vector<double>& band, double lambda,
-            double max_rotation, bool reuse, bool measured);
+            double max_rotation, bool reuse, bool measured,
+            const std::vector<double>* soft = nullptr);
   bool reused() const { return reused_; }
   // Each joint's residual at the current poses into `joint_r` and the largest, as max_residual()
   // gives them; when a chord step may follow (a factorisation to reuse), the same pass over the
@@ -71,7 +77,10 @@ class Polisher {
   using Vec6 = PolishWork::Vec6;
   using Entry = PolishWork::Entry;
 
-  void gather(const SolverState& s, const std::vector<double>& band);
+  void gather(const SolverState& s, const std::vector<double>& band,
+              const std::vector<double>* soft);
+  // Row a's own damping beyond lambda (a pull's), in the units of the diagonal's scale.
+  double soft(int a) const { return w_->soft_.empty() ? 0 : w_->soft_[static_cast<size_t>(a)]; }
   double gather_residuals(const SolverState& s, const std::vector<double>& band,
                           std::vector<double>* joint_r);
   static Vec6 apply_inverse_mass(const BodyState& b, const Vec6& j);

@@ -61,7 +61,7 @@ bool Polisher::factor_blocks(const SolverState& s, double mu) {
     for (int a = first; a < run_start_[static_cast<size_t>(k) + 1]; ++a) {
       const Entry& e = w_->rows_[static_cast<size_t>(a)];
       const int o = a - first;
-      blocks_.at(r.diagonal, o, o) = mu;
+      blocks_.at(r.diagonal, o, o) = mu + soft(a);
       if (e.v1 >= 0) {
         for (int i = 0; i < 6; ++i) blocks_.at(r.body1, o, i) += e.j1(i);
       }

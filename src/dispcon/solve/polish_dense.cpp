@@ -67,6 +67,7 @@ bool Polisher::factor_dense(double lambda) {
     couplings([&](int a, int b, double v) { A(a, b) += v; });
     const double scale = A.diagonal().maxCoeff();
     A.diagonal().array() += lambda * scale;
+    for (int a = 0; a < m; ++a) A(a, a) += soft(a) * scale;
     return scale;
   };
   if (!(assemble() > 0)) return false;

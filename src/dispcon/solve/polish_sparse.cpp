@@ -25,9 +25,10 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   }
   if (!(scale > 0)) return false;
   const double mu = lambda * scale;
+  for (double& d : w_->soft_) d *= scale;  // a pull's own damping, now in the diagonal's units
   auto rows_form = [&](auto&& f) {
     couplings(f);
-    for (int a = 0; a < m; ++a) f(a, a, mu);
+    for (int a = 0; a < m; ++a) f(a, a, mu + soft(a));
   };
   factored_ = false;
   if (!same_pattern()) {

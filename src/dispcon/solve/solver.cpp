@@ -17,6 +17,7 @@
 
 #include "dispcon/solve/group.hpp"
 #include "dispcon/solve/polish.hpp"
+#include "dispcon/solve/pull.hpp"
 #include "dispcon/solve/report.hpp"
 #include "dispcon/solve/seed_iteration.hpp"
 
@@ -42,6 +43,8 @@ void check_poses(const Model& model, const std::vector<Pose>& poses) {
 
 // Iterations without a 0.1 % gain in the best violation after which a group is given up.
 constexpr int kStallIterations = 400;
+// With Session::Stuck::Stop, the damping of a failed Newton step beyond which the solve stops.
+constexpr double kStopDamping = 1e-11;
 
 // One group's run through the loop.
 struct GroupRun {
@@ -79,11 +82,16 @@ struct GroupRun {
 // contact) is widened to cover the distance the step moved it, so the active set grows instead
 // of the step being damped.
 void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& o,
-             std::vector<double>& band, std::vector<Pose>& before, std::vector<double>& joint_r) {
+             std::vector<double>& band, std::vector<Pose>& before, std::vector<double>& joint_r,
+             Session::Stuck stuck) {
   const Group& group = *p.group;
   const double polish_threshold = o.polish_below * p.size;
   ++p.iterations;
-  const bool polish = o.newton_polish && p.r < polish_threshold && p.iterations > p.seed_only_until;
+  // A session that stops when stuck (a drag step, which pulls then) takes Newton steps from the
+  // start: its poses are valid but for the held body, and the pull is its fallback.
+  const bool polish =
+      o.newton_polish && (stuck == Session::Stuck::Stop ||
+                          (p.r < polish_threshold && p.iterations > p.seed_only_until));
   if (!polish) {
     if (o.scheme == Scheme::Jacobi) {
       jacobi_iteration(s, group, o);
@@ -108,6 +116,9 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
     // After a Newton step the next may reuse its factorisation; a chord step that gained less
     // than a hundredfold asks for a new one.
     p.chord = !chord || next < 0.01 * p.r;
+    // A full Newton step that does not halve the violation is not converging quadratically: a
+    // session that stops when stuck stops here (stalled, the step kept).
+    if (stuck == Session::Stuck::Stop && !chord && next > 0.5 * p.r) p.stalled = true;
     p.r = next;
     p.lambda = std::max(1e-12, p.lambda * 0.1);
     return;
@@ -131,6 +142,13 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
   }
   load_poses(s, group, before);
   if (!widened) p.lambda *= 100;
+  if (stuck == Session::Stuck::Stop && (!stepped || p.lambda > kStopDamping)) {
+    // The caller pulls instead (a drag step: Dragger::move_to): damped Newton steps that keep
+    // failing are a linkage that cannot be where it is held, or a step too long for the
+    // first-order model; either way seed iterations would crawl.
+    p.stalled = true;
+    return;
+  }
   if (!stepped || p.lambda > 1e-2) {
     p.lambda = 1e-12;
     p.seed_only_until = p.iterations + 10;
@@ -147,10 +165,12 @@ bool all_finite(const std::vector<Pose>& poses) {
 }  // namespace
 
 struct Session::Impl {
-  Impl(const Model& m, const SolveOptions& opt, const std::vector<bool>& held_bodies)
+  Impl(const Model& m, const SolveOptions& opt, const std::vector<bool>& held_bodies,
+       Stuck when_stuck)
       : model((validate(opt), m)),
         revision(m.revision()),
         held(held_bodies),
+        stuck(when_stuck),
         o(opt),
         s(m, m.poses(), opt, held_bodies),
         groups(find_groups(s)) {
@@ -172,11 +192,13 @@ struct Session::Impl {
   void start(const std::vector<Pose>& poses);
   void run_groups();
   void run(GroupRun& p, PolishWork& work);
+  PullOutcome run_pull(int joint);
   SolveResult finish(const std::vector<Pose>& poses);
 
   const Model& model;
   std::uint64_t revision;  // the model's when this was built
   std::vector<bool> held;
+  Stuck stuck;
   SolveOptions o;
   SolverState s;
   std::vector<Group> groups;
@@ -188,11 +210,13 @@ struct Session::Impl {
   std::deque<PolishWork> more_work;  // one per extra thread
   int threads = 1;                   // threads a solve uses
   std::vector<int> immovable;        // active joints whose two bodies cannot move
+  std::vector<double> soft;          // a pull's damping per joint (pull.hpp)
   std::atomic<bool> finite{true};    // no residual has become infinite or not a number
 };
 
-Session::Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held)
-    : impl_(std::make_unique<Impl>(model, options, held)) {}
+Session::Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held,
+                 Stuck stuck)
+    : impl_(std::make_unique<Impl>(model, options, held, stuck)) {}
 Session::~Session() = default;
 Session::Session(Session&&) noexcept = default;
 Session& Session::operator=(Session&&) noexcept = default;
@@ -210,14 +234,18 @@ std::vector<ConstraintReport> measure(const Model& model, const std::vector<Pose
   return report(s, options.tolerance);
 }
 
-SolveResult Session::solve(std::vector<Pose>& poses) {
+Session::Impl& Session::current() {
   if (impl_->model.revision() != impl_->revision) {
     // The model changed since this session was built: its joints may have moved in memory.
     std::vector<bool> held = impl_->held;
     if (!held.empty()) held.resize(static_cast<size_t>(impl_->model.body_count()), false);
-    impl_ = std::make_unique<Impl>(impl_->model, impl_->o, held);
+    impl_ = std::make_unique<Impl>(impl_->model, impl_->o, held, impl_->stuck);
   }
-  Impl& session = *impl_;
+  return *impl_;
+}
+
+SolveResult Session::solve(std::vector<Pose>& poses) {
+  Impl& session = current();
   check_poses(session.model, poses);
   session.start(poses);
   if (session.finite) session.run_groups();
@@ -225,6 +253,59 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   if (result.converged) poses = result.poses;
   result.message = solve_message(session.model, result);
   return result;
+}
+
+SolveResult Session::pull(std::vector<Pose>& poses, JointId joint) {
+  Impl& session = current();
+  check_poses(session.model, poses);
+  if (joint.value < 0 || joint.value >= session.model.joint_count()) {
+    throw std::invalid_argument("pull: no joint " + std::to_string(joint.value));
+  }
+  session.start(poses);
+  PullOutcome pulled;
+  if (session.finite) pulled = session.run_pull(joint.value);
+  SolveResult result = session.finish(poses);
+  // finish() judged the hard joints; the pulled joint is reported as measured.
+  result.max_residual = std::max(result.max_residual, pulled.distance);
+  result.distance_left = pulled.distance;
+  if (result.converged && pulled.distance > session.o.tolerance) {
+    // Nearer than this no step gets (stationary), or the cap came first.
+    result.status = pulled.stationary ? SolveStatus::OutOfReach : SolveStatus::IterationLimit;
+    result.converged = false;
+  }
+  if (result.status == SolveStatus::Converged || result.status == SolveStatus::OutOfReach) {
+    poses = result.poses;
+  }
+  result.message = solve_message(session.model, result);
+  return result;
+}
+
+// The group of the pulled joint is pulled; the others solve as usual (serially: a pull is an
+// interactive drag's frame, its other groups untouched by it).
+PullOutcome Session::Impl::run_pull(int joint) {
+  soft.assign(s.joints.size(), 0.0);
+  PullOutcome out;
+  bool found = false;
+  for (GroupRun& p : runs) {
+    const std::vector<int>& joints = p.group->joints;
+    if (std::find(joints.begin(), joints.end(), joint) == joints.end()) {
+      if (finite) run(p, work);
+      continue;
+    }
+    found = true;
+    out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, joint_r);
+    p.iterations = p.polish = out.iterations;
+    p.r = p.best_r = out.hard;
+    save_poses(s, *p.group, best);
+    p.done = true;
+    p.stalled = !out.holds;
+    if (!std::isfinite(out.hard) || !std::isfinite(out.distance)) finite = false;
+  }
+  if (!found) {
+    throw std::invalid_argument("pull: joint " + std::to_string(joint) +
+                                " is not active or moves nothing");
+  }
+  return out;
 }
 
 void Session::Impl::start(const std::vector<Pose>& poses) {
@@ -277,7 +358,7 @@ void Session::Impl::run_groups() {
 
 void Session::Impl::run(GroupRun& p, PolishWork& scratch) {
   for (int k = 0; !p.done && k < o.max_iterations; ++k) {
-    iterate(s, p, scratch, o, band, before, joint_r);
+    iterate(s, p, scratch, o, band, before, joint_r, stuck);
     if (!std::isfinite(p.r)) {
       finite = false;
       return;

@@ -95,15 +95,30 @@ SolveResult solve(const Model& model, std::vector<Pose>& poses, const SolveOptio
 // revision: a body or joint added, a body fixed, ...), the session rebuilds before it solves.
 class Session {
  public:
-  Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held = {});
+  // What a solve does when its damped Newton steps keep failing: Persist (seed iterations a
+  // while, then Newton again, until the stall rule or the cap) or Stop at once, status Stalled
+  // (a drag step's held solve, which then pulls instead: Dragger::move_to).
+  enum class Stuck { Persist, Stop };
+  Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held = {},
+          Stuck stuck = Stuck::Persist);
   ~Session();
   Session(Session&&) noexcept;
   Session& operator=(Session&&) noexcept;
   // Like solve(): from `poses`, updated in place when converged.
   SolveResult solve(std::vector<Pose>& poses);
+  // A pull: every active joint but `joint` is held exactly, and `joint` is met as nearly as they
+  // allow (least squares, a point joint: the distance), starting from `poses`, which should be
+  // valid (they are corrected first). Status Converged when `joint` holds too, OutOfReach when the
+  // others hold and `joint` stays open by distance_left (a local minimum of its residual, reached
+  // by continuity from `poses`: no step gets nearer), IterationLimit when the others hold and the
+  // cap came first, Stalled when the others could not be made to hold. `poses` are updated in
+  // place in the first two cases; the result's poses are those reached. Throws
+  // std::invalid_argument for an unknown or inactive joint.
+  SolveResult pull(std::vector<Pose>& poses, JointId joint);
 
  private:
   struct Impl;
+  Impl& current();  // the state, rebuilt first when the model changed
   std::unique_ptr<Impl> impl_;
 };
 
@@ -118,6 +133,36 @@ SolveResult assemble(Model& model, const SolveOptions& options = {});
 
 class ReachBound;
 
+// A pull by a point (a workbench's mouse drag by a grabbed point, and a drag step that cannot be
+// made): the point `point` (local) of `body` is drawn toward a world point as near as the joints
+// let it, the body free to turn, every joint held exactly. From the model's poses, so the linkage
+// stays on its branch; within a few dozen Newton steps at any size. Throws std::invalid_argument
+// for the world, an unknown or a fixed body.
+class Puller {
+ public:
+  Puller(Model& model, BodyId body, const Vec3& point, const SolveOptions& options = {});
+  Puller(Puller&&) noexcept;
+  ~Puller();
+  // Draws the point toward `target` (checked: finite, within range). Status Converged when it
+  // gets there, OutOfReach when the joints hold at the nearest pose they allow and the point stays
+  // distance_left from the target (`held` is the body), IterationLimit when the joints hold and
+  // the point was still getting nearer at the cap (max_iterations; distance_left as reached),
+  // Stalled or Diverged when the joints could not be made to hold. The result's poses are the
+  // ones reached; with `move` true the model takes them whenever the joints hold there (it is
+  // left as it was, bit for bit, otherwise). Its constraints are the model's joints.
+  SolveResult pull_to(const Vec3& target, bool move = true);
+
+ private:
+  Model& model_;
+  BodyId body_;
+  Vec3 point_;
+  SolveOptions options_;
+  Model pulled_;  // the model and one more joint: the target (world) to the point
+  JointId joint_{-1};
+  std::uint64_t revision_ = 0;  // the model's when pulled_ was made
+  std::unique_ptr<Session> session_;
+};
+
 // Interactive dragging (a mouse drag in the workbench): `body` is held at each target in turn
 // while the rest follows from the previous result; the session is built once.
 class Dragger {
@@ -130,16 +175,26 @@ class Dragger {
   // poses. On success the model takes the new poses; otherwise it is left as it was, bit for bit,
   // and the result names what is violated. A target farther from the fixed parts than the joints
   // can stretch is refused before any iteration: status OutOfReach, with the distance left.
+  // A step whose Newton steps fail (a limit, a loop, a slide's end, a nearly stretched linkage)
+  // is pulled instead: the body's origin drawn toward the target's (Puller); when that gets there
+  // the step is made from the pose reached, else the status is OutOfReach and the result's poses
+  // are the nearest valid pose, distance_left how far the body's origin stays from the target's
+  // there, and its constraints what holding the body at its target leaves open. A pull still
+  // getting nearer after 40 iterations (a nearly stretched linkage crawls) hands over to the
+  // held solve from where the step began, which persists until the stall rule.
   SolveResult move_to(const Pose& target);
 
  private:
   SolveResult out_of_reach(const Pose& target);
+  SolveResult pull(const Pose& target, SolveResult held);
 
   Model& model_;
   BodyId body_;
   SolveOptions options_;
   Session session_;
   std::unique_ptr<ReachBound> reach_;  // built at the first move, again when the model changed
+  std::unique_ptr<Puller> puller_;     // built at the first step that fails
+  std::unique_ptr<Session> persist_;   // the held solve that persists: after a pull that crawls
   std::vector<Pose> poses_;
 };
 

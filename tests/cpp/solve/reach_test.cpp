@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "dispcon/io/dcl_reader.hpp"
 #include "dispcon/solve/solver.hpp"
 
 namespace dispcon {
@@ -54,13 +55,128 @@ struct Chain {
   }
 };
 
-// Every joint holds at the model's poses.
-void expect_joints_hold(const Model& m, double tolerance) {
+// Every joint holds at the given poses (the model's when none are given).
+void expect_joints_hold(const Model& m, double tolerance,
+                        const std::vector<Pose>* poses = nullptr) {
   SolveOptions o;
   o.tolerance = tolerance;
-  for (const ConstraintReport& c : measure(m, m.poses(), o)) {
+  for (const ConstraintReport& c : measure(m, poses ? *poses : m.poses(), o)) {
     EXPECT_TRUE(c.satisfied) << "joint " << c.joint.value << " residual " << c.residual;
   }
+}
+
+void expect_unchanged(const Model& m, const std::vector<Pose>& before) {
+  for (size_t k = 0; k < before.size(); ++k) {
+    EXPECT_EQ(m.poses()[k].x, before[k].x) << k;
+    EXPECT_EQ(m.poses()[k].q.coeffs(), before[k].q.coeffs()) << k;
+  }
+}
+
+// A planar revolute (a hinge whose z axes stay parallel) from body1's point p1 to body2's origin.
+Joint revolute(BodyId body1, BodyId body2, const Vec3& p1) {
+  Joint j;
+  j.body1 = body1;
+  j.body2 = body2;
+  j.has_hinge = true;
+  j.p1 = p1;
+  j.angle = AngleSpec{Vec3::UnitZ(), Vec3::UnitZ(), 0, 0};
+  return j;
+}
+
+BodyId add_bar(Model& m, const std::string& name, const Vec3& at, double angle, double length) {
+  Body b;
+  b.name = name;
+  b.pose = Pose::from(at, Vec3(0, 0, angle));
+  b.center = Vec3(length / 2, 0, 0);
+  return m.add_body(b);
+}
+
+double angle_of(const Pose& p) {
+  const Vec3 x = p.q * Vec3::UnitX();
+  return std::atan2(x.y(), x.x());
+}
+
+// A planar 2-link arm (upper arm 2, forearm 1.5, a hand pinned at the tip) whose elbow bends
+// between 0.5 and 2 rad: the hand reaches from r(2) to r(0.5) from the shoulder,
+// r(theta) = |l1 + l2 e^(i theta)|, though the links stretch to 3.5.
+struct LimitedArm {
+  static constexpr double l1 = 2, l2 = 1.5, bend_min = 0.5, bend_max = 2;
+  Model m;
+  BodyId upper, forearm, hand;
+  LimitedArm() {
+    upper = add_bar(m, "upper", Vec3::Zero(), 0.3, l1);
+    const Vec3 elbow = l1 * Vec3(std::cos(0.3), std::sin(0.3), 0);
+    forearm = add_bar(m, "forearm", elbow, 1.3, l2);
+    Body h;
+    h.name = "hand";
+    h.pose = Pose::from(elbow + l2 * Vec3(std::cos(1.3), std::sin(1.3), 0), Vec3::Zero());
+    hand = m.add_body(h);
+    m.add_joint(revolute(Model::kWorld, upper, Vec3::Zero()));
+    Joint e = revolute(upper, forearm, Vec3(l1, 0, 0));
+    e.twist = TwistSpec{Vec3::UnitX(), Vec3::UnitX(), bend_min, bend_max};
+    m.add_joint(e);
+    Joint w;
+    w.body1 = forearm;
+    w.body2 = hand;
+    w.has_hinge = true;
+    w.p1 = Vec3(l2, 0, 0);
+    m.add_joint(w);
+  }
+  static double reach(double bend) {
+    return std::sqrt(l1 * l1 + l2 * l2 + 2 * l1 * l2 * std::cos(bend));
+  }
+  // The upper arm's angle when the hand points along `direction` with the elbow bent by `bend`.
+  static double shoulder(double direction, double bend) {
+    return direction - std::atan2(l2 * std::sin(bend), l1 + l2 * std::cos(bend));
+  }
+};
+
+// The arm's hand dragged toward `goal` in `steps` steps, beyond what its elbow's limit lets it
+// reach (the links alone would): the first step out of reach stops within a few dozen iterations,
+// out of reach, with the nearest pose (the elbow at its limit, the hand on the line to that
+// step's target) and the distance left in closed form.
+void expect_arm_stops_at_its_limit(const Vec3& goal, int steps) {
+  LimitedArm arm;
+  ASSERT_TRUE(assemble(arm.m).converged);
+  const Vec3 start = arm.m.body(arm.hand).pose.x;
+  std::vector<std::vector<Pose>> done;
+  const DragResult d =
+      drag(arm.m, arm.hand, Pose::from(goal, Vec3::Zero()), steps, SolveOptions{}, &done);
+  ASSERT_FALSE(d.converged);
+  ASSERT_GE(d.failed_step, 1) << d.message;
+  const SolveResult& r = d.steps.back();
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_FALSE(r.converged);
+  EXPECT_LE(r.iterations, 40);
+  EXPECT_EQ(r.held.value, arm.hand.value);
+  const double k = static_cast<double>(d.failed_step + 1) / steps;
+  const Vec3 t = (1 - k) * start + k * goal;
+  const double bend = t.norm() > LimitedArm::reach(LimitedArm::bend_min) ? LimitedArm::bend_min
+                                                                         : LimitedArm::bend_max;
+  const double reach = LimitedArm::reach(bend);
+  EXPECT_NEAR(r.distance_left, std::abs(t.norm() - reach), 1e-9);
+  EXPECT_NE(r.message.find("'hand'"), std::string::npos) << r.message;
+  // The nearest pose: valid, the elbow at its limit, the hand on the line to the target (the
+  // distance is of second order in an error of the pose there, so the pose is known to the root
+  // of the distance's precision).
+  ASSERT_EQ(r.poses.size(), arm.m.poses().size());
+  expect_joints_hold(arm.m, 1e-9, &r.poses);
+  const double direction = std::atan2(t.y(), t.x());
+  const Pose& upper = r.poses[static_cast<size_t>(arm.upper.value)];
+  const Pose& forearm = r.poses[static_cast<size_t>(arm.forearm.value)];
+  EXPECT_NEAR(std::remainder(angle_of(forearm) - angle_of(upper) - bend, 2 * kPi), 0, 1e-9);
+  EXPECT_NEAR(std::remainder(angle_of(upper) - LimitedArm::shoulder(direction, bend), 2 * kPi), 0,
+              1e-4);
+  EXPECT_LT((r.poses[static_cast<size_t>(arm.hand.value)].x - reach * t.normalized()).norm(), 1e-4);
+  // The step names the hand's joint, which holding the hand at its target leaves open, and the
+  // elbow at its limit.
+  ASSERT_EQ(r.constraints.size(), 3u);
+  EXPECT_FALSE(r.constraints[2].satisfied);
+  EXPECT_TRUE(r.constraints[1].at_limit);
+  // A step that failed leaves the model at the last good step.
+  ASSERT_EQ(done.size(), static_cast<size_t>(d.failed_step));
+  expect_unchanged(arm.m, done.back());
+  expect_joints_hold(arm.m, 1e-9);
 }
 
 // A 2-link arm (links 2 and 1.5, a hand pinned at its tip) whose hand is dragged to (3, 2.5),
@@ -138,6 +254,181 @@ TEST(Reach, ThousandLinkChainStopsAtTheFirstStepOutOfReach) {
   // Left at step 1, joints holding.
   ASSERT_EQ(steps.size(), 1u);
   EXPECT_EQ(c.m.body(end).pose.x, steps[0][static_cast<size_t>(end.value)].x);
+  expect_joints_hold(c.m, 1e-9);
+}
+
+// Toward 3.45 from the shoulder (beyond r(0.5) = 3.3935; the links stretch to 3.5): the elbow
+// stops at 0.5 rad.
+TEST(Reach, ArmPastItsElbowLimitStopsAtTheNearestPose) {
+  expect_arm_stops_at_its_limit(3.45 * Vec3(std::cos(0.9), std::sin(0.9), 0), 10);
+}
+
+// Toward 1.2 from the shoulder (inside r(2) = 1.9373): the elbow stops at 2 rad.
+TEST(Reach, ArmFoldedPastItsElbowLimitStopsAtTheNearestPose) {
+  expect_arm_stops_at_its_limit(1.2 * Vec3(std::cos(2.0), std::sin(2.0), 0), 20);
+}
+
+// A crank-rocker four-bar (ground 3, crank 1, coupler 3, rocker 2; pivots at the origin and at
+// (3, 0)) with a hand pinned at the rocker's tip B: the loop lets B swing only between the
+// rocker's dead points, where crank and coupler are in line (|B| = 2 and |B| = 4). A target off
+// B's circle and angularly past the dead point |B| = 4 at E = (3.5, sqrt(3.75)) is out of reach
+// because of the loop (each link alone reaches it); the nearest pose puts B at E.
+struct FourBar {
+  Model m;
+  BodyId crank, coupler, rocker, hand;
+  FourBar() {
+    const Vec3 a(0, 1, 0);  // the crank at 90 degrees
+    // B: 3 from A and 2 from the rocker's pivot, the upper branch.
+    const Vec3 d(3, 0, 0);
+    const double ad = (d - a).norm();
+    const double along = (9 - 4 + ad * ad) / (2 * ad);
+    const Vec3 u = (d - a) / ad;
+    const Vec3 b = a + along * u + std::sqrt(9 - along * along) * Vec3(-u.y(), u.x(), 0);
+    crank = add_bar(m, "crank", Vec3::Zero(), std::atan2(a.y(), a.x()), 1);
+    coupler = add_bar(m, "coupler", a, std::atan2(b.y() - a.y(), b.x() - a.x()), 3);
+    rocker = add_bar(m, "rocker", d, std::atan2(b.y(), b.x() - 3), 2);
+    Body h;
+    h.name = "hand";
+    h.pose = Pose::from(b, Vec3::Zero());
+    hand = m.add_body(h);
+    m.add_joint(revolute(Model::kWorld, crank, Vec3::Zero()));
+    m.add_joint(revolute(crank, coupler, Vec3(1, 0, 0)));
+    Joint cr = revolute(coupler, rocker, Vec3(3, 0, 0));
+    cr.p2 = Vec3(2, 0, 0);
+    m.add_joint(cr);
+    m.add_joint(revolute(Model::kWorld, rocker, d));
+    Joint w;
+    w.body1 = rocker;
+    w.body2 = hand;
+    w.has_hinge = true;
+    w.p1 = Vec3(2, 0, 0);
+    m.add_joint(w);
+  }
+  static Vec3 dead_point() { return Vec3(3.5, std::sqrt(3.75), 0); }
+  // Off the circle (1 from the rocker's pivot), at 60 degrees: past the dead point at 75.5 (the
+  // distance to B grows with the angle between them), 3.6 from the crank's pivot (crank and
+  // coupler reach 4: the joints' lengths do not tell it).
+  static Vec3 target() {
+    const double a = 60 * kPi / 180;
+    return Vec3(3, 0, 0) + 1.0 * Vec3(std::cos(a), std::sin(a), 0);
+  }
+};
+
+TEST(Reach, FourBarPastItsDeadPointStopsThere) {
+  FourBar f;
+  ASSERT_TRUE(assemble(f.m).converged);
+  const std::vector<Pose> before = f.m.poses();
+  Dragger drag(f.m, f.hand);
+  const SolveResult r = drag.move_to(Pose::from(FourBar::target(), Vec3::Zero()));
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_FALSE(r.converged);
+  EXPECT_LE(r.iterations, 40);
+  EXPECT_NEAR(r.distance_left, (FourBar::target() - FourBar::dead_point()).norm(), 1e-9);
+  expect_joints_hold(f.m, 1e-9, &r.poses);
+  // B is at the dead point (where it moves only to second order: the pose to the root of the
+  // distance's precision), crank and coupler in line.
+  EXPECT_LT((r.poses[static_cast<size_t>(f.hand.value)].x - FourBar::dead_point()).norm(), 1e-4);
+  EXPECT_NEAR(std::remainder(angle_of(r.poses[static_cast<size_t>(f.crank.value)]) -
+                                 angle_of(r.poses[static_cast<size_t>(f.coupler.value)]),
+                             2 * kPi),
+              0, 1e-4);
+  expect_unchanged(f.m, before);
+}
+
+// The same pull as a workbench's mouse drag makes it (Puller): the model goes to the nearest
+// pose, joints exact; a reachable point is met.
+TEST(Reach, PullerMovesTheModelToTheNearestPose) {
+  FourBar f;
+  ASSERT_TRUE(assemble(f.m).converged);
+  Puller pull(f.m, f.hand, Vec3::Zero());
+  const SolveResult r = pull.pull_to(FourBar::target());
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_FALSE(r.converged);
+  EXPECT_LE(r.iterations, 40);
+  EXPECT_NEAR(r.distance_left, (FourBar::target() - FourBar::dead_point()).norm(), 1e-9);
+  EXPECT_EQ(r.constraints.size(), 5u);
+  EXPECT_TRUE(r.violated().empty());
+  EXPECT_LT((f.m.body(f.hand).pose.x - FourBar::dead_point()).norm(), 1e-4);
+  expect_joints_hold(f.m, 1e-9);
+  // Back on the arc: B at 100 degrees from the rocker's pivot is reached.
+  const Vec3 on(3 + 2 * std::cos(100 * kPi / 180), 2 * std::sin(100 * kPi / 180), 0);
+  const SolveResult back = pull.pull_to(on);
+  EXPECT_TRUE(back.converged) << back.message;
+  EXPECT_LE(back.iterations, 40);
+  EXPECT_LT((f.m.body(f.hand).pose.x - on).norm(), 1e-9);
+  expect_joints_hold(f.m, 1e-9);
+  EXPECT_THROW(Puller(f.m, Model::kWorld, Vec3::Zero()), std::invalid_argument);
+}
+
+// A slider on a segment of the x axis from 0 to 2 dragged past its end and off the line: it stops
+// at the end, (2, 0, 0).
+TEST(Reach, SliderPastItsBoundStopsAtTheEnd) {
+  Model m;
+  Body b;
+  b.name = "slider";
+  b.pose = Pose::from(Vec3(1, 0, 0), Vec3::Zero());
+  const BodyId slider = m.add_body(b);
+  Joint j;
+  j.body2 = slider;
+  j.guide = Guide{GuideKind::Axial, Vec3::UnitX(), 0, 2, 0, {}};
+  m.add_joint(j);
+  ASSERT_TRUE(assemble(m).converged);
+  const std::vector<Pose> before = m.poses();
+  Dragger drag(m, slider);
+  const Vec3 t(2.5, 0.3, 0.2);
+  const SolveResult r = drag.move_to(Pose::from(t, Vec3::Zero()));
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_LE(r.iterations, 40);
+  EXPECT_NEAR(r.distance_left, (t - Vec3(2, 0, 0)).norm(), 1e-9);
+  EXPECT_LT((r.poses[static_cast<size_t>(slider.value)].x - Vec3(2, 0, 0)).norm(), 1e-9);
+  EXPECT_TRUE(r.constraints[0].at_limit);
+  expect_unchanged(m, before);
+}
+
+// The robot arm sample dragged beyond its elbow's limit (it never quite straightens: 0.2 rad at
+// least, so the hand reaches 2 cos(0.1) from the shoulder at (0, 0.5, 0), short of the links'
+// 2): the first step past that is out of reach, told within a few dozen iterations.
+TEST(Reach, RobotArmPastItsElbowLimitIsOutOfReach) {
+  ParseResult parsed = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/robot-arm.dcl");
+  ASSERT_TRUE(parsed.ok()) << parsed.messages();
+  Model m = std::move(*parsed.model);
+  const BodyId hand = *m.find("hand");
+  ASSERT_TRUE(assemble(m).converged);
+  Pose away = m.body(hand).pose;
+  away.x = Vec3(3, 0.5, 0);
+  const int steps = 40;
+  const Pose start = m.body(hand).pose;
+  const DragResult d = drag(m, hand, away, steps);
+  ASSERT_FALSE(d.converged);
+  const SolveResult& out = d.steps.back();
+  ASSERT_EQ(out.status, SolveStatus::OutOfReach) << out.message;
+  EXPECT_LE(out.iterations, 40);
+  const double t = static_cast<double>(d.failed_step + 1) / steps;
+  const Vec3 target = (1 - t) * start.x + t * away.x;
+  const Vec3 shoulder(0, 0.5, 0);
+  EXPECT_NEAR(out.distance_left, (target - shoulder).norm() - 2 * std::cos(0.1), 1e-9);
+  EXPECT_TRUE(out.constraints[2].at_limit) << d.message;
+}
+
+// The reachable step before the 1,000-link chain's first out of reach (0.04 short of stretched,
+// from the gently curved pose) is made, the end exactly at its target. Not yet in a few dozen
+// iterations: the pull crawls there as the held Newton steps do (the first-order model of a
+// nearly stretched chain sees no way to change its reach), so after 40 iterations the held solve
+// takes over from where the step began (295 iterations of its own; docs/performance.md).
+TEST(Reach, ThousandLinkChainNearFullStretchConverges) {
+  const int n = 1000;
+  std::vector<double> lengths(n, 1.0), angles(n);
+  for (int i = 0; i < n; ++i) angles[static_cast<size_t>(i)] = 0.02 * std::sin(0.05 * (i + 1));
+  Chain c(lengths, angles, false);
+  ASSERT_TRUE(assemble(c.m).converged);
+  const BodyId end = c.bars.back();
+  const Pose start = c.m.body(end).pose;
+  const Pose target{start.q, start.x.normalized() * (n - 1 - 0.04)};
+  Dragger drag(c.m, end);
+  const SolveResult r = drag.move_to(target);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LE(r.iterations, 400);
+  EXPECT_EQ(c.m.body(end).pose.x, target.x);
   expect_joints_hold(c.m, 1e-9);
 }
 

@@ -1,0 +1,27 @@
+// A pull (Session::pull): one joint of a group is soft, the others hard; the group moves so
+// that the soft joint's residual is as small as the hard joints allow. Internal to the solver.
+#pragma once
+
+#include <vector>
+
+#include "dispcon/solve/polish.hpp"
+
+namespace dispcon {
+
+struct PullOutcome {
+  int iterations = 0;       // Newton steps taken (pull steps and corrections)
+  bool holds = false;       // the hard joints hold within the tolerance at the poses left
+  double distance = 0;      // the soft joint's residual there
+  double hard = 0;          // the hard joints' largest residual there
+  bool stationary = false;  // stopped because no step gets nearer (else: reached, or the cap)
+};
+
+// Pulls from the group's current poses (they are left at the nearest poses found; where the hard
+// joints cannot be made to hold, at those given). `soft` has one entry per joint, all zero; it is
+// used as scratch for the pull joint's damping. `max_iterations` caps the Newton steps.
+PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
+                       PolishWork& work, std::vector<double>& band, const SolveOptions& o,
+                       std::vector<double>& soft, std::vector<Pose>& before,
+                       std::vector<double>& joint_r);
+
+}  // namespace dispcon
