@@ -4,11 +4,15 @@
 //   BM_DragStep_OutOfReach/<n>  one step held 0.02 beyond the n - 1 links' reach: told, not solved
 //   BM_DragStep_NearStretch/<n> the reachable step before it (0.04 short of full stretch), from
 //                               the same curved pose each time
+//   BM_DragStep_PastLimit       the robot arm's hand (samples/robot-arm.dcl) dragged toward
+//                               (3, 0.5, 0) in 40 steps: the first step beyond its elbow's limit
+//                               (the links would reach it), told out of reach with the nearest pose
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <string>
 
+#include "common.hpp"
 #include "dispcon/solve/solver.hpp"
 
 namespace {
@@ -79,5 +83,33 @@ void BM_DragStep_NearStretch(benchmark::State& state) {
   state.counters["iterations"] = iterations;
 }
 BENCHMARK(BM_DragStep_NearStretch)->Arg(1000)->Iterations(3)->Unit(benchmark::kMillisecond);
+
+void BM_DragStep_PastLimit(benchmark::State& state) {
+  Model m = bench::sample("robot-arm.dcl");
+  assemble(m);
+  const BodyId hand = *m.find("hand");
+  const Pose start = m.body(hand).pose;
+  Pose away = start;
+  away.x = Vec3(3, 0.5, 0);
+  const int steps = 40;
+  Dragger drag(m, hand);
+  Pose target = start;
+  for (int k = 1; k <= steps; ++k) {  // up to the first step out of reach
+    const double t = static_cast<double>(k) / steps;
+    target.x = (1 - t) * start.x + t * away.x;
+    if (!drag.move_to(target).converged) break;
+  }
+  const std::vector<Pose> last = m.poses();
+  int iterations = 0;
+  for (auto _ : state) {
+    const SolveResult r = drag.move_to(target);
+    if (r.status != SolveStatus::OutOfReach) state.SkipWithError("not told out of reach");
+    if (m.poses()[static_cast<size_t>(hand.value)].x != last[static_cast<size_t>(hand.value)].x)
+      state.SkipWithError("a failed step moved the model");
+    iterations = r.iterations;
+  }
+  state.counters["iterations"] = iterations;
+}
+BENCHMARK(BM_DragStep_PastLimit)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

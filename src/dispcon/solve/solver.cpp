@@ -116,9 +116,6 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
     // After a Newton step the next may reuse its factorisation; a chord step that gained less
     // than a hundredfold asks for a new one.
     p.chord = !chord || next < 0.01 * p.r;
-    // A full Newton step that does not halve the violation is not converging quadratically: a
-    // session that stops when stuck stops here (stalled, the step kept).
-    if (stuck == Session::Stuck::Stop && !chord && next > 0.5 * p.r) p.stalled = true;
     p.r = next;
     p.lambda = std::max(1e-12, p.lambda * 0.1);
     return;
