@@ -4,8 +4,8 @@ dispcon, every mouse event; the whole drag is one undo step. Esc during a drag p
 back and leaves no undo step.
 
 During the drag only what is drawn moves: each moving part's Coin3D transform (the one FreeCAD
-sets from its Placement) and the joints' markers take the solved poses every frame, and the
-Placements are written once, at release. Writing a Placement goes through FreeCAD's document
+sets from its Placement) takes the solved pose every frame, and the Placements are written once,
+at release (the joints' markers, hidden meanwhile, follow them then). Writing a Placement goes through FreeCAD's document
 (change signals, the undo record, the tree, the observers): for a hundred parts that cost more
 than the solve and the redraw together (docs/performance.md). The view is drawn lighter
 meanwhile (Lighter: no navigation cube, no markers, the parts' edges only), as CAD tools draw a
@@ -17,7 +17,6 @@ modal tools: `_active` is that one."""
 import FreeCAD as App
 import FreeCADGui as Gui
 
-from . import markers
 from .objects import placed_parts
 from .operations import PointDrag
 
@@ -46,12 +45,6 @@ def _transform_of(part):
     return t
 
 
-def _placement_of(translation, rotation):
-    """The placement a part's SoTransform fields draw it at."""
-    return App.Placement(App.Vector(*translation.getValue().getValue()),
-                         App.Rotation(*rotation.getValue().getValue()))
-
-
 class Shown:
     """What a drag moves on screen: the Coin3D transforms of the objects that can move (parts,
     and the parts of sub-assemblies: every object the adapter has a body frame for), set from
@@ -61,18 +54,17 @@ class Shown:
     the drag's one undo step writes them all (`put_back()`), so that undo returns it where it
     was.
 
-    The joints' markers ride on their part 1's transform for the drag: that SoTransform is put
-    into the marker's own root, ahead of the marker's transform, which holds the marker's frame
-    in the part's frame meanwhile; `end()` takes it out again and puts the marker back in world
-    terms. So a frame sets one transform per part, not one per part and one per marker.
+    The joints' markers are hidden during a drag (Lighter) and stay where they are: the
+    Placements written at release (or put back after Esc) place them, as at rest. Carrying
+    them on their parts' transforms gave each transform several parents, and each
+    notification walked up every one of them (0.76 -> 0.36-0.44 ms a frame for the rotations of
+    a hundred parts without them).
 
     A frame sets each transform's translation with its field's notification off and its
     rotation with it on: one notification per part (each walks up the scene graph, invalidating
     caches) instead of two. `end()` turns them back on."""
 
     def __init__(self, adapter):
-        from . import viewproviders
-
         model = adapter.model
         self.adapter = adapter
         doc = adapter.asm.Document
@@ -83,7 +75,6 @@ class Shown:
         # at every access).
         self.transforms = []
         self.written = []  # (part, its Placement before the drag): written each frame
-        shown = {}  # object name -> its SoTransform
         for name, (body, local) in adapter.frames.items():
             obj = doc.getObject(name)
             if body not in moving or obj is None:
@@ -91,32 +82,8 @@ class Shown:
             t = _transform_of(obj)
             if t is not None:
                 self.transforms.append((rows[body], local, t.translation, t.rotation, obj))
-                shown[name] = t
             elif hasattr(obj, "Shape") or obj.TypeId == "App::Link":  # drawn some other way
                 self.written.append((obj, obj.Placement))
-        # The markers, where viewproviders' follow() puts them, in part 1's frame: carried by
-        # part 1's transform when it has one, else placed each frame from its body's pose.
-        self.carried = []  # (marker, part 1's SoTransform)
-        self.markers = []  # (row, part 1 in its body's frame or None, marker, marker in part 1's frame)
-        self.joints = []  # (marker, joint): every marker the drag moves
-        for j in adapter.joints:
-            proxy = viewproviders.joint_view(j)
-            ref = getattr(j, "Reference1", None)
-            part1 = ref[0] if ref else None
-            if proxy is None or part1 is None or part1.Name not in adapter.frames:
-                continue
-            body, local = adapter.frames[part1.Name]
-            at = markers.joint_placement(j)
-            if body not in moving or at is None:
-                continue
-            marker, on_part = proxy.marker, App.Placement(part1.Placement).inverse().multiply(at)
-            self.joints.append((marker, j))
-            if part1.Name in shown:
-                marker.root.insertChild(shown[part1.Name], 0)
-                marker.set_placement(on_part)
-                self.carried.append((marker, shown[part1.Name]))
-            else:
-                self.markers.append((rows[body], local, marker, on_part))
         for _, _, translation, _, _ in self.transforms:
             translation.enableNotify(False)
 
@@ -138,24 +105,16 @@ class Shown:
                 rotation.setValue(*pl.Rotation.Q)
         for p, _ in self.written:
             p.Placement = self.adapter.placement_of(p)
-        for k, local, marker, on_part in self.markers:
-            marker.set_placement(self._pose(poses[k], local).multiply(on_part))
 
     def put_back(self):
         for p, start in self.written:
             p.Placement = start
 
     def end(self):
-        """The drag is over: the transforms notify again, and the markers stand on their own
-        where they are drawn now (the Placements written next put them there again)."""
+        """The drag is over: the transforms notify again."""
         for _, _, translation, _, _ in self.transforms:
             translation.enableNotify(True)
             translation.touch()
-        for marker, t in self.carried:
-            on_part = _placement_of(marker._translation, marker._rotation)
-            marker.root.removeChild(t)
-            marker.set_placement(_placement_of(t.translation, t.rotation).multiply(on_part))
-        self.carried = []
 
     def restore(self):
         """Everything drawn back where the document has it (the Placements were never written)."""
@@ -165,10 +124,6 @@ class Shown:
             pl = obj.Placement
             translation.setValue(pl.Base.x, pl.Base.y, pl.Base.z)
             rotation.setValue(*pl.Rotation.Q)
-        for marker, j in self.joints:
-            at = markers.joint_placement(j)
-            if at is not None:
-                marker.set_placement(at)
 
 
 def _holding(node, type_name):
@@ -269,7 +224,7 @@ class DragMode:
         self.drag = None
         self.shown = None
         # What the frames cost, from the first drag of this mode (a test reads them): the
-        # solver, the writes (transforms and markers; the Placements at release) and how many;
+        # solver, the writes (the transforms; the Placements at release) and how many;
         # wall time, and this thread's CPU time (what they cost when the machine is shared).
         self.frames = 0
         self.solver_seconds = self.solver_cpu = 0.0
