@@ -9,6 +9,7 @@
 
 #include "dispcon/solve/block_ldlt.hpp"
 #include "dispcon/solve/group.hpp"
+#include "dispcon/solve/huge_pages.hpp"
 
 namespace dispcon {
 
@@ -22,7 +23,7 @@ struct PolishWork {
     int v1 = -1, v2 = -1;  // unknowns of the two bodies, -1 when the body does not move
     Vec6 j1, j2;           // the row's two 6-blocks
   };
-  std::vector<Entry> rows_;
+  HugeVector<Entry> rows_;  // tens of megabytes in the largest models
   std::vector<double> residual_;
   std::vector<int> var_start_, fill_;          // rows of body v: var_rows_[var_start_[v] ...]
   std::vector<std::pair<int, int>> var_rows_;  // (row, side 1 or 2)

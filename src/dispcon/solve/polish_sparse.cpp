@@ -69,7 +69,7 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
 
 // Whether the rows join the same bodies as when the sparse system was analysed.
 bool Polisher::same_pattern() const {
-  const std::vector<Entry>& rows = w_->rows_;
+  const auto& rows = w_->rows_;
   if (!analyzed_ || analyzed_pattern_.size() != 2 * rows.size()) return false;
   for (size_t a = 0; a < rows.size(); ++a) {
     if (rows[a].v1 != analyzed_pattern_[2 * a] || rows[a].v2 != analyzed_pattern_[2 * a + 1]) {

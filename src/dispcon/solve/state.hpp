@@ -9,6 +9,7 @@
 #include "dispcon/parts/coupling.hpp"
 #include "dispcon/parts/nearest.hpp"
 #include "dispcon/parts/part.hpp"
+#include "dispcon/solve/huge_pages.hpp"
 #include "dispcon/solve/solver.hpp"
 
 namespace dispcon {
@@ -76,7 +77,7 @@ class SolverState {
   SolverState(const Model& model, const std::vector<Pose>& poses, const SolveOptions& options,
               const std::vector<bool>& held);
 
-  std::vector<BodyState> bodies;
+  HugeVector<BodyState> bodies;  // tens of megabytes in the largest models
   std::vector<JointState> joints;
 
   void write_poses(std::vector<Pose>& poses) const;
