@@ -15,39 +15,39 @@ Vec3 clamp_norm(const Vec3& v, double limit) {
 // then the same for translations (from the rotated positions, eq. 19, or from the same positions
 // as the rotations, eq. 15).
 void jacobi_iteration(SolverState& s, const Group& group, const SolveOptions& o) {
+  std::vector<Vec3>& turn = s.proposed_turn;
+  std::vector<Vec3>& move = s.proposed_move;
   for (int b : group.bodies) {
-    s.bodies[static_cast<size_t>(b)].dR.setZero();
-    s.bodies[static_cast<size_t>(b)].dx.setZero();
+    turn[static_cast<size_t>(b)].setZero();
+    move[static_cast<size_t>(b)].setZero();
   }
   // Only the group's own (movable) bodies are written: groups may run on several threads, and
   // the bodies that cannot move (the world, fixed parts) are shared between them.
   Vec3 d1, d2;
-  auto add = [&](int b, Vec3 BodyState::*field, const Vec3& d, double w) {
-    BodyState& body = s.bodies[static_cast<size_t>(b)];
-    if (body.movable) body.*field += w * d;
+  auto add = [&](std::vector<Vec3>& sum, int b, const Vec3& d, double w) {
+    if (s.bodies[static_cast<size_t>(b)].movable) sum[static_cast<size_t>(b)] += w * d;
   };
   auto add_translations = [&](const JointState& js) {
     s.propose_translations(js, d1, d2);
-    add(js.b1, &BodyState::dx, d1, js.w);
-    add(js.b2, &BodyState::dx, d2, js.w);
+    add(move, js.b1, d1, js.w);
+    add(move, js.b2, d2, js.w);
   };
   for (int c : group.joints) {
     const JointState& js = s.joints[static_cast<size_t>(c)];
     s.propose_rotations(js, d1, d2);
-    add(js.b1, &BodyState::dR, d1, js.w);
-    add(js.b2, &BodyState::dR, d2, js.w);
+    add(turn, js.b1, d1, js.w);
+    add(turn, js.b2, d2, js.w);
     if (!o.translate_after_rotate) add_translations(js);
   }
   for (int b : group.bodies) {
-    BodyState& body = s.bodies[static_cast<size_t>(b)];
-    body.displace(clamp_norm(body.dR, o.max_rotation_step), Vec3::Zero());
+    s.bodies[static_cast<size_t>(b)].displace(
+        clamp_norm(turn[static_cast<size_t>(b)], o.max_rotation_step), Vec3::Zero());
   }
   if (o.translate_after_rotate) {
     for (int c : group.joints) add_translations(s.joints[static_cast<size_t>(c)]);
   }
   for (int b : group.bodies) {
-    BodyState& body = s.bodies[static_cast<size_t>(b)];
-    body.displace(Vec3::Zero(), body.dx);
+    s.bodies[static_cast<size_t>(b)].displace(Vec3::Zero(), move[static_cast<size_t>(b)]);
   }
 }
 

@@ -59,7 +59,7 @@ void BodyState::set_pose(const Pose& pose) {
   x = pose.x;
   R = q.toRotationMatrix();
   G = R * c + x;
-  K = physics ? Mat3(m * R * inertia_inv_local * R.transpose()) : Mat3(k * Mat3::Identity());
+  if (physics) K = m * R * inertia_local->inverse() * R.transpose();
 }
 
 void BodyState::displace(const Vec3& dRot, const Vec3& dTrans) {
@@ -67,7 +67,7 @@ void BodyState::displace(const Vec3& dRot, const Vec3& dTrans) {
   R = q.toRotationMatrix();
   G += dTrans;
   x = G - R * c;
-  if (physics) K = m * R * inertia_inv_local * R.transpose();
+  if (physics) K = m * R * inertia_local->inverse() * R.transpose();
 }
 
 SolverState::SolverState(const Model& model, const std::vector<Pose>& poses,
@@ -75,17 +75,22 @@ SolverState::SolverState(const Model& model, const std::vector<Pose>& poses,
   const int nb = model.body_count();
   bodies.resize(static_cast<size_t>(nb));
   const std::vector<double> k = model.abilities_to_rotate();
+  if (options.scheme == Scheme::Jacobi) {
+    proposed_turn.resize(static_cast<size_t>(nb));
+    proposed_move.resize(static_cast<size_t>(nb));
+  }
   for (int i = 0; i < nb; ++i) {
     const Body& b = model.body(BodyId{i});
     BodyState& s = bodies[static_cast<size_t>(i)];
     s.c = b.center;
     s.movable = !b.fixed && !(i < static_cast<int>(held.size()) && held[static_cast<size_t>(i)]);
     s.physics = options.use_physics && b.has_physics();
-    s.k = k[static_cast<size_t>(i)];
     if (s.physics) {
       s.m = *b.mass;
       s.inv_m = 1 / s.m;
-      s.inertia_inv_local = b.inertia->inverse();
+      s.inertia_local = &*b.inertia;
+    } else {
+      s.K = k[static_cast<size_t>(i)] * Mat3::Identity();
     }
     s.set_pose(poses.at(static_cast<size_t>(i)));
   }

@@ -14,23 +14,25 @@
 
 namespace dispcon {
 
+// What a body needs during a solve, and no more: the largest models hold a hundred thousand of
+// these, which every pass of the iteration reads (416 bytes a body before the physics-only
+// inertia and the Jacobi iteration's sums left it, 288 now).
 struct BodyState {
   Quat q = Quat::Identity();
   Mat3 R = Mat3::Identity();
   Vec3 x = Vec3::Zero();
-  Vec3 c = Vec3::Zero();  // centre, local
-  Vec3 G = Vec3::Zero();  // centre, world
-  bool movable = false;
-  bool physics = false;  // K = m J^-1 (world) rather than k I
-  double k = 1;          // no-physics ability to rotate
-  double m = 1;          // mass (1 without physics)
-  double inv_m = 1;      // 1 / m, so the polish multiplies
-  Mat3 inertia_inv_local = Mat3::Identity();
+  Vec3 c = Vec3::Zero();      // centre, local
+  Vec3 G = Vec3::Zero();      // centre, world
   Mat3 K = Mat3::Identity();  // m J^-1 or k I, world frame
-  Vec3 dR = Vec3::Zero();     // accumulated proposals of one iteration
-  Vec3 dx = Vec3::Zero();
+  double m = 1;               // mass (1 without physics)
+  double inv_m = 1;           // 1 / m, so the polish multiplies
+  // The body's inertia J in its own frame, with physics only (the model's: the state, like its
+  // joints, lives no longer than its model).
+  const Mat3* inertia_local = nullptr;
   int n = 0;       // active joints on this body (seed 3.2's n_i)
   int n_var = -1;  // index among the unknowns of the Newton polish
+  bool movable = false;
+  bool physics = false;  // K = m J^-1 (world) rather than k I
 
   void set_pose(const Pose& pose);
   Pose pose() const { return Pose{q, x}; }
@@ -79,6 +81,9 @@ class SolverState {
 
   HugeVector<BodyState> bodies;  // tens of megabytes in the largest models
   std::vector<JointState> joints;
+  // The Jacobi iteration's sums of the proposals of one iteration, per body (sized only when
+  // the options ask for that scheme).
+  std::vector<Vec3> proposed_turn, proposed_move;
 
   void write_poses(std::vector<Pose>& poses) const;
   // Reads new poses; each coupling's turns are unwrapped next to the last ones seen.
