@@ -539,53 +539,47 @@ class Drag(_Motion):
 class PointDrag(_Motion):
     """A mouse drag: the grabbed point of `part` is pulled towards a moving world point (the
     cursor on the plane through the grab point), the part free to turn as the linkage needs.
-    Each event: first solve with a joint from the cursor to the grabbed point; when the linkage
-    cannot put the point there (a 1-DOF linkage's point moves on a curve), keep the compromise
-    that pull reached and solve again without it, so the linkage goes as near as it can, joints
-    exact, by continuity (no jump to another branch). One undo step for the whole drag; with
+    Each event is one pull of the engine's Puller: every joint stays exact while the point is
+    drawn toward the cursor; where the linkage cannot put it there (a 1-DOF linkage's point moves
+    on a curve, a limit, a dead point) the linkage goes to the nearest pose it allows, from the
+    pose it had (continuity: no jump to another branch). One undo step for the whole drag; with
     live=False the Placements are written once, by finish() (the model holds the poses)."""
+
+    # A frame's pull stops after this many iterations when the point is still getting nearer
+    # (the cursor well off a stretched linkage's reach): the model then holds the pose reached,
+    # joints exact, and the next frame goes on from it (docs/performance.md).
+    MAX_ITERATIONS = 20
 
     def __init__(self, asm, part, grab_world, live=True):
         self.asm = _assembly(asm)
         self.adapter = Adapter(asm)
         self.part = part
         name, local = _movable(self.adapter, part)
-        model = self.adapter.model
         _holding(asm, self.adapter)
         body = part.Placement if local is None else part.Placement.multiply(local.inverse())
         grab_local = geometry.to_local(body, point=grab_world)
-        tol = tolerance(asm)
         with self.adapter.engine_errors():
-            # The mouse joint is active at time 0 only: `pull` sees it, `settle` does not.
-            # Where the cursor is out of reach (a 1-DOF linkage's point moves on a curve), the
-            # pull never converges and runs to its cap: 20 iterations find the same compromise
-            # as 60 (within 0.5 % of the gap to the cursor, 40 frames of a 100-part chain) in
-            # 0.4 of the time; 5 fall behind the cursor (docs/performance.md).
-            self.handle = model.add_joint(name, hinge=(_vec(grab_world), _vec(grab_local)),
-                                          time=(-1.0, 0.5), label="mouse")
-            self.pull = model.session(tolerance=tol, max_iterations=20, time=0.0)
-            self.settle = model.session(tolerance=tol, max_iterations=500, time=1.0)
+            self.puller = self.adapter.model.puller(name, point=_vec(grab_local),
+                                                    tolerance=tolerance(asm),
+                                                    max_iterations=self.MAX_ITERATIONS)
         self._begin(asm, part, live)
         self.frames = 0
         self.solver_seconds = 0.0
 
     def move(self, target):
-        """Pulls the grabbed point towards `target`; returns whether the linkage holds."""
+        """Pulls the grabbed point towards `target`; returns whether the linkage holds (the
+        engine leaves the model as it was otherwise)."""
         import time
 
         t0 = time.perf_counter()
-        model = self.adapter.model
-        model.set_hinge(self.handle, p1=_vec(target))
-        before = model.poses()  # one call: a hundred bodies read one by one cost a millisecond
-        ok = self.pull.solve(keep_best=True).converged or self.settle.solve().converged
-        if not ok:  # nothing could be made: back to where it was
-            model.set_poses(before)
-        else:
+        with self.adapter.engine_errors():
+            r = self.puller.pull_to(_vec(target))
+        ok = r.converged or r.status in ("out-of-reach", "iteration-limit")
+        if ok:
             self._solved()
         self.frames += 1
         self.solver_seconds += time.perf_counter() - t0
         return ok
-
 
 
 def drag(asm, part, placement, steps=None):
