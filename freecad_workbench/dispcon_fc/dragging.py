@@ -17,7 +17,7 @@ modal tools: `_active` is that one."""
 import FreeCAD as App
 import FreeCADGui as Gui
 
-from .objects import placed_parts
+from .objects import placed_parts, preferences
 from .operations import PointDrag
 
 _active = None
@@ -166,15 +166,17 @@ class Lighter:
     Under software OpenGL a frame of a hundred parts spent more on these than on anything
     else: the navigation cube, the 148 markers and the faces with their edges about 6-10,
     9-13 and 4-5 ms of CPU a frame (docs/performance.md). Everything here is state of the
-    view: no document property, no preference changes."""
+    view: no document property, no preference changes. With `simplified` False (the
+    preference "Simplified view during a drag" unticked) only the selection node is turned off:
+    the drag is drawn in full, slower."""
 
-    def __init__(self, view, adapter):
+    def __init__(self, view, adapter, simplified=True):
         from pivy import coin
 
         from . import viewproviders
 
         self.viewer = view.getViewer()
-        self.cube = self.viewer.isEnabledNaviCube()
+        self.cube = simplified and self.viewer.isEnabledNaviCube()
         if self.cube:
             self.viewer.setEnabledNaviCube(False)
         # The selection node's modes, by name (the enums' values are FreeCAD's business).
@@ -186,12 +188,14 @@ class Lighter:
                 self.modes.append((field, field.getValue()))
                 field.set(off)
         self.markers = []
+        self.switches = []  # (a part's display-mode switch, the child it showed)
+        if not simplified:
+            return
         for j in adapter.joints + [j for j, _ in adapter.skipped]:
             proxy = viewproviders.joint_view(j)
             if proxy is not None and proxy.marker.is_visible():
                 proxy.marker.set_visible(False)
                 self.markers.append(proxy.marker)
-        self.switches = []  # (a part's display-mode switch, the child it showed)
         doc = adapter.asm.Document
         for name in adapter.frames:
             root = getattr(getattr(doc.getObject(name), "ViewObject", None), "RootNode", None)
@@ -327,7 +331,8 @@ class DragMode:
                 App.Console.PrintMessage("Dispcon: %s\n" % e)
                 return
             self.shown = Shown(self.drag.adapter)
-            self.lighter = Lighter(self.view, self.drag.adapter)
+            self.lighter = Lighter(self.view, self.drag.adapter,
+                                   simplified=preferences()["LighterDrag"])
             self.part = part
             self.normal = self.view.getViewDirection()
             event_cb.setHandled()

@@ -58,7 +58,8 @@ def preferences():
         tolerance = default_tolerance
     iterations = p.GetInt("MaxIterations", default_iterations)
     steps = p.GetInt("DragSteps", DEFAULT_DRAG_STEPS)
-    return {"Tolerance": tolerance if 0 < tolerance < math.inf else default_tolerance,
+    return {"LighterDrag": p.GetBool("LighterDrag", True),
+            "Tolerance": tolerance if 0 < tolerance < math.inf else default_tolerance,
             "MaxIterations": iterations if iterations > 0 else default_iterations,
             "DragSteps": steps if steps > 0 else DEFAULT_DRAG_STEPS}
 

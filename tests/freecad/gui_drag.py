@@ -150,12 +150,13 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
     screen, or a 3D displacement of the grab point from where it starts; path(None) is the
     number of frames) in the document's own maximised window (seen
     isometric, or from the top), each frame's redraw waited for (the view's frames swapped);
-    returns the split per frame. With check: Esc cancels a first drag (everything back, no undo
+    returns the split per frame. With check: Esc cancels a first drag drawn in full (the
+    preference "Simplified view during a drag" unticked; everything back, no undo
     step), the drawn parts follow the engine during the drag in a lighter view (no navigation
     cube, no markers, edges only) while the document stays unchanged; released over another
     part, the drag ends; after release the Placements are the engine's poses, the markers and
     the full view are back, every joint holds to 1e-9 and one undo puts everything back."""
-    from dispcon_fc import viewproviders
+    from dispcon_fc import objects, viewproviders
 
     Gui.updateGui()
     Gui.setActiveDocument(doc.Name)
@@ -231,11 +232,21 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
         assert now == full, "the view is not put back after %s: %s, before the drag %s" % (after, now, full)
 
     if check:
-        # Esc during a drag: everything drawn goes back, the document never changed.
-        gw.mouse(view, "press", x, y)
-        for k in range(1, 6):
-            gw.mouse(view, "move", *cursor(k))
-        gw.mouse(view, "esc", 0, 0)
+        # Esc during a drag: everything drawn goes back, the document never changed. This one
+        # is drawn in full (the preference "Simplified view during a drag" unticked): the cube
+        # and the markers stay, only selection is off.
+        prefs = App.ParamGet(objects.PARAMETERS)
+        prefs.SetBool("LighterDrag", False)
+        try:
+            gw.mouse(view, "press", x, y)
+            for k in range(1, 6):
+                gw.mouse(view, "move", *cursor(k))
+            assert viewer.isEnabledNaviCube(), "the navigation cube went with the simplified view unticked"
+            assert shown_modes(asm) == full["parts"], "the parts were drawn lighter with the simplified view unticked"
+            assert [m.get() for m in modes] == ["OFF", "SEL_OFF"], "selection on during a full-view drag"
+            gw.mouse(view, "esc", 0, 0)
+        finally:
+            prefs.RemBool("LighterDrag")
         assert dragging._active is mode and mode.drag is None, "Esc did not cancel the drag alone"
         assert doc.UndoNames == undo, "a cancelled drag left an undo step: %s" % doc.UndoNames[:2]
         for p in moving:
