@@ -30,6 +30,16 @@ ITERATION_SERIES = [  # solves whose iteration count is a counter of the benchma
 ]
 
 
+def cases(src):
+    """A bench.json's cases, one per case by its plain name: with --benchmark_repetitions, the
+    median of the repetitions (the mean, spread and each repetition are left out)."""
+    runs = json.load(open(src))["benchmarks"]
+    if any(b.get("run_type") == "aggregate" for b in runs):
+        runs = [dict(b, name=b["run_name"]) for b in runs if b.get("aggregate_name") == "median"
+                or (b.get("error_occurred") and b.get("repetition_index", 0) == 0)]
+    return runs
+
+
 def collect(runs, table, value):
     series = []
     for prefix, label, colour, per in table:
@@ -85,7 +95,7 @@ def draw(series, dst, unit, log_y, title=""):
 
 
 def main(src, dst, iterations_dst=None):
-    runs = json.load(open(src))["benchmarks"]
+    runs = cases(src)
     draw(collect(runs, SERIES, millis), dst, " ms", True)
     if iterations_dst:
         # The benchmarks' "iterations" counter follows Google Benchmark's own "iterations" (the
