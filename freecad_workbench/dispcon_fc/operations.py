@@ -574,7 +574,10 @@ class PointDrag(_Motion):
         t0 = time.perf_counter()
         with self.adapter.engine_errors():
             r = self.puller.pull_to(_vec(target))
-        ok = r.converged or r.status in ("out-of-reach", "iteration-limit")
+        # Stopped short (the nearest pose, or the cap with the point still getting nearer): the
+        # engine moved the model only where every joint holds; a result naming a violated joint
+        # left it as it was.
+        ok = r.converged or (r.status in ("out-of-reach", "iteration-limit") and not r.violated)
         if ok:
             self._solved()
         self.frames += 1
