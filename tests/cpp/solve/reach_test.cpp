@@ -11,6 +11,16 @@
 namespace dispcon {
 namespace {
 
+// A pin (point to point: free to turn every way) from body1's point p1 to body2's origin.
+Joint pin(BodyId body1, BodyId body2, const Vec3& p1) {
+  Joint j;
+  j.body1 = body1;
+  j.body2 = body2;
+  j.has_hinge = true;
+  j.p1 = p1;
+  return j;
+}
+
 // A chain of bars pinned end to end, the first to the world at the origin: bar i's local x axis
 // runs from its start (its origin, pinned to the last bar's end) to its end at `lengths[i]`.
 // Bar i lies at angle angles[i] (radians, absolute, in the xy plane). A hand (a body at the last
@@ -19,6 +29,13 @@ struct Chain {
   Model m;
   std::vector<BodyId> bars;
   BodyId hand{-1};
+  // n unit links, link i turned by 0.02 sin(0.05 i) rad: a gently curved chain, nearly
+  // stretched (docs/performance.md's 1,000-link drag).
+  static Chain gently_curved(int n) {
+    std::vector<double> lengths(static_cast<size_t>(n), 1.0), angles(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) angles[static_cast<size_t>(i)] = 0.02 * std::sin(0.05 * (i + 1));
+    return Chain(lengths, angles, false);
+  }
   Chain(const std::vector<double>& lengths, const std::vector<double>& angles, bool with_hand) {
     Vec3 at = Vec3::Zero();
     BodyId last = Model::kWorld;
@@ -29,12 +46,7 @@ struct Chain {
       b.pose = Pose::from(at, Vec3(0, 0, angles[i]));
       b.center = Vec3(lengths[i] / 2, 0, 0);
       const BodyId id = m.add_body(b);
-      Joint j;
-      j.body1 = last;
-      j.body2 = id;
-      j.has_hinge = true;
-      j.p1 = last == Model::kWorld ? Vec3::Zero() : Vec3(last_length, 0, 0);
-      m.add_joint(j);
+      m.add_joint(pin(last, id, last == Model::kWorld ? Vec3::Zero() : Vec3(last_length, 0, 0)));
       at += lengths[i] * Vec3(std::cos(angles[i]), std::sin(angles[i]), 0);
       bars.push_back(id);
       last = id;
@@ -45,12 +57,7 @@ struct Chain {
       b.name = "hand";
       b.pose = Pose::from(at, Vec3::Zero());
       hand = m.add_body(b);
-      Joint j;
-      j.body1 = last;
-      j.body2 = hand;
-      j.has_hinge = true;
-      j.p1 = Vec3(last_length, 0, 0);
-      m.add_joint(j);
+      m.add_joint(pin(last, hand, Vec3(last_length, 0, 0)));
     }
   }
 };
@@ -74,11 +81,7 @@ void expect_unchanged(const Model& m, const std::vector<Pose>& before) {
 
 // A planar revolute (a hinge whose z axes stay parallel) from body1's point p1 to body2's origin.
 Joint revolute(BodyId body1, BodyId body2, const Vec3& p1) {
-  Joint j;
-  j.body1 = body1;
-  j.body2 = body2;
-  j.has_hinge = true;
-  j.p1 = p1;
+  Joint j = pin(body1, body2, p1);
   j.angle = AngleSpec{Vec3::UnitZ(), Vec3::UnitZ(), 0, 0};
   return j;
 }
@@ -115,12 +118,7 @@ struct LimitedArm {
     Joint e = revolute(upper, forearm, Vec3(l1, 0, 0));
     e.twist = TwistSpec{Vec3::UnitX(), Vec3::UnitX(), bend_min, bend_max};
     m.add_joint(e);
-    Joint w;
-    w.body1 = forearm;
-    w.body2 = hand;
-    w.has_hinge = true;
-    w.p1 = Vec3(l2, 0, 0);
-    m.add_joint(w);
+    m.add_joint(pin(forearm, hand, Vec3(l2, 0, 0)));
   }
   static double reach(double bend) {
     return std::sqrt(l1 * l1 + l2 * l2 + 2 * l1 * l2 * std::cos(bend));
@@ -230,9 +228,7 @@ TEST(Reach, ArmNearFullStretchStillConverges) {
 // is 999 links from the pinned one, its target 998.96 from it), step 2 is not.
 TEST(Reach, ThousandLinkChainStopsAtTheFirstStepOutOfReach) {
   const int n = 1000;
-  std::vector<double> lengths(n, 1.0), angles(n);
-  for (int i = 0; i < n; ++i) angles[static_cast<size_t>(i)] = 0.02 * std::sin(0.05 * (i + 1));
-  Chain c(lengths, angles, false);
+  Chain c = Chain::gently_curved(n);
   ASSERT_TRUE(assemble(c.m).converged);
   const BodyId end = c.bars.back();
   const Pose start = c.m.body(end).pose;
@@ -297,12 +293,7 @@ struct FourBar {
     cr.p2 = Vec3(2, 0, 0);
     m.add_joint(cr);
     m.add_joint(revolute(Model::kWorld, rocker, d));
-    Joint w;
-    w.body1 = rocker;
-    w.body2 = hand;
-    w.has_hinge = true;
-    w.p1 = Vec3(2, 0, 0);
-    m.add_joint(w);
+    m.add_joint(pin(rocker, hand, Vec3(2, 0, 0)));
   }
   static Vec3 dead_point() { return Vec3(3.5, std::sqrt(3.75), 0); }
   // Off the circle (1 from the rocker's pivot), at 60 degrees: past the dead point at 75.5 (the
@@ -420,9 +411,7 @@ TEST(Reach, RobotArmPastItsElbowLimitIsOutOfReach) {
 // takes over from where the step began (295 iterations of its own; docs/performance.md).
 TEST(Reach, ThousandLinkChainNearFullStretchConverges) {
   const int n = 1000;
-  std::vector<double> lengths(n, 1.0), angles(n);
-  for (int i = 0; i < n; ++i) angles[static_cast<size_t>(i)] = 0.02 * std::sin(0.05 * (i + 1));
-  Chain c(lengths, angles, false);
+  Chain c = Chain::gently_curved(n);
   ASSERT_TRUE(assemble(c.m).converged);
   const BodyId end = c.bars.back();
   const Pose start = c.m.body(end).pose;
