@@ -121,13 +121,13 @@ Joint joint_of_kind(const Model& model, const std::string& kind, const std::stri
           throw std::invalid_argument(key + " must be True or False");
         coupling.left = v.cast<bool>();
       } else if (a->kind == Arg::NamedOption) {
-        coupling.phase = number(v, a->name);
+        coupling.phase = number(v, a->name.data());
       } else {
-        coupling.value = number(v, a->name);
+        coupling.value = number(v, a->name.data());
       }
     } else {
       std::string extra;
-      for (const ArgSpec& a : coupling_args) extra += std::string(", ") + a.name;
+      for (const ArgSpec& a : coupling_args) extra += ", " + std::string(a.name);
       throw std::invalid_argument("add_joint(kind='" + kind +
                                   "') takes point1, point2, axis1, axis2, across1, across2, "
                                   "curve, turn, travel, cone, angle, distance" +
@@ -155,7 +155,7 @@ Joint joint_of_components(const pyb::kwargs& kw) {
     if (item.second.is_none()) continue;
     if (row->guide && guide)
       throw std::invalid_argument(std::string("a joint has at most one translation guide: '") +
-                                  key + "' with '" + guide->keyword + "'");
+                                  key + "' with '" + std::string(guide->keyword) + "'");
     if (row->guide) guide = row;
     const pyb::object o = pyb::reinterpret_borrow<pyb::object>(item.second);
     ComponentValues v;
@@ -168,7 +168,7 @@ Joint joint_of_components(const pyb::kwargs& kw) {
     const pyb::sequence s = items(o, list_only ? 2 : required, key.c_str());
     size_t k = 0;
     for (const ArgSpec& a : row->args) {
-      const std::string what = key + " " + a.name;
+      const std::string what = key + " " + std::string(a.name);
       const bool given = k < pyb::len(s) && !s[k].is_none();
       switch (a.kind) {
         case Arg::Point:

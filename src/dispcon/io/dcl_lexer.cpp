@@ -3,8 +3,10 @@
 #include "dispcon/io/dcl_lexer.hpp"
 
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 
 #include "dispcon/model/model.hpp"
@@ -60,31 +62,60 @@ bool is_alpha(char c) {
   return is(c, kAlpha);
 }
 
+// Most numbers of a file are short decimals ("0", "1", "2.5", "0.7648421872844885"): digits with
+// at most one '.', whose digits as a whole number m fit in a double (m <= 2^53) and with at most
+// 22 of them after the point. Their value m / 10^k is then one correctly rounded division of two
+// exact doubles, the very double std::from_chars gives (Clinger's fast path), at a fraction of
+// its cost. False for anything else (from_chars reads it).
+bool fast_decimal(std::string_view body, double& value) {
+  static constexpr double kPowers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  if (body.empty() || body.size() > 20) return false;  // 19 digits and a point at most
+  std::uint64_t m = 0;
+  int digits = 0, point = -1;  // the count of digits before the point, if any
+  for (const char c : body) {
+    const unsigned d = static_cast<unsigned>(static_cast<unsigned char>(c)) - '0';
+    if (d < 10) {
+      m = 10 * m + d;
+      ++digits;
+    } else if (c == '.' && point < 0) {
+      point = digits;
+    } else {
+      return false;
+    }
+  }
+  const int after = point < 0 ? 0 : digits - point;
+  // Beyond 19 digits m may have wrapped: those go to from_chars whatever m now holds.
+  if (digits == 0 || digits > 19 || m > (std::uint64_t{1} << 53) || after > 22) return false;
+  value = static_cast<double>(m) / kPowers[after];
+  return true;
+}
+
 }  // namespace
 
 Token DclLexer::next() {
   Token t;
   while (skip_space_and_comments()) {
     t.line = line_;
-    t.column = column_;
-    const char c = text_[i_];
-    const char next = i_ + 1 < text_.size() ? text_[i_ + 1] : '\0';
-    const bool sign = c == '-' || c == '+';
+    t.column = column();
+    const char c = *p_;
     if (c == ';') {
       t.kind = Token::Semicolon;
-      t.text = text_.substr(i_, 1);
-      take(1);
+      t.text = std::string_view(p_, 1);
+      ++p_;
+    } else if (is_alpha(c)) {
+      const char* q = p_ + 1;
+      while (q < end_ && is(*q, kName)) ++q;
+      t.kind = Token::Word;
+      t.text = std::string_view(p_, static_cast<size_t>(q - p_));
+      p_ = q;
     } else if (is_digit(c) || c == '.' ||
-               (sign && (is_digit(next) || next == '.' || next == 'i'))) {
+               ((c == '-' || c == '+') && p_ + 1 < end_ &&
+                (is_digit(p_[1]) || p_[1] == '.' || p_[1] == 'i'))) {
       number(t);
     } else if (c == '"') {
       string(t);
-    } else if (is_alpha(c)) {
-      size_t j = i_;
-      while (j < text_.size() && is(text_[j], kName)) ++j;
-      t.kind = Token::Word;
-      t.text = text_.substr(i_, j - i_);
-      take(j - i_);
     } else {
       // Reported and left out: the statement around it reads on as if it were not there.
       const unsigned char b = static_cast<unsigned char>(c);
@@ -93,76 +124,65 @@ Token DclLexer::next() {
       } else {
         error(std::string("unexpected character '") + c + "'");
       }
-      take(1);
+      ++p_;
       continue;
     }
     return t;
   }
   t.kind = Token::End;
   t.line = line_;
-  t.column = column_;
+  t.column = column();
   return t;
-}
-
-// Moves past `n` bytes that hold no new line (a token's).
-void DclLexer::take(size_t n) {
-  i_ += n;
-  column_ += static_cast<int>(n);
 }
 
 // Moves past one byte, which may be a new line.
 void DclLexer::step() {
-  if (text_[i_++] == '\n') {
+  if (*p_++ == '\n') {
     ++line_;
-    column_ = 1;
-  } else {
-    ++column_;
+    line_start_ = p_;
   }
 }
 
 void DclLexer::error(std::string message) {
-  errors_.add({line_, column_, std::move(message)});
+  errors_.add({line_, column(), std::move(message)});
 }
 
 // Skips white space and comments; false at the end of the text. Runs of blanks are the bulk of
 // a file: they are walked with the place kept in locals.
 bool DclLexer::skip_space_and_comments() {
-  while (i_ < text_.size()) {
-    const char c = text_[i_];
+  while (p_ < end_) {
+    const char c = *p_;
     if (is(c, kSpace)) {
-      const char* p = text_.data() + i_;
-      const char* const end = text_.data() + text_.size();
-      int line = line_, column = column_;
-      for (; p < end && is(*p, kSpace); ++p) {
-        if (*p == '\n') {
+      const char* p = p_;
+      const char* line_start = line_start_;
+      int line = line_;
+      do {
+        if (*p++ == '\n') {
           ++line;
-          column = 1;
-        } else {
-          ++column;
+          line_start = p;
         }
-      }
-      i_ = static_cast<size_t>(p - text_.data());
+      } while (p < end_ && is(*p, kSpace));
+      p_ = p;
+      line_start_ = line_start;
       line_ = line;
-      column_ = column;
-    } else if (c == '/' && i_ + 1 < text_.size() && text_[i_ + 1] == '/') {
-      const size_t eol = text_.find('\n', i_);
-      take((eol == std::string_view::npos ? text_.size() : eol) - i_);
-    } else if (c == '/' && i_ + 1 < text_.size() && text_[i_ + 1] == '*') {
-      const int l0 = line_, c0 = column_;
-      take(2);
-      while (i_ < text_.size() &&
-             !(text_[i_] == '*' && i_ + 1 < text_.size() && text_[i_ + 1] == '/')) {
-        const unsigned char b = static_cast<unsigned char>(text_[i_]);
+    } else if (c == '/' && p_ + 1 < end_ && p_[1] == '/') {
+      const void* eol = std::memchr(p_, '\n', static_cast<size_t>(end_ - p_));
+      p_ = eol ? static_cast<const char*>(eol) : end_;
+    } else if (c == '/' && p_ + 1 < end_ && p_[1] == '*') {
+      const int l0 = line_, c0 = column();
+      p_ += 2;
+      while (p_ < end_ && !(*p_ == '*' && p_ + 1 < end_ && p_[1] == '/')) {
+        const unsigned char b = static_cast<unsigned char>(*p_);
         if (b == 0 || (b < 0x20 && b != '\n' && b != '\r' && b != '\t')) {
           error("byte " + describe_byte(b) + " is not text");
         }
         step();
       }
-      if (i_ >= text_.size()) {
+      if (p_ >= end_) {
         errors_.add({l0, c0, "comment '/*' is never closed with '*/'"});
         return false;
       }
-      take(2);
+      p_ += 2;
     } else {
       return true;
     }
@@ -173,64 +193,62 @@ bool DclLexer::skip_space_and_comments() {
 // A number: a sign, then letters, digits, '.', '_' and exponent signs, read as one token so
 // that "1.5x" is one malformed number, not a number and a word.
 void DclLexer::number(Token& t) {
-  const bool sign = text_[i_] == '-' || text_[i_] == '+';
-  size_t j = sign ? i_ + 1 : i_;
-  while (j < text_.size()) {
-    const char ch = text_[j];
-    if (!is(ch, kNumber) &&
-        !((ch == '-' || ch == '+') && (text_[j - 1] == 'e' || text_[j - 1] == 'E')))
-      break;
-    ++j;
+  const char* q = *p_ == '-' || *p_ == '+' ? p_ + 1 : p_;
+  while (q < end_) {
+    const char ch = *q;
+    if (!is(ch, kNumber) && !((ch == '-' || ch == '+') && (q[-1] == 'e' || q[-1] == 'E'))) break;
+    ++q;
   }
-  t.text = text_.substr(i_, j - i_);
+  t.text = std::string_view(p_, static_cast<size_t>(q - p_));
   if (parse_number(t.text, t.value)) {
     t.kind = Token::Number;
   } else {
     t.kind = Token::Bad;
     errors_.add({t.line, t.column, "malformed number '" + std::string(t.text) + "'"});
   }
-  take(j - i_);
+  p_ = q;
 }
 
 // A string ends at the next unescaped quote on the same line: a lost quote cannot swallow the
-// rest of the file. Its value is a view of the text unless it has escapes.
+// rest of the file. Its value is a view of the text unless it has escapes. Nothing in it moves
+// past a new line but step().
 void DclLexer::string(Token& t) {
   t.kind = Token::String;
-  take(1);
-  const size_t start = i_;
+  ++p_;
+  const char* const start = p_;
   std::string* decoded = nullptr;  // made at the first escape, holding what came before
   auto copy = [&] {
-    if (!decoded) decoded = &decoded_.emplace_front(text_.substr(start, i_ - start));
+    if (!decoded) decoded = &decoded_.emplace_front(start, static_cast<size_t>(p_ - start));
   };
   bool closed = false, bad = false;
-  while (i_ < text_.size() && text_[i_] != '\n') {
-    const unsigned char b = static_cast<unsigned char>(text_[i_]);
+  while (p_ < end_ && *p_ != '\n') {
+    const unsigned char b = static_cast<unsigned char>(*p_);
     if (b == '"') {
       closed = true;
       break;
     }
     if (b == '\\') {
       copy();
-      const char e = i_ + 1 < text_.size() ? text_[i_ + 1] : '\0';
-      const int h1 = i_ + 2 < text_.size() ? hex_digit(text_[i_ + 2]) : -1;
-      const int h2 = i_ + 3 < text_.size() ? hex_digit(text_[i_ + 3]) : -1;
+      const char e = p_ + 1 < end_ ? p_[1] : '\0';
+      const int h1 = p_ + 2 < end_ ? hex_digit(p_[2]) : -1;
+      const int h2 = p_ + 3 < end_ ? hex_digit(p_[3]) : -1;
       if (e == '\\' || e == '"') {
         *decoded += e;
       } else if (e == 'n' || e == 't' || e == 'r') {
         *decoded += e == 'n' ? '\n' : e == 't' ? '\t' : '\r';
       } else if (e == 'x' && h1 >= 0 && h2 >= 0) {
         *decoded += static_cast<char>(h1 * 16 + h2);
-        take(4);
+        p_ += 4;
         continue;
       } else {
         error("unknown escape in a string (use \\\\, \\\", \\n, \\t, \\r or \\xHH)");
         bad = true;
         if (e == '\n' || e == '\0') {  // a backslash ending the line escapes nothing
-          take(1);
+          ++p_;
           continue;
         }
       }
-      take(2);
+      p_ += 2;
       continue;
     }
     if ((b < 0x20 && b != '\t') || b == 0x7f) {
@@ -240,11 +258,12 @@ void DclLexer::string(Token& t) {
     } else if (decoded) {
       *decoded += static_cast<char>(b);
     }
-    take(1);
+    ++p_;
   }
-  t.text = decoded ? std::string_view(*decoded) : text_.substr(start, i_ - start);
+  t.text = decoded ? std::string_view(*decoded)
+                   : std::string_view(start, static_cast<size_t>(p_ - start));
   if (closed) {
-    take(1);
+    ++p_;
   } else {
     errors_.add({t.line, t.column, "string is not closed with '\"' on its line"});
     bad = true;
@@ -267,6 +286,10 @@ bool parse_number(std::string_view text, double& value) {
   if (body == "inf") {
     value = negative ? -std::numeric_limits<double>::infinity()
                      : std::numeric_limits<double>::infinity();
+    return true;
+  }
+  if (fast_decimal(body, value)) {
+    if (negative) value = -value;
     return true;
   }
   // strtod's syntax, which the format names, would also take hexadecimal, nan and infinity.

@@ -49,25 +49,29 @@ struct LexErrors {
 // an unterminated comment or string, a malformed number) are added to `errors`; lexing goes on.
 class DclLexer {
  public:
-  DclLexer(std::string_view text, LexErrors& errors) : text_(text), errors_(errors) {}
+  DclLexer(std::string_view text, LexErrors& errors)
+      : errors_(errors), p_(text.data()), end_(text.data() + text.size()), line_start_(p_) {}
   // The next token; End at the end of the text, and again after that.
   Token next();
   // The values of the strings written with escapes so far, which their tokens view.
   std::forward_list<std::string> decoded() && { return std::move(decoded_); }
 
  private:
-  void take(size_t n);
+  // The place is kept as a line and where that line starts: a column is a count of bytes from
+  // there, taken only when a token or a message needs it (not counted byte by byte).
+  int column() const { return static_cast<int>(p_ - line_start_) + 1; }
   void step();
   void error(std::string message);
   bool skip_space_and_comments();
   void number(Token& t);
   void string(Token& t);
 
-  std::string_view text_;
   LexErrors& errors_;
   std::forward_list<std::string> decoded_;
-  size_t i_ = 0;
-  int line_ = 1, column_ = 1;
+  const char* p_;  // the next byte
+  const char* end_;
+  const char* line_start_;  // the first byte of p_'s line
+  int line_ = 1;
 };
 
 // Every token of `text`, with DclLexer.

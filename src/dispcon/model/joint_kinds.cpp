@@ -226,12 +226,13 @@ const ComponentRow& component(CouplingKind kind) {
   throw std::logic_error("coupling kind missing from the table");
 }
 
+// The table's keywords are string literals: their views end where a NUL does.
 const char* to_string(GuideKind kind) {
-  return component(kind).keyword;
+  return component(kind).keyword.data();
 }
 
 const char* to_string(CouplingKind kind) {
-  return component(kind).keyword;
+  return component(kind).keyword.data();
 }
 
 bool is_optional(Arg a) {
@@ -421,7 +422,7 @@ Joint make_joint(JointKind kind, BodyId body1, const Anchor& at1, BodyId body2, 
   if (!coupled && (coupling.value || coupling.left || coupling.phase))
     throw std::invalid_argument(who + " is no coupling: it takes no ratio, radius, pitch or phase");
   if (coupled && !coupling.value)
-    throw std::invalid_argument(who + " needs its " + coupled->args[4].name);
+    throw std::invalid_argument(who + " needs its " + std::string(coupled->args[4].name));
   if (coupling.left && row.coupling != CouplingKind::Screw)
     throw std::invalid_argument(who + " takes no left (only a screw is left- or right-handed)");
 

@@ -59,8 +59,8 @@ bool is_optional(Arg a);
 
 struct ArgSpec {
   Arg kind;
-  const char* name;  // as format.md writes it: "P1", "u", "r", ...
-  int side = 1;      // the object whose frame a point or vector is in (1 or 2)
+  std::string_view name;  // as format.md writes it: "P1", "u", "r", ...
+  int side = 1;           // the object whose frame a point or vector is in (1 or 2)
 };
 
 struct Range {
@@ -70,7 +70,7 @@ struct Range {
 
 struct ComponentRow {
   Component id;
-  const char* keyword;                   // the .dcl statement
+  std::string_view keyword;              // the .dcl statement
   const char* meaning;                   // one line, for people
   std::optional<GuideKind> guide;        // a translation guide (at most one per joint), or none
   std::vector<ArgSpec> args;             // what follows the keyword, before the bounds

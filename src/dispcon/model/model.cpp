@@ -126,8 +126,8 @@ class ComponentCheck {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& detail, const std::string& arg = "") const {
-    throw JointError(who_(), row_.keyword, detail, arg);
+  [[noreturn]] void fail(const std::string& detail, std::string_view arg = {}) const {
+    throw JointError(who_(), std::string(row_.keyword), detail, std::string(arg));
   }
 
   // The door's checks (numbers.hpp), their message placed at this argument of the statement.
@@ -249,7 +249,7 @@ JointId Model::add_joint(Joint j) {
     std::vector<std::string> messages;
     ComponentCheck(who, row, messages)(v);
     set_component(j, row.id, v);
-    for (std::string& m : messages) clamped.push_back({id, row.keyword, std::move(m)});
+    for (std::string& m : messages) clamped.push_back({id, std::string(row.keyword), std::move(m)});
   }
   if (j.coupling) {
     // Its values were checked by its row above; here, whether its turns can be measured.

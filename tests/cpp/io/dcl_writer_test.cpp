@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <charconv>
+#include <cstring>
 #include <random>
 
 #include "dispcon/io/dcl_lexer.hpp"
@@ -157,6 +159,42 @@ TEST(DclLexer, StringEscapes) {
   lex_dcl(R"("\q")", escape);
   ASSERT_EQ(escape.listed.size(), 1u);
   EXPECT_NE(escape.listed[0].message.find("unknown escape"), std::string::npos);
+}
+
+// The lexer reads short decimals itself (parse_number's fast path) and the rest with
+// std::from_chars: both must give the same double for every number, at the fast path's edges
+// too (2^53 and 2^53 + 1 as digits, 22 and 23 digits after the point, 19 and 20 digits).
+TEST(DclLexer, NumbersAsFromChars) {
+  auto expect_same = [](const std::string& text) {
+    double fast = 0, exact = 0;
+    ASSERT_TRUE(parse_number(text, fast)) << text;
+    const std::string_view body = text[0] == '-' ? std::string_view(text).substr(1) : text;
+    ASSERT_EQ(std::from_chars(body.data(), body.data() + body.size(), exact).ptr,
+              body.data() + body.size())
+        << text;
+    if (text[0] == '-') exact = -exact;
+    EXPECT_EQ(std::memcmp(&fast, &exact, sizeof fast), 0) << text;  // -0 too
+  };
+  for (const char* edge :
+       {"0", "-0", "0.", ".5", "9007199254740992", "9007199254740993", "900719925474099.3",
+        "0.9007199254740993", "1.0000000000000000000001", "1.00000000000000000000001",
+        "1234567890123456789", "12345678901234567890", "0.69999999999999996", "2.5", "007"}) {
+    expect_same(edge);
+  }
+  std::mt19937_64 rng(14);
+  std::uniform_int_distribution<int> digits(1, 20), point(0, 20), coin(0, 1);
+  for (int i = 0; i < 200000; ++i) {
+    std::string text = coin(rng) ? "-" : "";
+    const int n = digits(rng), at = point(rng);
+    for (int k = 0; k < n; ++k) {
+      if (k == at) text += '.';
+      text += static_cast<char>('0' + rng() % 10);
+    }
+    expect_same(text);
+  }
+  double v = 0;
+  EXPECT_FALSE(parse_number(".", v));
+  EXPECT_FALSE(parse_number("1.2.3", v));
 }
 
 }  // namespace

@@ -247,16 +247,16 @@ TEST(JointKinds, ClassifyTellsSpecialCasesApart) {
 TEST(Components, OneRowPerKeywordAndGuide) {
   std::set<std::string> keywords;
   for (const ComponentRow& row : components()) {
-    EXPECT_TRUE(keywords.insert(row.keyword).second) << row.keyword;
+    EXPECT_TRUE(keywords.insert(std::string(row.keyword)).second) << row.keyword;
     EXPECT_EQ(find_component(row.keyword), &row);
     EXPECT_EQ(&component(row.id), &row);
     if (row.guide) {
       EXPECT_EQ(&component(*row.guide), &row);
-      EXPECT_STREQ(to_string(*row.guide), row.keyword);
+      EXPECT_EQ(to_string(*row.guide), row.keyword);
     }
     if (row.coupling) {
       EXPECT_EQ(&component(*row.coupling), &row);
-      EXPECT_STREQ(to_string(*row.coupling), row.keyword);
+      EXPECT_EQ(to_string(*row.coupling), row.keyword);
       EXPECT_FALSE(row.guide);
     }
     if (row.has_bounds) {
