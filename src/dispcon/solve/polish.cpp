@@ -153,6 +153,25 @@ double Polisher::measure(const SolverState& s, const std::vector<double>& band,
   return gather_residuals(s, band, &joint_r);
 }
 
+void Polisher::list_rows_by_body() {
+  w_->var_start_.assign(static_cast<size_t>(nv_) + 1, 0);
+  for (const Entry& e : w_->rows_) {
+    if (e.v1 >= 0) ++w_->var_start_[static_cast<size_t>(e.v1) + 1];
+    if (e.v2 >= 0) ++w_->var_start_[static_cast<size_t>(e.v2) + 1];
+  }
+  for (int v = 0; v < nv_; ++v)
+    w_->var_start_[static_cast<size_t>(v) + 1] += w_->var_start_[static_cast<size_t>(v)];
+  w_->var_rows_.resize(static_cast<size_t>(w_->var_start_.back()));
+  w_->fill_.assign(w_->var_start_.begin(), w_->var_start_.end() - 1);
+  for (int a = 0; a < static_cast<int>(w_->rows_.size()); ++a) {
+    const Entry& e = w_->rows_[static_cast<size_t>(a)];
+    if (e.v1 >= 0)
+      w_->var_rows_[static_cast<size_t>(w_->fill_[static_cast<size_t>(e.v1)]++)] = {a, 1};
+    if (e.v2 >= 0)
+      w_->var_rows_[static_cast<size_t>(w_->fill_[static_cast<size_t>(e.v2)]++)] = {a, 2};
+  }
+}
+
 PolishWork::Vec6 Polisher::apply_inverse_mass(const BodyState& b, const Vec6& j) {
   Vec6 u;
   u.head<3>() = b.K * (b.inv_m * j.head<3>());

@@ -3,13 +3,13 @@
 #pragma once
 
 #include <Eigen/Dense>
-#include <Eigen/SparseCholesky>
 #include <utility>
 #include <vector>
 
 #include "dispcon/solve/block_ldlt.hpp"
 #include "dispcon/solve/group.hpp"
 #include "dispcon/solve/huge_pages.hpp"
+#include "dispcon/solve/sparse_ldlt.hpp"
 
 namespace dispcon {
 
@@ -25,8 +25,8 @@ struct PolishWork {
   };
   HugeVector<Entry> rows_;  // tens of megabytes in the largest models
   std::vector<double> residual_;
-  std::vector<int> var_start_, fill_;          // rows of body v: var_rows_[var_start_[v] ...]
-  std::vector<std::pair<int, int>> var_rows_;  // (row, side 1 or 2)
+  std::vector<int> var_start_, fill_;         // rows of body v: var_rows_[var_start_[v] ...]
+  HugeVector<std::pair<int, int>> var_rows_;  // (row, side 1 or 2)
   std::vector<Vec6> dq_;
   std::vector<Vec6> u_;  // M^-1 times the blocks of one body's rows (couplings)
   // Plain buffers under Eigen maps: groups of different sizes share them, and an Eigen matrix
@@ -37,6 +37,7 @@ struct PolishWork {
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
   std::vector<std::pair<int, int>> block_pairs_, column_;  // the analysis's scratch
   std::vector<int> place_;
+  std::vector<int> blocks_here_, column_rows_;  // the analysis's scratch: one body, one column
   std::vector<double> rows_per_body_;
   std::vector<int> joint_rows_;  // the rows of the k-th joint with rows: joint_rows_[k] ...
   std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows)
@@ -89,39 +90,32 @@ class Polisher {
   const BodyState& body(int v) const {
     return s_->bodies[static_cast<size_t>(group_->bodies[static_cast<size_t>(v)])];
   }
-  // Calls f(a, b, value) for every coupling a >= b of J M^-1 J^T, body by body. The rows of
-  // each body are listed flat (counted, then placed), so nothing is allocated once warm.
-  template <typename F>
+  // Lists each unknown's rows (var_start_, var_rows_, in row order), counted then placed, so
+  // nothing is allocated once warm.
+  void list_rows_by_body();
+  // Calls f(a, b, value) for every coupling a >= b of J M^-1 J^T, body by body. Without
+  // Values, the same calls in the same order with 0 for the value: the pattern alone, without
+  // the products.
+  template <bool Values = true, typename F>
   void couplings(F&& f) {
-    w_->var_start_.assign(static_cast<size_t>(nv_) + 1, 0);
-    for (const Entry& e : w_->rows_) {
-      if (e.v1 >= 0) ++w_->var_start_[static_cast<size_t>(e.v1) + 1];
-      if (e.v2 >= 0) ++w_->var_start_[static_cast<size_t>(e.v2) + 1];
-    }
-    for (int v = 0; v < nv_; ++v)
-      w_->var_start_[static_cast<size_t>(v) + 1] += w_->var_start_[static_cast<size_t>(v)];
-    w_->var_rows_.resize(static_cast<size_t>(w_->var_start_.back()));
-    w_->fill_.assign(w_->var_start_.begin(), w_->var_start_.end() - 1);
-    for (int a = 0; a < static_cast<int>(w_->rows_.size()); ++a) {
-      const Entry& e = w_->rows_[static_cast<size_t>(a)];
-      if (e.v1 >= 0)
-        w_->var_rows_[static_cast<size_t>(w_->fill_[static_cast<size_t>(e.v1)]++)] = {a, 1};
-      if (e.v2 >= 0)
-        w_->var_rows_[static_cast<size_t>(w_->fill_[static_cast<size_t>(e.v2)]++)] = {a, 2};
-    }
+    list_rows_by_body();
     for (int v = 0; v < nv_; ++v) {
       const int begin = w_->var_start_[static_cast<size_t>(v)];
       const int end = w_->var_start_[static_cast<size_t>(v) + 1];
       if (w_->u_.size() < static_cast<size_t>(end - begin)) w_->u_.resize(end - begin);
-      const BodyState& b = body(v);
+      [[maybe_unused]] const BodyState& b = body(v);
       for (int p = begin; p < end; ++p) {
         const auto [ra, sa] = w_->var_rows_[static_cast<size_t>(p)];
         const Entry& ea = w_->rows_[static_cast<size_t>(ra)];
         const Vec6& ja = sa == 1 ? ea.j1 : ea.j2;
-        w_->u_[static_cast<size_t>(p - begin)] = apply_inverse_mass(b, ja);
+        if constexpr (Values) w_->u_[static_cast<size_t>(p - begin)] = apply_inverse_mass(b, ja);
         for (int q = begin; q <= p; ++q) {
-          const auto [rb, sb] = w_->var_rows_[static_cast<size_t>(q)];
-          f(ra, rb, ja.dot(w_->u_[static_cast<size_t>(q - begin)]));
+          const int rb = w_->var_rows_[static_cast<size_t>(q)].first;
+          if constexpr (Values) {
+            f(ra, rb, ja.dot(w_->u_[static_cast<size_t>(q - begin)]));
+          } else {
+            f(ra, rb, 0.0);
+          }
         }
       }
     }
@@ -138,8 +132,7 @@ class Polisher {
   void analyze_blocks();
   bool factor_blocks(const SolverState& s, double mu);
   bool solve_blocks(const std::vector<double>& residual);
-  template <typename Form>
-  void analyze(int n, Form&& form);
+  void analyze_rows();
 
   static constexpr int kDenseRows = 120;
   static constexpr int kBlockOrdering = 20000;  // unknowns from which AMD orders blocks
@@ -147,19 +140,17 @@ class Polisher {
   int nv_ = 0;
   PolishWork* w_ = nullptr;         // the session's scratch space, during step()
   const SolverState* s_ = nullptr;  // the state, during step()
-  Eigen::SparseMatrix<double> sparse_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>>
-      sparse_ldlt_;
-  bool kkt_ = false;       // the sparse system is the saddle-point form
-  bool factored_ = false;  // ... and its factorisation can serve a chord step
-  bool reused_ = false;    // the last step was a chord step
+  SparseLdlt ldlt_;                 // the rows form, ordered (sparse_ldlt.hpp)
+  bool kkt_ = false;                // the sparse system is the saddle-point form
+  bool factored_ = false;           // ... and its factorisation can serve a chord step
+  bool reused_ = false;             // the last step was a chord step
   bool measured_ = false;  // measure() kept the rows' residuals: chord_residual_, chord_pattern_
   // A chord step's right-hand side (the rows' residuals) and the bodies each row joins, which
   // must be the analysed ones. Per group, not in PolishWork: measured at the start of a frame,
   // before the groups are shared among threads.
   std::vector<double> chord_residual_;
   std::vector<int> chord_pattern_;
-  Eigen::VectorXi order_;  // fill-reducing order of the rows
+  std::vector<int> order_;  // fill-reducing order of the rows: row a is unknown order_[a]
   // The saddle-point form's blocks: the bodies', then runs of up to six rows joining the same
   // two bodies; run k holds rows run_start_[k] ... run_start_[k + 1].
   BlockLdlt blocks_;
@@ -170,9 +161,9 @@ class Polisher {
   std::vector<RunSlots> run_slots_;
   std::vector<BlockLdlt::Slot> body_slots_;
   std::vector<double> block_x_;  // right-hand side and solution, six values a block
-  Eigen::VectorXd rhs_, solution_;
+  std::vector<double> x_;        // the rows form's right-hand side and solution, ordered
   std::vector<int> analyzed_pattern_;
-  std::vector<int> slots_;
+  HugeVector<int> slots_;  // where each value of the rows form is added (factor_sparse)
   bool analyzed_ = false;
   size_t rows_hint_ = 0;  // rows of the last gather
 };

@@ -17,19 +17,6 @@ namespace dispcon {
 // factorisation reads the matrix without a copy.
 bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   const int m = static_cast<int>(w_->rows_.size());
-  double scale = 0;  // the largest diagonal entry of J M^-1 J^T
-  for (const Entry& e : w_->rows_) {
-    const double d1 = e.v1 >= 0 ? e.j1.dot(apply_inverse_mass(body(e.v1), e.j1)) : 0;
-    const double d2 = e.v2 >= 0 ? e.j2.dot(apply_inverse_mass(body(e.v2), e.j2)) : 0;
-    scale = std::max(scale, d1 + d2);
-  }
-  if (!(scale > 0)) return false;
-  const double mu = lambda * scale;
-  for (double& d : w_->soft_) d *= scale;  // a pull's own damping, now in the diagonal's units
-  auto rows_form = [&](auto&& f) {
-    couplings(f);
-    for (int a = 0; a < m; ++a) f(a, a, mu + soft(a));
-  };
   factored_ = false;
   if (!same_pattern()) {
     std::vector<double>& per_body = w_->rows_per_body_;
@@ -45,7 +32,7 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
     if (kkt_) {
       analyze_blocks();
     } else {
-      analyze(m, rows_form);
+      analyze_rows();
     }
     analyzed_pattern_.clear();
     for (const Entry& e : w_->rows_) {
@@ -53,17 +40,35 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
     }
     analyzed_ = true;
   }
+  // The damping is relative to the largest diagonal entry of J M^-1 J^T; a pull's own damping
+  // (soft_) is then put in the diagonal's units.
+  double scale = 0;
   if (kkt_) {
-    if (!factor_blocks(s, mu)) return false;
+    for (const Entry& e : w_->rows_) {
+      const double d1 = e.v1 >= 0 ? e.j1.dot(apply_inverse_mass(body(e.v1), e.j1)) : 0;
+      const double d2 = e.v2 >= 0 ? e.j2.dot(apply_inverse_mass(body(e.v2), e.j2)) : 0;
+      scale = std::max(scale, d1 + d2);
+    }
+    if (!(scale > 0)) return false;
+    for (double& d : w_->soft_) d *= scale;
+    if (!factor_blocks(s, lambda * scale)) return false;
     factored_ = true;
     return solve_blocks(w_->residual_);
   }
-  double* values = sparse_.valuePtr();
-  std::fill(values, values + sparse_.nonZeros(), 0.0);
-  size_t visit = 0;
-  rows_form([&](int, int, double v) { values[slots_[visit++]] += v; });
-  sparse_ldlt_.factorize(sparse_);
-  if (sparse_ldlt_.info() != Eigen::Success) return false;
+  // The rows form: the couplings first, whose diagonal entries are then the two bodies' terms
+  // of each row, d1 + d2, the very sums a pass of their own computed before (one pass over the
+  // rows fewer each step); then the damping on the diagonal.
+  double* values = ldlt_.values.data();
+  std::fill(ldlt_.values.begin(), ldlt_.values.end(), 0.0);
+  const int* slot = slots_.data();
+  couplings([&](int, int, double v) { values[*slot++] += v; });
+  const int* diagonal = slot;  // the last m slots: each row's diagonal entry
+  for (int a = 0; a < m; ++a) scale = std::max(scale, values[diagonal[a]]);
+  if (!(scale > 0)) return false;
+  const double mu = lambda * scale;
+  for (double& d : w_->soft_) d *= scale;
+  for (int a = 0; a < m; ++a) values[diagonal[a]] += mu + soft(a);
+  if (!ldlt_.factorize()) return false;
   return solve_factored();
 }
 
@@ -82,12 +87,20 @@ bool Polisher::same_pattern() const {
 // The rows form's step from the current residuals with its factorisation.
 bool Polisher::solve_factored() {
   const int m = static_cast<int>(w_->rows_.size());
-  rhs_.setZero(m);
-  for (int a = 0; a < m; ++a) rhs_(order_(a)) = -w_->residual_[static_cast<size_t>(a)];
-  solution_ = sparse_ldlt_.solve(rhs_);
+  x_.resize(static_cast<size_t>(m));
+  for (int a = 0; a < m; ++a) {
+    x_[static_cast<size_t>(order_[static_cast<size_t>(a)])] =
+        -w_->residual_[static_cast<size_t>(a)];
+  }
+  ldlt_.solve(x_.data());
   w_->y_.resize(static_cast<size_t>(m));
-  for (int a = 0; a < m; ++a) w_->y_[static_cast<size_t>(a)] = solution_(order_(a));
-  return solution_.allFinite();
+  bool finite = true;
+  for (int a = 0; a < m; ++a) {
+    const double y = x_[static_cast<size_t>(order_[static_cast<size_t>(a)])];
+    w_->y_[static_cast<size_t>(a)] = y;
+    finite = finite && std::isfinite(y);
+  }
+  return finite;
 }
 
 // Lays out an n x n pattern in `matrix`, compressed, each column's rows sorted and repeats
@@ -135,13 +148,16 @@ void compress(int n, Entries&& entries, Eigen::SparseMatrix<double>& matrix,
   for (int& at : where) at = scratch[static_cast<size_t>(at)];
 }
 
-// Orders, places and analyses an n x n system given by its lower-triangle entries (in a fixed
-// order). In large systems the fill-reducing order is found on blocks, each joint's rows, which
-// share their neighbours: AMD on the 300,000 rows of a 100,000-link chain took 0.2 s, on its
-// 100,000 joints 5 ms. Below kBlockOrdering unknowns the analysis is cheap and AMD on single
-// unknowns leaves less fill, which every drag frame pays.
-template <typename Form>
-void Polisher::analyze(int n, Form&& form) {
+// Orders, places and analyses the rows form J M^-1 J^T, whose entry (a, b) is there when rows a
+// and b share a body, straight from each body's rows (no pass computes the products). In large
+// systems the fill-reducing order is found on blocks, each joint's rows, which share their
+// neighbours: AMD on the 300,000 rows of a 100,000-link chain took 0.2 s, on its 100,000 joints
+// 5 ms. Below kBlockOrdering unknowns the analysis is cheap and AMD on single unknowns leaves
+// less fill, which every drag frame pays. The pattern was once gathered from the couplings
+// themselves, three passes computing every product and sorting every column of the result:
+// most of the 100,000-link chain's analysis.
+void Polisher::analyze_rows() {
+  const int n = static_cast<int>(w_->rows_.size());
   std::vector<int>& start = w_->block_start_;
   start.clear();
   if (n < kBlockOrdering) {
@@ -157,44 +173,108 @@ void Polisher::analyze(int n, Form&& form) {
     std::fill(block.begin() + start[static_cast<size_t>(b)],
               block.begin() + start[static_cast<size_t>(b) + 1], b);
   }
-  // The blocks' pattern (lower triangle); the entries come block pair by block pair, so repeats
-  // are mostly next to each other and are dropped there (compress merges the rest).
+  // The blocks' pattern (lower triangle): each block's diagonal, and every two blocks with rows
+  // on the same body (a body's rows are listed in row order, so a block's are next to each other).
+  list_rows_by_body();
+  const std::vector<int>& var_start = w_->var_start_;
+  const HugeVector<std::pair<int, int>>& var_rows = w_->var_rows_;
   std::vector<std::pair<int, int>>& pairs = w_->block_pairs_;
   pairs.clear();
-  form([&](int a, int b, double) {
-    const int ba = block[static_cast<size_t>(a)], bb = block[static_cast<size_t>(b)];
-    const std::pair<int, int> p(std::max(ba, bb), std::min(ba, bb));
-    if (pairs.empty() || pairs.back() != p) pairs.push_back(p);
-  });
+  for (int b = 0; b < blocks; ++b) pairs.emplace_back(b, b);
+  std::vector<int>& here = w_->blocks_here_;
+  for (int v = 0; v < nv_; ++v) {
+    here.clear();
+    for (int p = var_start[static_cast<size_t>(v)]; p < var_start[static_cast<size_t>(v) + 1];
+         ++p) {
+      const int b = block[static_cast<size_t>(var_rows[static_cast<size_t>(p)].first)];
+      if (here.empty() || here.back() != b) here.push_back(b);
+    }
+    for (size_t i = 0; i < here.size(); ++i) {
+      for (size_t j = 0; j < i; ++j)
+        pairs.emplace_back(std::max(here[i], here[j]), std::min(here[i], here[j]));
+    }
+  }
   Eigen::SparseMatrix<double> lower;
   compress(
       blocks,
       [&](auto&& f) {
         for (const auto& [r, c] : pairs) f(r, c);
       },
-      lower, slots_, w_->place_, w_->column_);
+      lower, here, w_->place_, w_->column_);
   std::fill(lower.valuePtr(), lower.valuePtr() + lower.nonZeros(), 1.0);
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
   Eigen::AMDOrdering<int>()(lower.selfadjointView<Eigen::Lower>(), inverse);
   // Eigen's orderings return the inverse permutation: inverse.indices()(k) is the k-th block
   // to eliminate. Row a goes to order_[a]: the blocks in that order, each block's rows in theirs.
-  order_.resize(n);
+  order_.resize(static_cast<size_t>(n));
+  std::vector<int>& row_at = w_->place_;  // row_at[order_[a]] = a
+  row_at.resize(static_cast<size_t>(n));
   int at = 0;
   for (int k = 0; k < blocks; ++k) {
     const auto b = static_cast<size_t>(inverse.indices()(k));
-    for (int i = start[b]; i < start[b + 1]; ++i) order_(i) = at++;
+    for (int i = start[b]; i < start[b + 1]; ++i) {
+      row_at[static_cast<size_t>(at)] = i;
+      order_[static_cast<size_t>(i)] = at++;
+    }
   }
-  // The system itself, reordered, in the upper triangle; slots_ remembers where each entry lands.
-  compress(
-      n,
-      [&](auto&& f) {
-        form([&](int a, int b, double) {
-          const int pa = order_(a), pb = order_(b);
-          f(std::min(pa, pb), std::max(pa, pb));
-        });
-      },
-      sparse_, slots_, w_->place_, w_->column_);
-  sparse_ldlt_.analyzePattern(sparse_);
+  // The system itself, reordered, in the upper triangle: column order_[a] holds the rows that
+  // share a body with row a and come no later, sorted.
+  size_t most = static_cast<size_t>(n);
+  for (const Entry& e : w_->rows_) {
+    for (int v : {e.v1, e.v2}) {
+      if (v >= 0) {
+        most += static_cast<size_t>(var_start[static_cast<size_t>(v) + 1] -
+                                    var_start[static_cast<size_t>(v)]);
+      }
+    }
+  }
+  HugeVector<int>& outer = ldlt_.starts;
+  HugeVector<int>& inner = ldlt_.rows;
+  outer.resize(static_cast<size_t>(n) + 1);
+  inner.resize(most);
+  std::vector<int>& column = w_->column_rows_;
+  int kept = 0;
+  for (int c = 0; c < n; ++c) {
+    const Entry& e = w_->rows_[static_cast<size_t>(row_at[static_cast<size_t>(c)])];
+    column.assign(1, c);
+    for (int v : {e.v1, e.v2}) {
+      if (v < 0) continue;
+      for (int p = var_start[static_cast<size_t>(v)]; p < var_start[static_cast<size_t>(v) + 1];
+           ++p) {
+        const int r = order_[static_cast<size_t>(var_rows[static_cast<size_t>(p)].first)];
+        if (r < c) column.push_back(r);
+      }
+    }
+    std::sort(column.begin(), column.end());
+    outer[static_cast<size_t>(c)] = kept;
+    for (size_t i = 0; i < column.size(); ++i) {
+      if (i == 0 || column[i] != column[i - 1]) inner[static_cast<size_t>(kept++)] = column[i];
+    }
+  }
+  outer[static_cast<size_t>(n)] = kept;
+  inner.resize(static_cast<size_t>(kept));
+  ldlt_.values.resize(static_cast<size_t>(kept));
+  // Where each value lands, in the order factor_sparse() writes them: the couplings, then the
+  // diagonal.
+  auto slot = [&](int a, int b) {
+    const int pa = order_[static_cast<size_t>(a)], pb = order_[static_cast<size_t>(b)];
+    const int c = std::max(pa, pb), r = std::min(pa, pb);
+    int* first = inner.data() + outer[static_cast<size_t>(c)];
+    return static_cast<int>(
+        std::lower_bound(first, inner.data() + outer[static_cast<size_t>(c) + 1], r) -
+        inner.data());
+  };
+  size_t writes = static_cast<size_t>(n);
+  for (int v = 0; v < nv_; ++v) {
+    const auto k = static_cast<size_t>(var_start[static_cast<size_t>(v) + 1] -
+                                       var_start[static_cast<size_t>(v)]);
+    writes += k * (k + 1) / 2;
+  }
+  slots_.clear();
+  slots_.reserve(writes);
+  couplings<false>([&](int a, int b, double) { slots_.push_back(slot(a, b)); });
+  for (int a = 0; a < n; ++a) slots_.push_back(slot(a, a));
+  ldlt_.analyze();
 }
 
 }  // namespace dispcon
