@@ -74,14 +74,6 @@ double group_size(const SolverState& s, const Group& group) {
   return box.isEmpty() ? 1e-6 : std::max(1e-6, box.diagonal().norm());
 }
 
-void save_poses(const SolverState& s, const Group& group, std::vector<Pose>& out) {
-  for (int b : group.bodies) out[static_cast<size_t>(b)] = s.bodies[static_cast<size_t>(b)].pose();
-}
-
-void load_poses(SolverState& s, const Group& group, const std::vector<Pose>& in) {
-  for (int b : group.bodies) s.bodies[static_cast<size_t>(b)].set_pose(in[static_cast<size_t>(b)]);
-}
-
 // Threads for a solve: SolveOptions::threads when given; by default every core, but only when
 // there are several groups and about a millisecond of work between them (a thousand joints):
 // starting threads costs tens of microseconds, which a drag step of a hundred parts cannot pay

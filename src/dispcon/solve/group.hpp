@@ -33,8 +33,20 @@ inline double larger_residual(double r, double rc) {
 // Newton steps is relative to it, so a group solves the same whatever else is in the model.
 double group_size(const SolverState& s, const Group& group);
 
-void save_poses(const SolverState& s, const Group& group, std::vector<Pose>& out);
-void load_poses(SolverState& s, const Group& group, const std::vector<Pose>& in);
+// The poses a solve keeps aside (the best seen, those before a step): one per body of the model,
+// on huge pages in the largest models (their first touch, a fresh 4 KB page at a time, cost
+// the 100,000-link chain's solve as much as a Newton step).
+using PoseBuffer = HugeVector<Pose>;
+
+// A group's bodies' poses into `out`, or from `in` (a PoseBuffer, or the poses a solve returns).
+template <typename Poses>
+void save_poses(const SolverState& s, const Group& group, Poses& out) {
+  for (int b : group.bodies) out[static_cast<size_t>(b)] = s.bodies[static_cast<size_t>(b)].pose();
+}
+template <typename Poses>
+void load_poses(SolverState& s, const Group& group, const Poses& in) {
+  for (int b : group.bodies) s.bodies[static_cast<size_t>(b)].set_pose(in[static_cast<size_t>(b)]);
+}
 
 // Threads for a solve (SolveOptions::threads, or a default from the groups' work).
 int thread_count(const SolveOptions& o, const std::vector<Group>& groups);

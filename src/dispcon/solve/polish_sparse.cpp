@@ -34,9 +34,10 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
     } else {
       analyze_rows();
     }
-    analyzed_pattern_.clear();
-    for (const Entry& e : w_->rows_) {
-      analyzed_pattern_.push_back(e.v1), analyzed_pattern_.push_back(e.v2);
+    analyzed_pattern_.resize(2 * static_cast<size_t>(m));
+    for (int a = 0; a < m; ++a) {
+      analyzed_pattern_[2 * static_cast<size_t>(a)] = w_->rows_[static_cast<size_t>(a)].v1;
+      analyzed_pattern_[2 * static_cast<size_t>(a) + 1] = w_->rows_[static_cast<size_t>(a)].v2;
     }
     analyzed_ = true;
   }
@@ -87,16 +88,15 @@ bool Polisher::same_pattern() const {
 // The rows form's step from the current residuals with its factorisation.
 bool Polisher::solve_factored() {
   const int m = static_cast<int>(w_->rows_.size());
-  x_.resize(static_cast<size_t>(m));
+  double* x = ldlt_.rhs();
   for (int a = 0; a < m; ++a) {
-    x_[static_cast<size_t>(order_[static_cast<size_t>(a)])] =
-        -w_->residual_[static_cast<size_t>(a)];
+    x[order_[static_cast<size_t>(a)]] = -w_->residual_[static_cast<size_t>(a)];
   }
-  ldlt_.solve(x_.data());
+  ldlt_.solve();
   w_->y_.resize(static_cast<size_t>(m));
   bool finite = true;
   for (int a = 0; a < m; ++a) {
-    const double y = x_[static_cast<size_t>(order_[static_cast<size_t>(a)])];
+    const double y = x[order_[static_cast<size_t>(a)]];
     w_->y_[static_cast<size_t>(a)] = y;
     finite = finite && std::isfinite(y);
   }

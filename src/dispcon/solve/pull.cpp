@@ -73,7 +73,7 @@ bool widen(const SolverState& s, const Group& group, int joint, const std::vecto
 
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
                        PolishWork& work, std::vector<double>& band, const SolveOptions& o,
-                       std::vector<double>& soft, std::vector<Pose>& before,
+                       std::vector<double>& soft, PoseBuffer& before,
                        std::vector<double>& joint_r) {
   PullOutcome out;
   double& damping = soft[static_cast<size_t>(joint)];

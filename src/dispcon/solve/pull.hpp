@@ -21,7 +21,6 @@ struct PullOutcome {
 // used as scratch for the pull joint's damping. `max_iterations` caps the Newton steps.
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
                        PolishWork& work, std::vector<double>& band, const SolveOptions& o,
-                       std::vector<double>& soft, std::vector<Pose>& before,
-                       std::vector<double>& joint_r);
+                       std::vector<double>& soft, PoseBuffer& before, std::vector<double>& joint_r);
 
 }  // namespace dispcon

@@ -82,7 +82,7 @@ struct GroupRun {
 // contact) is widened to cover the distance the step moved it, so the active set grows instead
 // of the step being damped.
 void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& o,
-             std::vector<double>& band, std::vector<Pose>& before, std::vector<double>& joint_r,
+             std::vector<double>& band, PoseBuffer& before, std::vector<double>& joint_r,
              Session::Stuck stuck) {
   const Group& group = *p.group;
   const double polish_threshold = o.polish_below * p.size;
@@ -201,7 +201,7 @@ struct Session::Impl {
   std::vector<Group> groups;
   std::deque<GroupRun> runs;  // not moved once built: each holds its factorisation
   std::vector<double> band;
-  std::vector<Pose> best, before;
+  PoseBuffer best, before;
   std::vector<double> joint_r;  // each joint's residual at the current poses
   PolishWork work;
   std::deque<PolishWork> more_work;  // one per extra thread
@@ -318,8 +318,8 @@ void Session::Impl::start(const std::vector<Pose>& poses) {
     p.done = p.r <= o.tolerance;
     if (!std::isfinite(p.r)) finite = false;
   }
-  best = poses;
-  before = poses;
+  best.assign(poses.begin(), poses.end());
+  before.assign(poses.begin(), poses.end());
 }
 
 // Each group runs to the end before the next starts, so its working set stays in cache; with

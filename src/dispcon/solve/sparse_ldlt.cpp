@@ -4,93 +4,107 @@
 
 namespace dispcon {
 
+SparseLdlt::Parts SparseLdlt::parts() {
+  const auto n = static_cast<size_t>(size());
+  Parts p;
+  p.lp = ints_.data();
+  p.parent = p.lp + n + 1;
+  p.count = p.parent + n;
+  p.pattern = p.count + n;
+  p.tags = p.pattern + n;
+  p.d = doubles_.data();
+  p.y = p.d + n;
+  return p;
+}
+
 // Row k of L is the set of columns reached in the elimination tree from the entries of A's
 // column k above the diagonal; each column's parent is the first row it meets.
 void SparseLdlt::analyze() {
   const int n = size();
-  const auto un = static_cast<size_t>(n);
-  parent_.resize(un);
-  count_.resize(un);
-  tags_.resize(un);
-  pattern_.resize(un);
-  y_.assign(un, 0.0);
-  d_.resize(un);
+  ints_.resize(5 * static_cast<size_t>(n) + 1);
+  doubles_.assign(3 * static_cast<size_t>(n), 0.0);
+  const Parts w = parts();
+  const int* const start = starts.data();
+  const int* const row = rows.data();
   for (int k = 0; k < n; ++k) {
-    parent_[static_cast<size_t>(k)] = -1;
-    tags_[static_cast<size_t>(k)] = k;
-    count_[static_cast<size_t>(k)] = 0;
-    for (int p = starts[static_cast<size_t>(k)]; p < starts[static_cast<size_t>(k) + 1]; ++p) {
-      for (int i = rows[static_cast<size_t>(p)]; i < k && tags_[static_cast<size_t>(i)] != k;
-           i = parent_[static_cast<size_t>(i)]) {
-        if (parent_[static_cast<size_t>(i)] == -1) parent_[static_cast<size_t>(i)] = k;
-        ++count_[static_cast<size_t>(i)];
-        tags_[static_cast<size_t>(i)] = k;
+    w.parent[k] = -1;
+    w.tags[k] = k;
+    w.count[k] = 0;
+    for (int p = start[k]; p < start[k + 1]; ++p) {
+      for (int i = row[p]; w.tags[i] != k; i = w.parent[i]) {
+        if (w.parent[i] == -1) w.parent[i] = k;
+        ++w.count[i];
+        w.tags[i] = k;
       }
     }
   }
-  lp_.resize(un + 1);
-  lp_[0] = 0;
-  for (size_t k = 0; k < un; ++k) lp_[k + 1] = lp_[k] + count_[k];
-  li_.resize(static_cast<size_t>(lp_[un]));
-  lx_.resize(static_cast<size_t>(lp_[un]));
+  w.lp[0] = 0;
+  for (int k = 0; k < n; ++k) w.lp[k + 1] = w.lp[k] + w.count[k];
+  li_.resize(static_cast<size_t>(w.lp[n]));
+  lx_.resize(static_cast<size_t>(w.lp[n]));
 }
 
 // Row by row: row k of L solves L(0:k, 0:k) D l = A(0:k, k) over the pattern found in the
 // elimination tree (in topological order), and D(k) is what is left of A(k, k).
 bool SparseLdlt::factorize() {
   const int n = size();
+  const Parts w = parts();
+  const int* const start = starts.data();
+  const int* const row = rows.data();
+  const double* const value = values.data();
+  int* const li = li_.data();
+  double* const lx = lx_.data();
   for (int k = 0; k < n; ++k) {
-    y_[static_cast<size_t>(k)] = 0;
+    w.y[k] = 0;
     int top = n;
-    tags_[static_cast<size_t>(k)] = k;
-    count_[static_cast<size_t>(k)] = 0;
-    for (int p = starts[static_cast<size_t>(k)]; p < starts[static_cast<size_t>(k) + 1]; ++p) {
-      int i = rows[static_cast<size_t>(p)];
-      y_[static_cast<size_t>(i)] += values[static_cast<size_t>(p)];
+    w.tags[k] = k;
+    w.count[k] = 0;
+    for (int p = start[k]; p < start[k + 1]; ++p) {
+      int i = row[p];
+      w.y[i] += value[p];
       int len = 0;
-      for (; tags_[static_cast<size_t>(i)] != k; i = parent_[static_cast<size_t>(i)]) {
-        pattern_[static_cast<size_t>(len++)] = i;
-        tags_[static_cast<size_t>(i)] = k;
+      for (; w.tags[i] != k; i = w.parent[i]) {
+        w.pattern[len++] = i;
+        w.tags[i] = k;
       }
-      while (len > 0) pattern_[static_cast<size_t>(--top)] = pattern_[static_cast<size_t>(--len)];
+      while (len > 0) w.pattern[--top] = w.pattern[--len];
     }
-    double d = y_[static_cast<size_t>(k)];
-    y_[static_cast<size_t>(k)] = 0;
+    double d = w.y[k];
+    w.y[k] = 0;
     for (; top < n; ++top) {
-      const auto i = static_cast<size_t>(pattern_[static_cast<size_t>(top)]);
-      const double yi = y_[i];
-      y_[i] = 0;
-      const double l = yi / d_[i];
-      const int end = lp_[i] + count_[i];
-      int p = lp_[i];
-      for (; p < end; ++p)
-        y_[static_cast<size_t>(li_[static_cast<size_t>(p)])] -= lx_[static_cast<size_t>(p)] * yi;
+      const int i = w.pattern[top];
+      const double yi = w.y[i];
+      w.y[i] = 0;
+      const double l = yi / w.d[i];
+      const int end = w.lp[i] + w.count[i];
+      int p = w.lp[i];
+      for (; p < end; ++p) w.y[li[p]] -= lx[p] * yi;
       d -= l * yi;
-      li_[static_cast<size_t>(p)] = k;
-      lx_[static_cast<size_t>(p)] = l;
-      ++count_[i];
+      li[p] = k;
+      lx[p] = l;
+      ++w.count[i];
     }
-    d_[static_cast<size_t>(k)] = d;
+    w.d[k] = d;
     if (d == 0) return false;
   }
   return true;
 }
 
-void SparseLdlt::solve(double* x) const {
+void SparseLdlt::solve() {
   const int n = size();
+  const Parts w = parts();
+  double* const x = rhs();
+  const int* const li = li_.data();
+  const double* const lx = lx_.data();
   for (int j = 0; j < n; ++j) {  // L z = b
     const double t = x[j];
     if (t == 0) continue;
-    for (int p = lp_[static_cast<size_t>(j)]; p < lp_[static_cast<size_t>(j) + 1]; ++p) {
-      x[li_[static_cast<size_t>(p)]] -= t * lx_[static_cast<size_t>(p)];
-    }
+    for (int p = w.lp[j]; p < w.lp[j + 1]; ++p) x[li[p]] -= t * lx[p];
   }
-  for (int j = 0; j < n; ++j) x[j] = (1 / d_[static_cast<size_t>(j)]) * x[j];  // D w = z
-  for (int j = n - 1; j >= 0; --j) {                                           // L^T x = w
+  for (int j = 0; j < n; ++j) x[j] = (1 / w.d[j]) * x[j];  // D w = z
+  for (int j = n - 1; j >= 0; --j) {                       // L^T x = w
     double t = x[j];
-    for (int p = lp_[static_cast<size_t>(j)]; p < lp_[static_cast<size_t>(j) + 1]; ++p) {
-      t -= lx_[static_cast<size_t>(p)] * x[li_[static_cast<size_t>(p)]];
-    }
+    for (int p = w.lp[j]; p < w.lp[j + 1]; ++p) t -= lx[p] * x[li[p]];
     x[j] = t;
   }
 }

@@ -30,16 +30,28 @@ class SparseLdlt {
   void analyze();
   // A = L D L^T. False when a pivot is zero.
   bool factorize();
-  // Solves A x = b in place (x holds b).
-  void solve(double* x) const;
+  // The right-hand side of the next solve(), n values (after analyze()): solve() leaves the
+  // solution in its place.
+  double* rhs() { return doubles_.data() + 2 * static_cast<size_t>(size()); }
+  // Solves A x = b in place in rhs().
+  void solve();
 
  private:
-  HugeVector<int> parent_;   // the elimination tree
-  HugeVector<int> count_;    // entries of each column of L (filled so far, while factoring)
-  HugeVector<int> lp_, li_;  // L by columns, without its unit diagonal
-  HugeVector<double> lx_, d_;
-  HugeVector<double> y_;            // factorize()'s dense row, zero between uses
-  HugeVector<int> pattern_, tags_;  // factorize()'s row pattern and marks
+  // The values per unknown live in two buffers, so that a large system's reach huge pages
+  // (each alone would stay under 4 MB): n + 1 ints of L's column starts (lp), then n each of the
+  // elimination tree (parent), the entries of each column of L (count, filled so far while
+  // factoring), factorize()'s row pattern and its marks (tags); n doubles each of D,
+  // factorize()'s dense row (zero between uses) and the right-hand side.
+  HugeVector<int> ints_;
+  HugeVector<double> doubles_;
+  // Where each of them begins (found anew in each call: the object may have been moved).
+  struct Parts {
+    int *lp, *parent, *count, *pattern, *tags;
+    double *d, *y;
+  };
+  Parts parts();
+  HugeVector<int> li_;  // L by columns, without its unit diagonal
+  HugeVector<double> lx_;
 };
 
 }  // namespace dispcon

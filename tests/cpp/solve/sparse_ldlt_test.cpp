@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <random>
 
 namespace dispcon {
@@ -59,8 +60,9 @@ TEST(SparseLdlt, GivesEigensBitsAndTheDenseSolution) {
     write_upper(a, f, true);
     ASSERT_TRUE(f.factorize()) << n;
     const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1, 2);
-    Eigen::VectorXd x = b;
-    f.solve(x.data());
+    std::copy(b.data(), b.data() + n, f.rhs());
+    f.solve();
+    const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(f.rhs(), n);
 
     const Eigen::SparseMatrix<double> sparse = a.sparseView();
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>>
@@ -83,8 +85,9 @@ TEST(SparseLdlt, RefactorsWithNewValuesOnTheSamePattern) {
     write_upper(shifted, f, false);
     ASSERT_TRUE(f.factorize());
     const Eigen::VectorXd b = Eigen::VectorXd::Ones(80);
-    Eigen::VectorXd x = b;
-    f.solve(x.data());
+    std::copy(b.data(), b.data() + 80, f.rhs());
+    f.solve();
+    const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(f.rhs(), 80);
     EXPECT_LT((shifted * x - b).norm(), 1e-10 * b.norm()) << "shift " << shift;
   }
 }
