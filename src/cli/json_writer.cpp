@@ -8,6 +8,21 @@
 
 namespace dispcon::cli {
 
+namespace {
+
+// A new line then spaces: any indent up to 128 levels is a prefix of it.
+struct Indent {
+  static constexpr size_t size = 256;
+  char text[size + 1];
+  Indent() {
+    text[0] = '\n';
+    std::memset(text + 1, ' ', size);
+  }
+};
+const Indent kIndent;
+
+}  // namespace
+
 void JsonWriter::flush() {
   if (sink_) {
     std::fwrite(buffer_, 1, size_, sink_);
@@ -40,8 +55,13 @@ void JsonWriter::item() {
 // A new line and the indent of the open containers (a document of 400 four-bars has some 60,000
 // of them).
 void JsonWriter::new_line() {
-  put('\n');
   size_t indent = 2 * items_.size();
+  if (indent < kIndent.size) {  // the new line and its indent in one copy
+    std::memcpy(room(indent + 1), kIndent.text, indent + 1);
+    size_ += indent + 1;
+    return;
+  }
+  put('\n');
   while (indent > 0) {
     const size_t part = std::min(indent, size_t{256});
     std::memset(room(part), ' ', part);

@@ -1,5 +1,7 @@
 // `object` and `constraint` blocks: each statement as format.md and the components' table say.
 #include <Eigen/Cholesky>
+#include <cstdint>
+#include <stdexcept>
 
 #include "dispcon/io/dcl_parser.hpp"
 
@@ -144,17 +146,20 @@ void Parser::component_statement(const ComponentRow& row, std::string_view k, Co
 
 void Parser::options(const ComponentRow& row, std::string_view k, ComponentValues& v,
                      ConstraintBlock& cb) {
-  std::vector<bool> given(row.args.size(), false);
+  // Which arguments were given, a bit each (a row has a handful).
+  std::uint64_t given = 0;
+  const auto was_given = [&given](size_t i) { return ((given >> i) & 1) != 0; };
+  if (row.args.size() > 64) throw std::logic_error("a row of components() has over 64 arguments");
   while (peek().kind == Token::Word) {
     size_t i = 0, flag = 0, option = 0;
     for (; i < row.args.size(); ++i) {
       const ArgSpec& a = row.args[i];
-      if (is_optional(a.kind) && !given[i] && peek().text == a.name) break;
+      if (is_optional(a.kind) && !was_given(i) && peek().text == a.name) break;
       flag += a.kind == Arg::Flag;
       option += a.kind == Arg::NamedOption;
     }
     if (i == row.args.size()) break;
-    given[i] = true;
+    given |= std::uint64_t{1} << i;
     const ArgSpec& a = row.args[i];
     next();
     mark(cb.seen, k, a.name, at(peek()));
@@ -167,7 +172,7 @@ void Parser::options(const ComponentRow& row, std::string_view k, ComponentValue
   if (peek().kind != Token::Semicolon) {
     std::string expected;  // "'left', 'phase' or "
     for (size_t i = 0; i < row.args.size(); ++i)
-      if (is_optional(row.args[i].kind) && !given[i])
+      if (is_optional(row.args[i].kind) && !was_given(i))
         expected += "'" + std::string(row.args[i].name) + "', ";
     if (expected.empty()) semicolon(k);  // "expected ';' after hinge"
     expected.replace(expected.size() - 2, 2, " or ");

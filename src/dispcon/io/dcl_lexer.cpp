@@ -66,30 +66,45 @@ bool is_alpha(char c) {
 // at most one '.', whose digits as a whole number m fit in a double (m <= 2^53) and with at most
 // 22 of them after the point. Their value m / 10^k is then one correctly rounded division of two
 // exact doubles, the very double std::from_chars gives (Clinger's fast path), at a fraction of
-// its cost. False for anything else (from_chars reads it).
-bool fast_decimal(std::string_view body, double& value) {
+// its cost. `digits` counts them all (beyond 19, m may have wrapped); false when the fast path
+// does not apply (from_chars reads the number).
+bool exact_decimal(std::uint64_t m, int digits, int after, double& value) {
   static constexpr double kPowers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                        1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  if (body.empty() || body.size() > 20) return false;  // 19 digits and a point at most
-  std::uint64_t m = 0;
-  int digits = 0, point = -1;  // the count of digits before the point, if any
-  for (const char c : body) {
-    const unsigned d = static_cast<unsigned>(static_cast<unsigned char>(c)) - '0';
-    if (d < 10) {
-      m = 10 * m + d;
-      ++digits;
-    } else if (c == '.' && point < 0) {
-      point = digits;
-    } else {
-      return false;
-    }
-  }
-  const int after = point < 0 ? 0 : digits - point;
-  // Beyond 19 digits m may have wrapped: those go to from_chars whatever m now holds.
   if (digits == 0 || digits > 19 || m > (std::uint64_t{1} << 53) || after > 22) return false;
   value = static_cast<double>(m) / kPowers[after];
   return true;
+}
+
+// The digits of `p`..`end` with at most one point, as far as they go: their whole number, their
+// count and how many follow the point. Returns where they stop.
+const char* scan_decimal(const char* p, const char* end, std::uint64_t& m, int& digits,
+                         int& after) {
+  m = 0;
+  digits = 0;
+  int point = -1;  // the count of digits before the point, if any
+  for (; p < end; ++p) {
+    const unsigned d = static_cast<unsigned>(static_cast<unsigned char>(*p)) - '0';
+    if (d < 10) {
+      m = 10 * m + d;
+      ++digits;
+    } else if (*p == '.' && point < 0) {
+      point = digits;
+    } else {
+      break;
+    }
+  }
+  after = point < 0 ? 0 : digits - point;
+  return p;
+}
+
+bool fast_decimal(std::string_view body, double& value) {
+  std::uint64_t m = 0;
+  int digits = 0, after = 0;
+  const char* end = body.data() + body.size();
+  return scan_decimal(body.data(), end, m, digits, after) == end &&
+         exact_decimal(m, digits, after, value);
 }
 
 }  // namespace
@@ -193,14 +208,23 @@ bool DclLexer::skip_space_and_comments() {
 // A number: a sign, then letters, digits, '.', '_' and exponent signs, read as one token so
 // that "1.5x" is one malformed number, not a number and a word.
 void DclLexer::number(Token& t) {
-  const char* q = *p_ == '-' || *p_ == '+' ? p_ + 1 : p_;
+  const bool negative = *p_ == '-';
+  // The plain decimal it most often is, read on the way (parse_number's fast path, one walk).
+  std::uint64_t m = 0;
+  int digits = 0, after = 0;
+  const char* const plain =
+      scan_decimal(*p_ == '-' || *p_ == '+' ? p_ + 1 : p_, end_, m, digits, after);
+  const char* q = plain;
   while (q < end_) {
     const char ch = *q;
     if (!is(ch, kNumber) && !((ch == '-' || ch == '+') && (q[-1] == 'e' || q[-1] == 'E'))) break;
     ++q;
   }
   t.text = std::string_view(p_, static_cast<size_t>(q - p_));
-  if (parse_number(t.text, t.value)) {
+  if (q == plain && exact_decimal(m, digits, after, t.value)) {
+    if (negative) t.value = -t.value;
+    t.kind = Token::Number;
+  } else if (parse_number(t.text, t.value)) {
     t.kind = Token::Number;
   } else {
     t.kind = Token::Bad;

@@ -88,10 +88,15 @@ class Parser {
       : file_(file), lexer_(text, lex_errors_), current_(lexer_.next()), stack_(stack) {
     // Room for every block at once (a count of the words, in comments too, is an upper bound):
     // blocks of half a kilobyte copied at each growth cost more than the count.
-    objects_.reserve(occurrences(text, "object"));
-    constraints_.reserve(occurrences(text, "constraint"));
-    // Marks: a statement's, and its arguments' (a hinge: three); two a statement on average.
-    statements_.reserve(2 * occurrences(text, ";"));
+    // Room for every block at once: a count of the words (in comments too, so an upper bound),
+    // not of object1 and object2, whose room would push the model and the solver's state up into
+    // more of the heap's huge pages (each zeroed when first touched).
+    objects_.reserve(words(text, "object", 1));
+    constraints_.reserve(words(text, "constraint", 3));
+    // Marks: a statement's, and its arguments' (a hinge: three), about one each 18 bytes of a
+    // file as dispcon writes it; should a file hold more, the list grows (counting the ';' took
+    // more than the growth saves).
+    statements_.reserve(text.size() / 16);
   }
 
   ParseResult run();
@@ -105,9 +110,18 @@ class Parser {
     return t;
   }
   static Place at(const Token& t) { return {t.line, t.column}; }
-  static size_t occurrences(std::string_view text, std::string_view word) {
+  // How many times `word` stands alone in `text` (no name's byte after it). It is sought by its
+  // tail from `rare` on, whose first letter is rarer than the word's: a search stops at every
+  // occurrence of its first letter.
+  static size_t words(std::string_view text, std::string_view word, size_t rare) {
+    const std::string_view tail = word.substr(rare);
     size_t n = 0;
-    for (size_t i = text.find(word); i != std::string_view::npos; i = text.find(word, i + 1)) ++n;
+    for (size_t i = text.find(tail, rare); i != std::string_view::npos;
+         i = text.find(tail, i + 1)) {
+      const size_t end = i + tail.size();
+      n += text.compare(i - rare, rare, word.substr(0, rare)) == 0 &&
+           (end == text.size() || !is_name_char(text[end]));
+    }
     return n;
   }
   static std::string quote(const Token& t) {
