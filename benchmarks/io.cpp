@@ -1,5 +1,6 @@
-// Reading and the whole command (issue 14): the .dcl of N four-bars as dispcon writes it (the
-// rough start of BM_FourBars_dispcon, 17 significant digits a number), read by load_dcl; and
+// Reading, writing and the whole command (issue 14): the .dcl of N four-bars as dispcon writes it
+// (the rough start of BM_FourBars_dispcon, 17 significant digits a number), read by load_dcl;
+// the JSON document of their assembly, written; and
 // `dispcon assemble FILE --json` run as a process, timed from posix_spawn to exit, its CPU time
 // (user and system, from wait4) reported beside.
 #include <fcntl.h>
@@ -17,6 +18,7 @@
 #include "dispcon/io/dcl_reader.hpp"
 #include "dispcon/io/dcl_writer.hpp"
 #include "mechanisms.hpp"
+#include "report.hpp"
 
 namespace {
 
@@ -41,6 +43,27 @@ void BM_Load_FourBars(benchmark::State& state) {
   state.SetBytesProcessed(state.iterations() * static_cast<int64_t>(in.tellg()));
 }
 BENCHMARK(BM_Load_FourBars)->Arg(400)->Unit(benchmark::kMillisecond);
+
+// The JSON document `dispcon assemble --json` prints for the N four-bars once assembled, written
+// by the command's own code (report.cpp, json_writer.cpp) into a string, as print_json holds its
+// last piece before it goes out.
+void BM_Json_FourBars(benchmark::State& state) {
+  Model model = bench::fourbars_dispcon(static_cast<int>(state.range(0)));
+  const SolveResult r = assemble(model);
+  if (!r.converged) state.SkipWithError("the four-bars did not assemble");
+  size_t bytes = 0;
+  for (auto _ : state) {
+    std::string out;
+    {
+      cli::JsonWriter w(out);
+      cli::write_object(w, cli::solve_members(model, r));
+    }
+    bytes = out.size();
+    benchmark::DoNotOptimize(out);
+  }
+  state.SetBytesProcessed(state.iterations() * static_cast<int64_t>(bytes));
+}
+BENCHMARK(BM_Json_FourBars)->Arg(400)->Unit(benchmark::kMillisecond);
 
 #ifdef DISPCON_BIN
 // The whole `dispcon assemble FILE --json` (its output to /dev/null), as a user waits for it.
