@@ -1,7 +1,11 @@
 // Drag targets at the edge of reach: a gently curved chain of n unit links (link i turned by
 // 0.02 sin(0.05 i) rad, the first pinned to the world) whose last link is dragged by its start
 // point along x, as in docs/performance.md's 1,000-link case.
-//   BM_DragStep_OutOfReach/<n>  one step held 0.02 beyond the n - 1 links' reach: told, not solved
+//   BM_DragStep_OutOfReach/<n>  one step held 0.02 beyond the n - 1 links' reach: told, not solved,
+//                               with the nearest pose (the chain stretched toward the target)
+//   BM_Pull_AlongStretch/<n>    a pull of the end by its start point moved along the circle 0.5
+//                               beyond the n - 1 links' reach, 0.001 rad a frame (a mouse drag
+//                               around the stretched chain): each frame the nearest pose
 //   BM_DragStep_NearStretch/<n> the reachable step before it (0.04 short of full stretch), from
 //                               the same curved pose each time
 //   BM_DragStep_PastLimit       the robot arm's hand (samples/robot-arm.dcl) dragged toward
@@ -9,6 +13,7 @@
 //                               (the links would reach it), told out of reach with the nearest pose
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -63,6 +68,24 @@ void BM_DragStep_OutOfReach(benchmark::State& state) {
   state.counters["iterations"] = iterations;
 }
 BENCHMARK(BM_DragStep_OutOfReach)->Arg(2)->Arg(1000)->Unit(benchmark::kMicrosecond);
+
+void BM_Pull_AlongStretch(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Model m = curved_chain(n);
+  const BodyId end{n};
+  Puller pull(m, end, Vec3::Zero());
+  const double radius = n - 1 + 0.5;
+  double angle = 0;
+  int iterations = 0;
+  for (auto _ : state) {
+    angle += 0.001;
+    const SolveResult r = pull.pull_to(radius * Vec3(std::cos(angle), std::sin(angle), 0));
+    if (r.status != SolveStatus::OutOfReach) state.SkipWithError(r.message.c_str());
+    iterations = std::max(iterations, r.iterations);
+  }
+  state.counters["iterations"] = iterations;  // the most of any frame
+}
+BENCHMARK(BM_Pull_AlongStretch)->Arg(2)->Arg(1000)->Unit(benchmark::kMicrosecond);
 
 void BM_DragStep_NearStretch(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));

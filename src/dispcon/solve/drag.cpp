@@ -54,6 +54,35 @@ SolveResult Puller::pull_to(const Vec3& target, bool move) {
     session_ = std::make_unique<Session>(pulled_, options_);
     revision_ = model_.revision();
   }
+  // Beyond what a path of point-to-point joints stretches to: the path stretched toward the
+  // target is the nearest pose there is, when it breaks no joint (reach.hpp).
+  if (!reach_ || reach_->revision() != model_.revision()) {
+    reach_ = std::make_unique<ReachBound>(model_, body_, options_.time);
+  }
+  std::optional<ReachBound::Stretch> stretched =
+      reach_->stretch(model_, model_.poses(), point_, at, options_);
+  if (stretched) {
+    SolveResult r;
+    r.status = SolveStatus::OutOfReach;
+    r.converged = false;
+    r.poses = std::move(stretched->poses);
+    r.constraints = std::move(stretched->constraints);
+    for (const ConstraintReport& c : r.constraints)
+      r.max_residual = std::max(r.max_residual, c.residual);
+    r.held = body_;
+    r.distance_left = stretched->distance;
+    const ReachBound::Gap& gap = stretched->gap;
+    const Joint& j = model_.joint(gap.joint);
+    std::ostringstream msg;
+    msg << "out of reach: '" << model_.body(body_).name << "' stays " << r.distance_left
+        << " from its target at the nearest pose its joints allow (the " << gap.joints << " joint"
+        << (gap.joints == 1 ? "" : "s") << " from joint " << gap.joint.value;
+    if (j.line) msg << " (line " << j.line << ")";
+    msg << " to a part that cannot move, stretched toward it)";
+    r.message = msg.str();
+    if (move) model_.set_poses(r.poses);
+    return r;
+  }
   pulled_.set_hinge(joint_, at, std::nullopt);
   std::vector<Pose> poses = model_.poses();
   SolveResult r = session_->pull(poses, joint_);
@@ -110,12 +139,7 @@ SolveResult Dragger::move_to(const Pose& target) {
 // long for Newton, or a nearly stretched linkage, whose Newton steps crawl); else the target is
 // out of reach and the pose reached is the nearest.
 SolveResult Dragger::pull(const Pose& target, SolveResult held) {
-  if (!puller_) {
-    SolveOptions capped = options_;
-    capped.max_iterations = std::min(options_.max_iterations, kPullIterations);
-    puller_ = std::make_unique<Puller>(model_, body_, Vec3::Zero(), capped);
-  }
-  SolveResult near = puller_->pull_to(target.x, false);
+  SolveResult near = puller().pull_to(target.x, false);
   const int tried = held.iterations + near.iterations;
   if (near.status != SolveStatus::OutOfReach) {
     // The held solve that persists (seed iterations between Newton's, the stall rule): from the
@@ -132,24 +156,48 @@ SolveResult Dragger::pull(const Pose& target, SolveResult held) {
     r.seed_iterations += held.seed_iterations;
     return r;
   }
-  // What holding the body at its target leaves open, from the nearest pose.
+  near.iterations = tried;
+  near.seed_iterations = held.seed_iterations;
+  near.polish_iterations += held.polish_iterations;
+  return nearest(target, std::move(near));
+}
+
+// The pull of a step that cannot be made (its Newton steps failed, or its target is out of
+// reach by the joints' lengths): the body's origin drawn toward the target's, at most
+// kPullIterations Newton steps.
+Puller& Dragger::puller() {
+  if (!puller_) {
+    SolveOptions capped = options_;
+    capped.max_iterations = std::min(options_.max_iterations, kPullIterations);
+    puller_ = std::make_unique<Puller>(model_, body_, Vec3::Zero(), capped);
+  }
+  return *puller_;
+}
+
+// A pull out of reach as a drag step's result: its poses the nearest, its constraints what
+// holding the body at its target leaves open there.
+SolveResult Dragger::nearest(const Pose& target, SolveResult near) const {
   std::vector<Pose> at_target = near.poses;
   at_target[static_cast<size_t>(body_.value)] = target;
   near.constraints = measure(model_, at_target, options_);
   near.max_residual = 0;
   for (const ConstraintReport& c : near.constraints)
     near.max_residual = std::max(near.max_residual, c.residual);
-  near.iterations = tried;
-  near.seed_iterations = held.seed_iterations;
-  near.polish_iterations += held.polish_iterations;
   return near;
 }
 
-// The step not tried: what is measured with the body at its target and the rest where it is (the
-// joints on the stretched path are open), and the least distance left.
+// A target the joints' lengths cannot reach: not solved for, but pulled toward for the nearest
+// pose (at once when the stretched linkage breaks no joint: the Puller). Where the pull does not
+// end out of reach (a path stretched breaks a joint, and the pull does not settle within its
+// iterations), the bound alone: what is measured with the body at its target and the rest where
+// it is (the joints on the stretched path are open), and the least distance left.
 SolveResult Dragger::out_of_reach(const Pose& target) {
+  SolveResult near = puller().pull_to(target.x, false);
+  if (near.status == SolveStatus::OutOfReach) return nearest(target, std::move(near));
   const ReachBound::Gap gap = reach_->gap(target, options_.tolerance);
   SolveResult r;
+  r.iterations = near.iterations;
+  r.polish_iterations = near.polish_iterations;
   r.status = SolveStatus::OutOfReach;
   r.converged = false;
   r.poses = model_.poses();

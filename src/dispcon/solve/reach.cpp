@@ -1,4 +1,5 @@
-// The reach bound of a held body: shortest paths through point-to-point joints (reach.hpp).
+// The reach bound of a held body: shortest paths through point-to-point joints, and the pose
+// stretched along one (reach.hpp).
 #include "dispcon/solve/reach.hpp"
 
 #include <algorithm>
@@ -9,23 +10,16 @@
 
 namespace dispcon {
 
-namespace {
-
-// A joint point: where a point-to-point joint holds a body (each such joint makes two, one on
-// each body, joined at no length).
-struct Node {
-  int body = 0;
-  Vec3 local = Vec3::Zero();
-  int joint = 0;  // the joint, and the node on its other body (its index xor 1)
-};
-
-}  // namespace
-
-ReachBound::ReachBound(const Model& model, BodyId held, double time) : revision_(model.revision()) {
-  std::vector<Node> nodes;
+ReachBound::ReachBound(const Model& model, BodyId held, double time)
+    : held_(held), revision_(model.revision()) {
+  std::vector<Node>& nodes = nodes_;
+  joined_.resize(static_cast<size_t>(model.body_count()));
   for (int c = 0; c < model.joint_count(); ++c) {
     const Joint& j = model.joint(JointId{c});
-    if (!j.has_hinge || j.guide || !j.active_at(time)) continue;
+    if (!j.active_at(time)) continue;
+    joined_[static_cast<size_t>(j.body1.value)].push_back(j.body2.value);
+    joined_[static_cast<size_t>(j.body2.value)].push_back(j.body1.value);
+    if (!j.has_hinge || j.guide) continue;
     nodes.push_back(Node{j.body1.value, j.p1, c});
     nodes.push_back(Node{j.body2.value, j.p2, c});
   }
@@ -41,6 +35,7 @@ ReachBound::ReachBound(const Model& model, BodyId held, double time) : revision_
   using Item = std::pair<double, int>;
   for (int source : on_body[static_cast<size_t>(held.value)]) {
     std::fill(dist.begin(), dist.end(), inf);
+    std::vector<int>& from = from_.emplace_back(nodes.size(), -1);
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
     // Leaving the held body through the source's joint: its node on the other body, at no length.
     const int out = source ^ 1;
@@ -56,8 +51,8 @@ ReachBound::ReachBound(const Model& model, BodyId held, double time) : revision_
       if (immovable(n.body)) {
         const Body& b = model.body(BodyId{n.body});
         paths_.push_back(Path{nodes[static_cast<size_t>(source)].local, b.pose.apply(n.local), d,
-                              hops[static_cast<size_t>(k)],
-                              JointId{first[static_cast<size_t>(k)]}});
+                              hops[static_cast<size_t>(k)], JointId{first[static_cast<size_t>(k)]},
+                              static_cast<int>(from_.size()) - 1, k});
         continue;  // a path through what cannot move says nothing more
       }
       // Across the body to each of its other points, then through that point's joint.
@@ -69,6 +64,7 @@ ReachBound::ReachBound(const Model& model, BodyId held, double time) : revision_
           dist[static_cast<size_t>(next)] = nd;
           hops[static_cast<size_t>(next)] = hops[static_cast<size_t>(k)] + 1;
           first[static_cast<size_t>(next)] = first[static_cast<size_t>(k)];
+          from[static_cast<size_t>(next)] = k;
           queue.push({nd, next});
         }
       }
@@ -83,6 +79,81 @@ ReachBound::Gap ReachBound::gap(const Pose& target, double tolerance) const {
     if (g > p.joints * tolerance && g > worst.distance) worst = Gap{g, p.first, p.joints};
   }
   return worst;
+}
+
+std::optional<ReachBound::Stretch> ReachBound::stretch(const Model& model,
+                                                       const std::vector<Pose>& poses,
+                                                       const Vec3& point, const Vec3& target,
+                                                       const SolveOptions& options) const {
+  // The path that falls shortest of the target with the held body free to turn: its joint point
+  // and `point` add their distance to the path's length.
+  const Path* path = nullptr;
+  double worst = 0;
+  for (const Path& p : paths_) {
+    const double g = (target - p.anchor).norm() - p.length - (point - p.held_point).norm();
+    if (g > p.joints * options.tolerance && g > worst) worst = g, path = &p;
+  }
+  if (!path) return std::nullopt;
+  const Vec3 u = (target - path->anchor).normalized();
+  Stretch out;
+  out.poses = poses;
+  out.gap = Gap{worst, path->first, path->joints};
+  // Each body's motion (its old pose to its new), for what hangs off it: -1 for a body that
+  // keeps its pose, else the path body whose motion it takes.
+  std::vector<int> moved_with(poses.size(), -1);
+  // The path from the anchor back to the held body: body k is entered at node from[cur] (toward
+  // the held body) and left at node cur ^ 1 (toward the anchor), which the joint ties to cur.
+  const std::vector<int>& from = from_[static_cast<size_t>(path->source)];
+  auto turn = [&](int body, const Vec3& near, const Vec3& far, const Vec3& at) {
+    // `near` (local) goes to `at`, `far` (local) beyond it along u.
+    Pose& p = out.poses[static_cast<size_t>(body)];
+    const Vec3 v = p.q * (far - near);
+    if (v.norm() > 0) p.q = (Quat::FromTwoVectors(v, u) * p.q).normalized();
+    p.x = at - p.q * near;
+    moved_with[static_cast<size_t>(body)] = body;
+    return at + (far - near).norm() * u;
+  };
+  Vec3 at = path->anchor;
+  int cur = path->end;
+  while (from[static_cast<size_t>(cur)] >= 0) {
+    const int k = from[static_cast<size_t>(cur)];
+    const Node& leave = nodes_[static_cast<size_t>(cur ^ 1)];
+    at = turn(leave.body, leave.local, nodes_[static_cast<size_t>(k)].local, at);
+    cur = k;
+  }
+  at = turn(held_.value, path->held_point, point, at);
+  // What hangs off the path moves with the path body it hangs from (the first reached).
+  std::vector<int> queue;
+  for (size_t b = 0; b < moved_with.size(); ++b) {
+    if (moved_with[b] >= 0) queue.push_back(static_cast<int>(b));
+  }
+  for (size_t next = 0; next < queue.size(); ++next) {
+    const int b = queue[next];
+    for (int o : joined_[static_cast<size_t>(b)]) {
+      if (o == 0 || model.body(BodyId{o}).fixed || moved_with[static_cast<size_t>(o)] >= 0) {
+        continue;
+      }
+      moved_with[static_cast<size_t>(o)] = moved_with[static_cast<size_t>(b)];
+      queue.push_back(o);
+    }
+  }
+  for (size_t b = 0; b < moved_with.size(); ++b) {
+    const int w = moved_with[b];
+    if (w < 0 || w == static_cast<int>(b)) continue;
+    // The motion of w: its old pose to its new, applied to b.
+    const Pose& old_w = poses[static_cast<size_t>(w)];
+    const Pose& new_w = out.poses[static_cast<size_t>(w)];
+    const Quat turned = new_w.q * old_w.q.conjugate();
+    Pose& p = out.poses[b];
+    p.x = new_w.x + turned * (poses[b].x - old_w.x);
+    p.q = (turned * poses[b].q).normalized();
+  }
+  out.constraints = measure(model, out.poses, options);
+  for (const ConstraintReport& c : out.constraints) {
+    if (!c.satisfied) return std::nullopt;
+  }
+  out.distance = (out.poses[static_cast<size_t>(held_.value)].apply(point) - target).norm();
+  return out;
 }
 
 }  // namespace dispcon

@@ -1,11 +1,14 @@
 // How far a held body can be from the parts that cannot move: a drag target out of reach, told
-// before any iteration. Internal to the engine (drag.cpp).
+// before any iteration, and the nearest pose when the joints' lengths alone decide it. Internal to
+// the engine (drag.cpp).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "dispcon/model/model.hpp"
+#include "dispcon/solve/solver.hpp"
 
 namespace dispcon {
 
@@ -31,6 +34,25 @@ class ReachBound {
   Gap gap(const Pose& target, double tolerance) const;
   std::uint64_t revision() const { return revision_; }
 
+  // The nearest pose of the held body's `point` (local) to `target` with the body free to turn,
+  // when a path cannot stretch that far: the path's bodies turned, each by the least rotation,
+  // so that its two joint points lie one after the other on the line from the anchor toward the
+  // target, the held body's joint point and `point` last; whatever hangs off them (bodies joined
+  // to them through bodies neither on the path nor unable to move) turned and moved with them.
+  // No valid pose takes the point nearer than the path's length from the anchor (the triangle
+  // inequality), and this one meets that bound: it is the nearest pose there is, found without
+  // iterating. None when every path reaches, or when that pose breaks a joint (a loop, an angle,
+  // a limit: the path alone does not say where the linkage goes then).
+  struct Stretch {
+    std::vector<Pose> poses;  // one per body: `poses` given, the path and what hangs off it moved
+    std::vector<ConstraintReport> constraints;  // the model's joints there, all holding
+    double distance = 0;                        // how far `point` stays from `target` there
+    Gap gap;                                    // the path stretched (its distance: the bound, met)
+  };
+  std::optional<Stretch> stretch(const Model& model, const std::vector<Pose>& poses,
+                                 const Vec3& point, const Vec3& target,
+                                 const SolveOptions& options) const;
+
  private:
   struct Path {
     Vec3 held_point;  // on the held body, local
@@ -38,8 +60,23 @@ class ReachBound {
     double length = 0;
     int joints = 0;
     JointId first{-1};
+    int source = 0;  // the held body's joint point it leaves from (an index of from_)
+    int end = 0;     // its joint point on what cannot move (a node)
   };
+  // A joint point: where a point-to-point joint holds a body (each such joint makes two, one on
+  // each body, joined at no length: node k's partner is k xor 1).
+  struct Node {
+    int body = 0;
+    Vec3 local = Vec3::Zero();
+    int joint = 0;
+  };
+  std::vector<Node> nodes_;
+  // Per source, each node's predecessor on its shortest path (the node it was reached from, on
+  // the body before it toward the held body), -1 where none.
+  std::vector<std::vector<int>> from_;
+  std::vector<std::vector<int>> joined_;  // per body, the bodies an active joint joins it to
   std::vector<Path> paths_;
+  BodyId held_;
   std::uint64_t revision_ = 0;
 };
 

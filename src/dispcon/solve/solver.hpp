@@ -145,7 +145,9 @@ class Puller {
   ~Puller();
   // Draws the point toward `target` (checked: finite, within range). Status Converged when it
   // gets there, OutOfReach when the joints hold at the nearest pose they allow and the point stays
-  // distance_left from the target (`held` is the body), IterationLimit when the joints hold and
+  // distance_left from the target (`held` is the body; a target farther from the fixed parts than
+  // a path of point-to-point joints stretches, where the path stretched toward it breaks no
+  // joint, gets that pose at once: the nearest there is), IterationLimit when the joints hold and
   // the point was still getting nearer at the cap (max_iterations; distance_left as reached),
   // Stalled or Diverged when the joints could not be made to hold. The result's poses are the
   // ones reached; with `move` true the model takes them whenever the joints hold there (it is
@@ -157,6 +159,7 @@ class Puller {
   BodyId body_;
   Vec3 point_;
   SolveOptions options_;
+  std::unique_ptr<ReachBound> reach_;  // built at the first pull, again when the model changed
   Model pulled_;  // the model and one more joint: the target (world) to the point
   JointId joint_{-1};
   std::uint64_t revision_ = 0;  // the model's when pulled_ was made
@@ -173,20 +176,25 @@ class Dragger {
   ~Dragger();
   // Holds the body at `target` (checked: a finite pose within range) and solves from the model's
   // poses. On success the model takes the new poses; otherwise it is left as it was, bit for bit,
-  // and the result names what is violated. A target farther from the fixed parts than the joints
-  // can stretch is refused before any iteration: status OutOfReach, with the distance left.
-  // A step whose Newton steps fail (a limit, a loop, a slide's end, a nearly stretched linkage)
-  // is pulled instead: the body's origin drawn toward the target's (Puller); when that gets there
-  // the step is made from the pose reached, else the status is OutOfReach and the result's poses
-  // are the nearest valid pose, distance_left how far the body's origin stays from the target's
-  // there, and its constraints what holding the body at its target leaves open. A pull still
-  // getting nearer after 40 iterations (a nearly stretched linkage crawls) hands over to the
-  // held solve from where the step began, which persists until the stall rule.
+  // and the result names what is violated. A step whose Newton steps fail (a limit, a loop, a
+  // slide's end, a nearly stretched linkage) is pulled instead: the body's origin drawn toward
+  // the target's (Puller); when that gets there the step is made from the pose reached, else the
+  // status is OutOfReach and the result's poses are the nearest valid pose, distance_left how far
+  // the body's origin stays from the target's there, and its constraints what holding the body
+  // at its target leaves open. A pull still getting nearer after 40 iterations (a nearly
+  // stretched linkage crawls) hands over to the held solve from where the step began, which
+  // persists until the stall rule. A target farther from the fixed parts than the joints can
+  // stretch is not solved for: it is pulled at once (OutOfReach with the nearest pose, without
+  // iterating when the linkage stretched toward the target breaks no joint); when that pull
+  // does not end out of reach either, the result has the bound alone as distance_left and the
+  // model's poses with the body at its target.
   SolveResult move_to(const Pose& target);
 
  private:
+  Puller& puller();
   SolveResult out_of_reach(const Pose& target);
   SolveResult pull(const Pose& target, SolveResult held);
+  SolveResult nearest(const Pose& target, SolveResult near) const;
 
   Model& model_;
   BodyId body_;

@@ -188,13 +188,23 @@ TEST(Reach, ArmOutOfReachIsToldWithTheDistanceLeft) {
   const SolveResult r = drag.move_to(Pose::from(t, Vec3::Zero()));
   EXPECT_FALSE(r.converged);
   EXPECT_EQ(r.status, SolveStatus::OutOfReach);
-  EXPECT_LE(r.iterations, 40);
+  EXPECT_EQ(r.iterations, 0);  // the stretched arm breaks no joint: no pull is needed
   EXPECT_EQ(r.held.value, arm.hand.value);
   EXPECT_NEAR(r.distance_left, t.norm() - 3.5, 1e-12);
   EXPECT_NEAR(r.distance_left, 0.405125, 1e-6);
   EXPECT_NE(r.message.find("'hand'"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("out of reach"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("nearest pose"), std::string::npos) << r.message;
   EXPECT_FALSE(r.violated().empty());
+  // The nearest pose: the arm stretched toward the target, the elbow 2 and the hand 3.5 along it,
+  // every joint holding.
+  const Vec3 u = t.normalized();
+  expect_joints_hold(arm.m, 1e-12, &r.poses);
+  EXPECT_LT((r.poses[static_cast<size_t>(arm.bars[1].value)].x - 2 * u).norm(), 1e-12);
+  EXPECT_LT((r.poses[static_cast<size_t>(arm.hand.value)].x - 3.5 * u).norm(), 1e-12);
+  for (BodyId bar : arm.bars) {
+    EXPECT_LT((r.poses[static_cast<size_t>(bar.value)].q * Vec3::UnitX() - u).norm(), 1e-12);
+  }
   // A failed step leaves the model as it was, joints holding.
   for (size_t k = 0; k < before.size(); ++k) {
     EXPECT_EQ(arm.m.poses()[k].x, before[k].x);
@@ -245,6 +255,17 @@ TEST(Reach, ThousandLinkChainStopsAtTheFirstStepOutOfReach) {
   EXPECT_LE(out.iterations, 40);
   const Vec3 step2 = start.x + 0.4 * (goal.x - start.x);
   EXPECT_NEAR(out.distance_left, step2.norm() - (n - 1), 1e-9);
+  // The nearest pose: the chain stretched straight toward step 2's target, every joint holding
+  // (the held link, dragged by its start point and free to turn, keeps its direction).
+  expect_joints_hold(c.m, 1e-9, &out.poses);
+  const Vec3 u = step2.normalized();
+  for (int i = 0; i < n; ++i) {
+    const Pose& bar = out.poses[static_cast<size_t>(c.bars[static_cast<size_t>(i)].value)];
+    EXPECT_LT((bar.x - i * u).norm(), 1e-9) << i;
+    if (i < n - 1) EXPECT_LT((bar.q * Vec3::UnitX() - u).norm(), 1e-12) << i;
+  }
+  EXPECT_EQ(out.poses[static_cast<size_t>(end.value)].q.coeffs(),
+            steps[0][static_cast<size_t>(end.value)].q.coeffs());
   EXPECT_NE(d.message.find("step 2 of 5 failed"), std::string::npos) << d.message;
   EXPECT_NE(d.message.find("'bar1000'"), std::string::npos) << d.message;
   // Left at step 1, joints holding.
@@ -404,6 +425,33 @@ TEST(Reach, RobotArmPastItsElbowLimitIsOutOfReach) {
   EXPECT_TRUE(out.constraints[2].at_limit) << d.message;
 }
 
+// The robot arm's hand held at (5, 0.5, 0), beyond what its links stretch to (2.5 from the base's
+// pivot): the arm stretched toward it breaks the elbow's limit, so the hand is pulled from where
+// it is, to the nearest pose: the elbow at its limit, the hand 2 cos(0.1) from the shoulder,
+// toward the target. Within a few dozen iterations, the model untouched.
+TEST(Reach, RobotArmFarOutOfReachIsPulledToTheNearestPose) {
+  ParseResult parsed = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/robot-arm.dcl");
+  ASSERT_TRUE(parsed.ok()) << parsed.messages();
+  Model m = std::move(*parsed.model);
+  const BodyId hand = *m.find("hand");
+  ASSERT_TRUE(assemble(m).converged);
+  const std::vector<Pose> before = m.poses();
+  Pose away = m.body(hand).pose;
+  away.x = Vec3(5, 0.5, 0);
+  Dragger drag(m, hand);
+  const SolveResult r = drag.move_to(away);
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_LE(r.iterations, 40);
+  const Vec3 shoulder(0, 0.5, 0);
+  EXPECT_NEAR(r.distance_left, (away.x - shoulder).norm() - 2 * std::cos(0.1), 1e-9);
+  expect_joints_hold(m, 1e-9, &r.poses);
+  const Vec3 at = r.poses[static_cast<size_t>(hand.value)].x;
+  EXPECT_LT((at - (shoulder + 2 * std::cos(0.1) * Vec3::UnitX())).norm(), 1e-4);
+  EXPECT_TRUE(r.constraints[2].at_limit) << r.message;
+  EXPECT_NE(r.message.find("nearest pose"), std::string::npos) << r.message;
+  expect_unchanged(m, before);
+}
+
 // The reachable step before the 1,000-link chain's first out of reach (0.04 short of stretched,
 // from the gently curved pose) is made, the end exactly at its target. Not yet in a few dozen
 // iterations: the pull crawls there as the held Newton steps do (the first-order model of a
@@ -422,6 +470,59 @@ TEST(Reach, ThousandLinkChainNearFullStretchConverges) {
   EXPECT_LE(r.iterations, 400);
   EXPECT_EQ(c.m.body(end).pose.x, target.x);
   expect_joints_hold(c.m, 1e-9);
+}
+
+// A 3-link arm (links 1, 2, 1.5) with a lamp hung from the middle link by a planar revolute (its
+// origin 0.4 along the link, turned 0.8 rad from it) dragged by its hand far out of reach: the
+// nearest pose is the arm stretched toward the target, the lamp carried with its link (where it
+// sits on the link and how it is turned against it unchanged), told without iterating.
+TEST(Reach, StretchedArmCarriesWhatHangsOffIt) {
+  Chain arm({1.0, 2.0, 1.5}, {0.2, 0.9, -0.4}, true);
+  const BodyId middle = arm.bars[1];
+  const Pose m0 = arm.m.body(middle).pose;
+  const BodyId lamp = add_bar(arm.m, "lamp", m0.apply(Vec3(0.4, 0, 0)), angle_of(m0) + 0.8, 0.6);
+  arm.m.add_joint(revolute(middle, lamp, Vec3(0.4, 0, 0)));
+  ASSERT_TRUE(assemble(arm.m).converged);
+  const std::vector<Pose> before = arm.m.poses();
+  Dragger drag(arm.m, arm.hand);
+  const Vec3 t(-3, 5, 0);
+  const SolveResult r = drag.move_to(Pose::from(t, Vec3::Zero()));
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_EQ(r.iterations, 0);
+  EXPECT_NEAR(r.distance_left, t.norm() - 4.5, 1e-12);
+  expect_joints_hold(arm.m, 1e-12, &r.poses);
+  const Vec3 u = t.normalized();
+  const Pose& mid = r.poses[static_cast<size_t>(middle.value)];
+  const Pose& hung = r.poses[static_cast<size_t>(lamp.value)];
+  EXPECT_LT((mid.x - u).norm(), 1e-12);
+  EXPECT_LT((hung.x - (u + 0.4 * u)).norm(), 1e-12);
+  EXPECT_NEAR(std::remainder(angle_of(hung) - angle_of(mid) - 0.8, 2 * kPi), 0, 1e-12);
+  EXPECT_LT((r.poses[static_cast<size_t>(arm.hand.value)].x - 4.5 * u).norm(), 1e-12);
+  expect_unchanged(arm.m, before);
+}
+
+// A Puller's point moved along the stretched boundary of a 2-link arm (links 2 and 1.5), 0.3
+// beyond it, in 20 moves: each move is the arm stretched toward the point, without iterating,
+// the hand 3.5 from the shoulder on the line to it and the model moved there.
+TEST(Reach, PullerAlongTheStretchedBoundary) {
+  Chain arm({2.0, 1.5}, {0.3, 1.2}, true);
+  ASSERT_TRUE(assemble(arm.m).converged);
+  Puller pull(arm.m, arm.hand, Vec3::Zero());
+  for (int k = 0; k <= 20; ++k) {
+    const double a = 0.4 + 0.05 * k;
+    const Vec3 u(std::cos(a), std::sin(a), 0);
+    const SolveResult r = pull.pull_to(3.8 * u);
+    ASSERT_EQ(r.status, SolveStatus::OutOfReach) << k << ": " << r.message;
+    EXPECT_EQ(r.iterations, 0) << k;
+    EXPECT_NEAR(r.distance_left, 0.3, 1e-12) << k;
+    EXPECT_TRUE(r.violated().empty()) << k;
+    EXPECT_LT((arm.m.body(arm.hand).pose.x - 3.5 * u).norm(), 1e-12) << k;
+    expect_joints_hold(arm.m, 1e-12);
+  }
+  // Back within reach the pull meets the point.
+  const SolveResult back = pull.pull_to(Vec3(1, 2, 0));
+  EXPECT_TRUE(back.converged) << back.message;
+  EXPECT_LT((arm.m.body(arm.hand).pose.x - Vec3(1, 2, 0)).norm(), 1e-9);
 }
 
 }  // namespace
