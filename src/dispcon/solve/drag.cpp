@@ -131,6 +131,24 @@ SolveResult Dragger::move_to(const Pose& target) {
     return r;
   }
   if (r.status == SolveStatus::Diverged) return r;
+  // Near a path's full stretch Newton steps crawl (the first-order model sees almost no way to
+  // change the path's reach); the path straightened by the factor that meets the target
+  // (ReachBound::straighten) is a valid pose from which the held solve has nothing or little left.
+  if (std::optional<std::vector<Pose>> straight =
+          reach_->straighten(model_, model_.poses(), at, options_)) {
+    poses_ = std::move(*straight);
+    SolveResult s = session_.solve(poses_);
+    if (s.converged) {
+      model_.set_poses(poses_);
+      s.iterations += r.iterations;
+      s.polish_iterations += r.polish_iterations;
+      s.seed_iterations += r.seed_iterations;
+      return s;
+    }
+    r.iterations += s.iterations;
+    r.polish_iterations += s.polish_iterations;
+    r.seed_iterations += s.seed_iterations;
+  }
   return pull(at, std::move(r));
 }
 

@@ -3,6 +3,7 @@
 #include "dispcon/solve/reach.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -101,9 +102,6 @@ std::optional<ReachBound::Stretch> ReachBound::stretch(const Model& model,
   // Each body's motion (its old pose to its new), for what hangs off it: -1 for a body that
   // keeps its pose, else the path body whose motion it takes.
   std::vector<int> moved_with(poses.size(), -1);
-  // The path from the anchor back to the held body: body k is entered at node from[cur] (toward
-  // the held body) and left at node cur ^ 1 (toward the anchor), which the joint ties to cur.
-  const std::vector<int>& from = from_[static_cast<size_t>(path->source)];
   auto turn = [&](int body, const Vec3& near, const Vec3& far, const Vec3& at) {
     // `near` (local) goes to `at`, `far` (local) beyond it along u.
     Pose& p = out.poses[static_cast<size_t>(body)];
@@ -114,14 +112,31 @@ std::optional<ReachBound::Stretch> ReachBound::stretch(const Model& model,
     return at + (far - near).norm() * u;
   };
   Vec3 at = path->anchor;
-  int cur = path->end;
+  for (const Link& l : links(*path)) at = turn(l.body, l.near, l.far, at);
+  at = turn(held_.value, path->held_point, point, at);
+  if (!carry(model, poses, out.poses, moved_with, options, out.constraints)) return std::nullopt;
+  out.distance = (out.poses[static_cast<size_t>(held_.value)].apply(point) - target).norm();
+  return out;
+}
+
+std::vector<ReachBound::Link> ReachBound::links(const Path& path) const {
+  // From the anchor back to the held body: body k is entered at node from[cur] (toward the held
+  // body) and left at node cur ^ 1 (toward the anchor), which the joint ties to cur.
+  const std::vector<int>& from = from_[static_cast<size_t>(path.source)];
+  std::vector<Link> out;
+  int cur = path.end;
   while (from[static_cast<size_t>(cur)] >= 0) {
     const int k = from[static_cast<size_t>(cur)];
     const Node& leave = nodes_[static_cast<size_t>(cur ^ 1)];
-    at = turn(leave.body, leave.local, nodes_[static_cast<size_t>(k)].local, at);
+    out.push_back(Link{leave.body, leave.local, nodes_[static_cast<size_t>(k)].local});
     cur = k;
   }
-  at = turn(held_.value, path->held_point, point, at);
+  return out;
+}
+
+bool ReachBound::carry(const Model& model, const std::vector<Pose>& poses, std::vector<Pose>& out,
+                       std::vector<int>& moved_with, const SolveOptions& options,
+                       std::vector<ConstraintReport>& constraints) const {
   // What hangs off the path moves with the path body it hangs from (the first reached).
   std::vector<int> queue;
   for (size_t b = 0; b < moved_with.size(); ++b) {
@@ -142,17 +157,114 @@ std::optional<ReachBound::Stretch> ReachBound::stretch(const Model& model,
     if (w < 0 || w == static_cast<int>(b)) continue;
     // The motion of w: its old pose to its new, applied to b.
     const Pose& old_w = poses[static_cast<size_t>(w)];
-    const Pose& new_w = out.poses[static_cast<size_t>(w)];
+    const Pose& new_w = out[static_cast<size_t>(w)];
     const Quat turned = new_w.q * old_w.q.conjugate();
-    Pose& p = out.poses[b];
+    Pose& p = out[b];
     p.x = new_w.x + turned * (poses[b].x - old_w.x);
     p.q = (turned * poses[b].q).normalized();
   }
-  out.constraints = measure(model, out.poses, options);
-  for (const ConstraintReport& c : out.constraints) {
-    if (!c.satisfied) return std::nullopt;
+  constraints = measure(model, out, options);
+  for (const ConstraintReport& c : constraints) {
+    if (!c.satisfied) return false;
   }
-  out.distance = (out.poses[static_cast<size_t>(held_.value)].apply(point) - target).norm();
+  return true;
+}
+
+std::optional<std::vector<Pose>> ReachBound::straighten(const Model& model,
+                                                        const std::vector<Pose>& poses,
+                                                        const Pose& target,
+                                                        const SolveOptions& options) const {
+  // The path with the least slack at the target.
+  const Path* path = nullptr;
+  double least = HUGE_VAL;
+  for (const Path& p : paths_) {
+    const double slack = p.length - (target.apply(p.held_point) - p.anchor).norm();
+    if (slack < least) least = slack, path = &p;
+  }
+  if (!path) return std::nullopt;
+  const std::vector<Link> path_links = links(*path);
+  // Each body's length along the path and direction now, split along u (the line from the
+  // anchor to the path's end) and across it.
+  const size_t n = path_links.size();
+  std::vector<double> length(n), along(n);
+  std::vector<Vec3> across(n), dir(n);
+  Vec3 end = Vec3::Zero();
+  for (size_t k = 0; k < n; ++k) {
+    const Link& l = path_links[k];
+    const Vec3 v = poses[static_cast<size_t>(l.body)].q * (l.far - l.near);
+    length[k] = v.norm();
+    dir[k] = length[k] > 0 ? Vec3(v / length[k]) : Vec3::Zero();
+    end += v;
+  }
+  const Vec3 goal = target.apply(path->held_point) - path->anchor;
+  if (!(end.norm() > 0) || !(goal.norm() > 0)) return std::nullopt;
+  const Vec3 u = end.normalized();
+  for (size_t k = 0; k < n; ++k) {
+    along[k] = dir[k].dot(u);
+    across[k] = dir[k] - along[k] * u;
+    if (length[k] > 0 && !(along[k] > 0)) return std::nullopt;  // points back: no straightening
+  }
+  // The path's end with the across parts scaled by a: its distance from the anchor falls from
+  // the path's length (a = 0, straight) as a grows; and its derivative.
+  auto reach = [&](double a, double* slope) {
+    Vec3 e = Vec3::Zero(), de = Vec3::Zero();
+    for (size_t k = 0; k < n; ++k) {
+      if (!(length[k] > 0)) continue;
+      const Vec3 w = along[k] * u + a * across[k];
+      const double r = w.norm();
+      e += length[k] / r * w;
+      de += length[k] * (across[k] / r - w * (w.dot(across[k]) / (r * r * r)));
+    }
+    const double d = e.norm();
+    if (slope) *slope = d > 0 ? e.dot(de) / d : 0;
+    return d;
+  };
+  // Safeguarded Newton from a = 1 (the shape now) on reach(a) = |goal|, bracketed by [lo, hi].
+  const double want = goal.norm();
+  double lo = 0, hi = 1, a = 1;
+  if (reach(0, nullptr) < want) return std::nullopt;  // beyond this path's reach
+  while (reach(hi, nullptr) > want) {
+    if (hi > 1e3) return std::nullopt;
+    lo = hi, hi *= 2;
+  }
+  for (int it = 0; it < 100; ++it) {
+    double slope = 0;
+    const double f = reach(a, &slope) - want;
+    if (f > 0)
+      lo = a;
+    else
+      hi = a;
+    if (std::abs(f) <= 1e-3 * options.tolerance || hi - lo <= 1e-15 * hi) break;
+    double next = slope < 0 ? a - f / slope : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    a = next;
+  }
+  // The shape at a, turned about the anchor so that its end is on the goal.
+  Vec3 e = Vec3::Zero();
+  for (size_t k = 0; k < n; ++k) {
+    if (length[k] > 0) dir[k] = length[k] * (along[k] * u + a * across[k]).normalized();
+    e += dir[k];
+  }
+  const Quat onto = Quat::FromTwoVectors(e, goal);
+  std::vector<Pose> out = poses;
+  std::vector<int> moved_with(poses.size(), -1);
+  Vec3 at = path->anchor;
+  for (size_t k = 0; k < n; ++k) {
+    const Link& l = path_links[k];
+    Pose& p = out[static_cast<size_t>(l.body)];
+    Quat turn = onto;
+    if (length[k] > 0) {
+      turn = onto * Quat::FromTwoVectors(p.q * (l.far - l.near), dir[k]);
+    }
+    p.q = (turn * p.q).normalized();
+    p.x = at - p.q * l.near;
+    at += onto * dir[k];
+    moved_with[static_cast<size_t>(l.body)] = l.body;
+  }
+  out[static_cast<size_t>(held_.value)] = target;
+  moved_with[static_cast<size_t>(held_.value)] = held_.value;
+  std::vector<ConstraintReport> constraints;
+  if (!carry(model, poses, out, moved_with, options, constraints)) return std::nullopt;
   return out;
 }
 

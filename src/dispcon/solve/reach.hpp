@@ -53,6 +53,20 @@ class ReachBound {
                                  const Vec3& point, const Vec3& target,
                                  const SolveOptions& options) const;
 
+  // A pose with the held body at `target` for a target within reach of the path that comes
+  // nearest its full stretch there, where Newton steps crawl (the first-order model of a nearly
+  // straight path sees almost no way to change its reach): the path's shape straightened (or bent)
+  // by one factor, each body's direction across the path keeping its component along the line
+  // from the anchor to the path's end and the rest scaled by that factor, found so that the
+  // path's end meets the held body's joint point at the target; the whole then turned about the
+  // anchor onto it, what hangs off the path carried along, the held body at its target. The
+  // path's shape changes continuously with the factor, so the linkage keeps its branch. None
+  // when no path has a joint point on the held body, when a body on the path points back toward
+  // the anchor, or when that pose breaks a joint (measured: a loop, an angle, a limit).
+  std::optional<std::vector<Pose>> straighten(const Model& model, const std::vector<Pose>& poses,
+                                              const Pose& target,
+                                              const SolveOptions& options) const;
+
  private:
   struct Path {
     Vec3 held_point;  // on the held body, local
@@ -77,6 +91,21 @@ class ReachBound {
   std::vector<std::vector<int>> joined_;  // per body, the bodies an active joint joins it to
   std::vector<Path> paths_;
   BodyId held_;
+
+  // A body on a path: entered at `near` (local, toward the anchor), left at `far` (toward the
+  // held body).
+  struct Link {
+    int body = 0;
+    Vec3 near, far;
+  };
+  // The bodies of `path` from its anchor to the held body (the held body not included).
+  std::vector<Link> links(const Path& path) const;
+  // Moves each body that hangs off a moved one (moved_with[b] == b for the bodies moved, -1 for
+  // the rest) as that one moved from `poses` to `out`, then measures every joint there: false
+  // when one is broken.
+  bool carry(const Model& model, const std::vector<Pose>& poses, std::vector<Pose>& out,
+             std::vector<int>& moved_with, const SolveOptions& options,
+             std::vector<ConstraintReport>& constraints) const;
   std::uint64_t revision_ = 0;
 };
 
