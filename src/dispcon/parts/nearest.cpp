@@ -9,11 +9,6 @@ Vec3 any_perpendicular(const Vec3& u) {
   return u.cross(other).normalized();
 }
 
-void orthonormal_basis(const Vec3& first, Vec3& second, Vec3& third) {
-  second = any_perpendicular(first);
-  third = first.cross(second);
-}
-
 Vec3 unit_or(const Vec3& v, const Vec3& fallback) {
   const double n = v.norm();
   return n > 1e-300 ? Vec3(v / n) : fallback;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 
 #include "dispcon/math/rotation.hpp"
 
@@ -16,8 +17,18 @@ struct Nearest {
   bool at_limit = false;          // a bound (segment end, ring edge, ...) is in contact
 };
 
-// Fills n[0..2] with an orthonormal basis whose first vector is `first` (unit).
-void orthonormal_basis(const Vec3& first, Vec3& second, Vec3& third);
+// Two unit vectors that make an orthonormal basis with `first` (unit), as a smooth function of
+// `first` except across first.z() = -1 (Duff et al., "Building an orthonormal basis, revisited",
+// 2017): one division, no square root. A hinge's angle rows take one at every pass over the
+// joints, where normalising a cross product (a square root and three divisions in a chain) was
+// a tenth of a grid's drag step. Inline: called from the parts' rows.
+inline void orthonormal_basis(const Vec3& first, Vec3& second, Vec3& third) {
+  const double sign = std::copysign(1.0, first.z());
+  const double a = -1.0 / (sign + first.z());
+  const double b = first.x() * first.y() * a;
+  second = Vec3(1.0 + sign * first.x() * first.x() * a, sign * b, -sign * first.x());
+  third = Vec3(b, sign + first.y() * first.y() * a, -first.y());
+}
 
 // Any unit vector perpendicular to the unit vector u.
 Vec3 any_perpendicular(const Vec3& u);

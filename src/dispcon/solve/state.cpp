@@ -189,12 +189,19 @@ JointGeometry SolverState::geometry(const JointState& js, BoundTest bound) const
   if (j.has_translation()) {
     g.translation = true;
     g.P2 = s2.R * j.p2 + s2.x;
-    const Vec3 local = s1.R.transpose() * (g.P2 - s1.x);
-    g.nearest = nearest_on_guide(j, local, bound);
-    g.Q = s1.R * g.nearest.q + s1.x;
-    for (int k = 0; k < g.nearest.rows; ++k) {
-      Vec3& n = g.nearest.normals[static_cast<size_t>(k)];
-      n = s1.R * n;
+    if (!j.guide || j.guide->kind == GuideKind::Point) {
+      // A point: its rows are the world's axes, which do not turn with body 1, so the Jacobian
+      // of a chord step's factorisation stays nearer the current one.
+      g.nearest = nearest_on_point(j.p1, j.p1);
+      g.Q = s1.R * j.p1 + s1.x;
+    } else {
+      const Vec3 local = s1.R.transpose() * (g.P2 - s1.x);
+      g.nearest = nearest_on_guide(j, local, bound);
+      g.Q = s1.R * g.nearest.q + s1.x;
+      for (int k = 0; k < g.nearest.rows; ++k) {
+        Vec3& n = g.nearest.normals[static_cast<size_t>(k)];
+        n = s1.R * n;
+      }
     }
   }
   if (j.angle) {
