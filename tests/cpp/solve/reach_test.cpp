@@ -400,15 +400,22 @@ TEST(Reach, SliderPastItsBoundStopsAtTheEnd) {
   expect_unchanged(m, before);
 }
 
+// The robot arm sample, assembled (its elbow bends 0.2 rad at least: angle limits). Its
+// failures are fatal to the test: call it under ASSERT_NO_FATAL_FAILURE.
+void load_robot_arm(Model& m) {
+  ParseResult parsed = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/robot-arm.dcl");
+  ASSERT_TRUE(parsed.ok()) << parsed.messages();
+  m = std::move(*parsed.model);
+  ASSERT_TRUE(assemble(m).converged);
+}
+
 // The robot arm sample dragged beyond its elbow's limit (it never quite straightens: 0.2 rad at
 // least, so the hand reaches 2 cos(0.1) from the shoulder at (0, 0.5, 0), short of the links'
 // 2): the first step past that is out of reach, told within a few dozen iterations.
 TEST(Reach, RobotArmPastItsElbowLimitIsOutOfReach) {
-  ParseResult parsed = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/robot-arm.dcl");
-  ASSERT_TRUE(parsed.ok()) << parsed.messages();
-  Model m = std::move(*parsed.model);
+  Model m;
+  ASSERT_NO_FATAL_FAILURE(load_robot_arm(m));
   const BodyId hand = *m.find("hand");
-  ASSERT_TRUE(assemble(m).converged);
   Pose away = m.body(hand).pose;
   away.x = Vec3(3, 0.5, 0);
   const int steps = 40;
@@ -430,11 +437,9 @@ TEST(Reach, RobotArmPastItsElbowLimitIsOutOfReach) {
 // it is, to the nearest pose: the elbow at its limit, the hand 2 cos(0.1) from the shoulder,
 // toward the target. Within a few dozen iterations, the model untouched.
 TEST(Reach, RobotArmFarOutOfReachIsPulledToTheNearestPose) {
-  ParseResult parsed = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/robot-arm.dcl");
-  ASSERT_TRUE(parsed.ok()) << parsed.messages();
-  Model m = std::move(*parsed.model);
+  Model m;
+  ASSERT_NO_FATAL_FAILURE(load_robot_arm(m));
   const BodyId hand = *m.find("hand");
-  ASSERT_TRUE(assemble(m).converged);
   const std::vector<Pose> before = m.poses();
   Pose away = m.body(hand).pose;
   away.x = Vec3(5, 0.5, 0);
