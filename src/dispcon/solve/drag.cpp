@@ -25,6 +25,21 @@ std::vector<bool> held_only(const Model& model, BodyId body) {
   return held;
 }
 
+// The largest residual of a result's constraints (a NaN is passed over, as std::max does).
+double largest_residual(const std::vector<ConstraintReport>& constraints) {
+  double r = 0;
+  for (const ConstraintReport& c : constraints) r = std::max(r, c.residual);
+  return r;
+}
+
+// The path a reach bound names, as its messages say it: "the N joints from joint J (line L)".
+void describe_path(std::ostream& msg, const Model& model, const ReachBound::Gap& gap) {
+  const Joint& j = model.joint(gap.joint);
+  msg << "the " << gap.joints << " joint" << (gap.joints == 1 ? "" : "s") << " from joint "
+      << gap.joint.value;
+  if (j.line) msg << " (line " << j.line << ")";
+}
+
 }  // namespace
 
 Puller::Puller(Model& model, BodyId body, const Vec3& point, const SolveOptions& options)
@@ -59,38 +74,32 @@ SolveResult Puller::pull_to(const Vec3& target, bool move) {
   if (!reach_ || reach_->revision() != model_.revision()) {
     reach_ = std::make_unique<ReachBound>(model_, body_, options_.time);
   }
+  std::vector<Pose> poses = model_.poses();
   std::optional<ReachBound::Stretch> stretched =
-      reach_->stretch(model_, model_.poses(), point_, at, options_);
+      reach_->stretch(model_, poses, point_, at, options_);
   if (stretched) {
     SolveResult r;
     r.status = SolveStatus::OutOfReach;
     r.converged = false;
     r.poses = std::move(stretched->poses);
     r.constraints = std::move(stretched->constraints);
-    for (const ConstraintReport& c : r.constraints)
-      r.max_residual = std::max(r.max_residual, c.residual);
+    r.max_residual = largest_residual(r.constraints);
     r.held = body_;
     r.distance_left = stretched->distance;
-    const ReachBound::Gap& gap = stretched->gap;
-    const Joint& j = model_.joint(gap.joint);
     std::ostringstream msg;
     msg << "out of reach: '" << model_.body(body_).name << "' stays " << r.distance_left
-        << " from its target at the nearest pose its joints allow (the " << gap.joints << " joint"
-        << (gap.joints == 1 ? "" : "s") << " from joint " << gap.joint.value;
-    if (j.line) msg << " (line " << j.line << ")";
+        << " from its target at the nearest pose its joints allow (";
+    describe_path(msg, model_, stretched->gap);
     msg << " to a part that cannot move, stretched toward it)";
     r.message = msg.str();
     if (move) model_.set_poses(r.poses);
     return r;
   }
   pulled_.set_hinge(joint_, at, std::nullopt);
-  std::vector<Pose> poses = model_.poses();
   SolveResult r = session_->pull(poses, joint_);
   // Reported as the model's joints: the pull's own is the last.
   r.constraints.pop_back();
-  r.max_residual = 0;
-  for (const ConstraintReport& c : r.constraints)
-    r.max_residual = std::max(r.max_residual, c.residual);
+  r.max_residual = largest_residual(r.constraints);
   r.held = body_;
   const bool holds =
       r.status != SolveStatus::Diverged && r.status != SolveStatus::Stalled && r.violated().empty();
@@ -198,9 +207,7 @@ SolveResult Dragger::nearest(const Pose& target, SolveResult near) const {
   std::vector<Pose> at_target = near.poses;
   at_target[static_cast<size_t>(body_.value)] = target;
   near.constraints = measure(model_, at_target, options_);
-  near.max_residual = 0;
-  for (const ConstraintReport& c : near.constraints)
-    near.max_residual = std::max(near.max_residual, c.residual);
+  near.max_residual = largest_residual(near.constraints);
   return near;
 }
 
@@ -221,16 +228,13 @@ SolveResult Dragger::out_of_reach(const Pose& target) {
   r.poses = model_.poses();
   r.poses[static_cast<size_t>(body_.value)] = target;
   r.constraints = measure(model_, r.poses, options_);
-  for (const ConstraintReport& c : r.constraints)
-    r.max_residual = std::max(r.max_residual, c.residual);
+  r.max_residual = largest_residual(r.constraints);
   r.held = body_;
   r.distance_left = gap.distance;
-  const Joint& j = model_.joint(gap.joint);
   std::ostringstream msg;
   msg << "out of reach: '" << model_.body(body_).name << "' stays at least " << gap.distance
-      << " from its target (the " << gap.joints << " joint" << (gap.joints == 1 ? "" : "s")
-      << " from joint " << gap.joint.value;
-  if (j.line) msg << " (line " << j.line << ")";
+      << " from its target (";
+  describe_path(msg, model_, gap);
   msg << " to a part that cannot move do not stretch that far)";
   r.message = msg.str();
   return r;
