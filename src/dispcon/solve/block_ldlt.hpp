@@ -6,6 +6,11 @@
 //
 // The matrix must be quasi-definite (as [-M J^T; J mu I] is): every pivot met in any order is
 // then non-zero, so no pivoting is needed and the order is chosen for fill alone.
+//
+// The kernels keep a block's columns in vector registers, and the solve takes its columns
+// level by level in the elimination tree (see solve()'s schedules below): a post-order makes
+// each column wait for its child's last update, a chain of dependent operations the processor
+// cannot overlap.
 #pragma once
 
 #include <cstddef>
@@ -49,6 +54,11 @@ class BlockLdlt {
   // Solves A x = b in place: x holds kSize values a block, block after block in the caller's
   // numbering (the padding's values must be 0, and stay 0).
   void solve(double* x);
+  // Whether factorize() and solve() take a block's column of six in one vector of eight
+  // (AVX-512) rather than four and two: on by default where the processor has it. Both do the
+  // same operations in the same order, so they give the same bits; tests compare them.
+  bool wide() const { return wide_; }
+  void set_wide(bool on);
 
  private:
   int slot_of(int a, int b) const;
@@ -62,8 +72,18 @@ class BlockLdlt {
   std::vector<double> values_;
   std::vector<double> pivots_;  // dk of each pivot block D = Lk dk Lk^T, kSize a block
   std::vector<int> targets_;    // where each update of factorize() lands, in its order
-  std::vector<double> w_;       // a column's blocks times Lk^-T (before scaling by dk^-1)
-  std::vector<double> z_;       // the solve's right-hand side in elimination order
+  // The solve's schedules (solve()): the forward substitution row by row, each row's blocks
+  // gathered in column order (row_start_, row_block_, row_column_), the rows taken leaves
+  // first by their height in the elimination tree (forward_); the back substitution column by
+  // column, the root first by depth (back_). Columns of one level do not depend on each other,
+  // so their chains of dependent operations overlap in the processor instead of waiting one
+  // for the other as a post-order's parent and child do.
+  std::vector<int> row_start_, row_block_, row_column_;
+  std::vector<int> forward_, back_;
+  bool wide_ = wide_supported();
+  static bool wide_supported();
+  std::vector<double> w_;  // a column's blocks times Lk^-T (before scaling by dk^-1)
+  std::vector<double> z_;  // the solve's right-hand side in elimination order
 };
 
 }  // namespace dispcon

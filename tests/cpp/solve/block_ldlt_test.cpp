@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cstring>
 #include <random>
 
 namespace dispcon {
@@ -49,8 +50,10 @@ Problem saddle(int bodies, const std::vector<std::pair<int, int>>& joints,
 }
 
 // Writes the problem into `f` through its slots, factors, and solves against b; returns the
-// largest difference from the dense solution, relative to its size.
-double solve_difference(BlockLdlt& f, const Problem& p, const Eigen::VectorXd& b) {
+// largest difference from the dense solution, relative to its size (and the solution itself,
+// padded, in `solution`).
+double solve_difference(BlockLdlt& f, const Problem& p, const Eigen::VectorXd& b,
+                        std::vector<double>* solution = nullptr) {
   f.analyze(p.sizes, p.pairs);
   f.clear();
   const int blocks = static_cast<int>(p.sizes.size());
@@ -73,6 +76,7 @@ double solve_difference(BlockLdlt& f, const Problem& p, const Eigen::VectorXd& b
     }
   }
   f.solve(x.data());
+  if (solution) *solution = x;
   const Eigen::VectorXd expected = p.dense.lu().solve(b);
   double worst = 0;
   for (int i = 0; i < blocks; ++i) {
@@ -124,6 +128,36 @@ TEST(BlockLdlt, RefactorsWithNewValuesOnTheSamePattern) {
     const Problem p = saddle(3, joints, rows, 1e-3, rng);
     const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.dense.rows(), -1, 2);
     EXPECT_LT(solve_difference(f, p, b), 1e-10) << "round " << round;
+  }
+}
+
+TEST(BlockLdlt, WideKernelsGiveTheSameBits) {
+  BlockLdlt probe;
+  if (!probe.wide()) GTEST_SKIP() << "this processor has no AVX-512";
+  std::mt19937 rng(13);
+  const int side = 5;
+  std::vector<std::pair<int, int>> joints;
+  std::vector<int> rows;
+  for (int v = 0; v < side * side; ++v) {
+    if (v % side + 1 < side) joints.emplace_back(v, v + 1);
+    if (v + side < side * side) joints.emplace_back(v, v + side);
+    if (v < side) joints.emplace_back(-1, v);
+  }
+  for (size_t k = 0; k < joints.size(); ++k) rows.push_back(k % 3 ? 5 : 3);
+  const Problem p = saddle(side * side, joints, rows, 1e-9, rng);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Eigen::VectorXd b = Eigen::VectorXd::NullaryExpr(p.dense.rows(), [&] { return u(rng); });
+  std::vector<double> x[2];
+  for (int wide = 0; wide < 2; ++wide) {
+    BlockLdlt f;
+    f.set_wide(wide == 1);
+    ASSERT_EQ(f.wide(), wide == 1);
+    solve_difference(f, p, b, &x[wide]);
+  }
+  ASSERT_EQ(x[0].size(), x[1].size());
+  for (size_t i = 0; i < x[0].size(); ++i) {
+    EXPECT_EQ(std::memcmp(&x[0][i], &x[1][i], sizeof(double)), 0)
+        << "unknown " << i << ": " << x[0][i] << " against " << x[1][i];
   }
 }
 
