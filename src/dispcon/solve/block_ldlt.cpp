@@ -540,24 +540,28 @@ bool BlockLdlt::factorize() {
 
 void BlockLdlt::solve(double* x) {
   const int n = blocks();
-  for (int k = 0; k < n; ++k) {
-    std::copy_n(x + kSize * order_[static_cast<size_t>(k)], kSize, z_.data() + kSize * k);
-  }
+  for (int b = 0; b < n; ++b) std::copy_n(x + kSize * b, kSize, values_of(b));
+  solve();
+  for (int b = 0; b < n; ++b) std::copy_n(values_of(b), kSize, x + kSize * b);
+}
+
+void BlockLdlt::clear_values() {
+  std::fill(z_.begin(), z_.end(), 0.0);
+}
+
+void BlockLdlt::solve() {
+  const int n = blocks();
 #ifdef DISPCON_WIDE
   if (wide_) {
     solve_columns_wide(n, start_.data(), row_.data(), row_start_.data(), row_block_.data(),
                        row_column_.data(), forward_.data(), back_.data(), values_.data(),
                        pivots_.data(), z_.data());
-  } else
+    return;
+  }
 #endif
-  {
-    solve_columns(n, start_.data(), row_.data(), row_start_.data(), row_block_.data(),
-                  row_column_.data(), forward_.data(), back_.data(), values_.data(), pivots_.data(),
-                  z_.data());
-  }
-  for (int k = 0; k < n; ++k) {
-    std::copy_n(z_.data() + kSize * k, kSize, x + kSize * order_[static_cast<size_t>(k)]);
-  }
+  solve_columns(n, start_.data(), row_.data(), row_start_.data(), row_block_.data(),
+                row_column_.data(), forward_.data(), back_.data(), values_.data(), pivots_.data(),
+                z_.data());
 }
 
 }  // namespace dispcon

@@ -54,6 +54,12 @@ class BlockLdlt {
   // Solves A x = b in place: x holds kSize values a block, block after block in the caller's
   // numbering (the padding's values must be 0, and stay 0).
   void solve(double* x);
+  // The same without copies: the right-hand side is written, and the solution read, in place
+  // through values_of(b), block b's kSize values (the padding's 0 as above), after
+  // clear_values() zeroes them all.
+  void clear_values();
+  double* values_of(int b) { return z_.data() + kSize * pos_[static_cast<size_t>(b)]; }
+  void solve();
   // Whether factorize() and solve() take a block's column of six in one vector of eight
   // (AVX-512) rather than four and two: on by default where the processor has it. Both do the
   // same operations in the same order, so they give the same bits; tests compare them.

@@ -160,7 +160,6 @@ class Polisher {
   };
   std::vector<RunSlots> run_slots_;
   std::vector<BlockLdlt::Slot> body_slots_;
-  std::vector<double> block_x_;  // right-hand side and solution, six values a block
   std::vector<int> analyzed_pattern_;
   HugeVector<int> slots_;  // where each value of the rows form is added (factor_sparse)
   bool analyzed_ = false;

@@ -38,7 +38,6 @@ void Polisher::analyze_blocks() {
     r.body1 = e.v1 >= 0 ? blocks_.slot(nv_ + k, e.v1) : BlockLdlt::Slot{};
     r.body2 = e.v2 >= 0 ? blocks_.slot(nv_ + k, e.v2) : BlockLdlt::Slot{};
   }
-  block_x_.assign(static_cast<size_t>(BlockLdlt::kSize * (nv_ + runs)), 0.0);
 }
 
 //   [ -M   J^T    ]
@@ -73,22 +72,23 @@ bool Polisher::factor_blocks(const SolverState& s, double mu) {
   return blocks_.factorize();
 }
 
-// The right-hand side [0; -r], and dq from the solution.
+// The right-hand side [0; -r], and dq from the solution, in place in the factorisation's own
+// vector (a copy into the caller's numbering and back cost a tenth of the solve).
 bool Polisher::solve_blocks(const std::vector<double>& residual) {
-  std::fill(block_x_.begin(), block_x_.end(), 0.0);
+  blocks_.clear_values();
   const int runs = static_cast<int>(run_slots_.size());
   for (int k = 0; k < runs; ++k) {
     const int first = run_start_[static_cast<size_t>(k)];
-    double* x = block_x_.data() + BlockLdlt::kSize * (nv_ + k);
+    double* x = blocks_.values_of(nv_ + k);
     for (int a = first; a < run_start_[static_cast<size_t>(k) + 1]; ++a) {
       x[a - first] = -residual[static_cast<size_t>(a)];
     }
   }
-  blocks_.solve(block_x_.data());
+  blocks_.solve();
   bool finite = true;
   for (int v = 0; v < nv_; ++v) {
     Vec6& d = w_->dq_[static_cast<size_t>(v)];
-    d = Eigen::Map<const Vec6>(block_x_.data() + BlockLdlt::kSize * v);
+    d = Eigen::Map<const Vec6>(blocks_.values_of(v));
     finite = finite && d.allFinite();
   }
   return finite;
