@@ -3,6 +3,7 @@
 #include "dispcon/solve/polish.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 namespace dispcon {
 
@@ -12,6 +13,7 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   w_ = &work;
   s_ = &s;
   reused_ = false;
+  kept_ = false;  // the poses move below
   w_->dq_.resize(static_cast<size_t>(nv_));
   for (int v = 0; v < nv_; ++v)
     s.bodies[static_cast<size_t>(group_->bodies[static_cast<size_t>(v)])].n_var = v;
@@ -20,14 +22,16 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   // since), not the Jacobian nor M^-1 J^T.
   if (reuse && factored_ && kkt_ && !soft) {
     if (!(measured && measured_)) gather_residuals(s, band, nullptr);
-    reused_ = chord_pattern_ == analyzed_pattern_;
+    reused_ =
+        2 * static_cast<size_t>(chord_.rows) == analyzed_pattern_.size() &&
+        std::equal(analyzed_pattern_.begin(), analyzed_pattern_.end(), chord_.pattern.begin());
   }
   measured_ = false;  // the poses move below
   if (!reused_) gather(s, band, soft);
-  const int m = static_cast<int>(reused_ ? chord_residual_.size() : w_->rows_.size());
+  const int m = reused_ ? chord_.rows : static_cast<int>(w_->rows_.size());
   if (m == 0 || nv_ == 0) return false;
   if (reused_) {
-    if (!solve_blocks(chord_residual_)) return false;
+    if (!solve_blocks(chord_.residual)) return false;
   } else if (!factor(s, lambda)) {
     return false;
   }
@@ -60,18 +64,20 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
 
 namespace {
 
-// Every row of the group's joints, in order: `row(c, v1, v2, part, k)` for row k of a part of
-// joint c between the variables v1 and v2 (-1 for a body that does not move). One walk serves
-// the full gather and the chord step's, which keep different things of each row (the chord
-// step's, without `jacobian`, the residuals alone). With `joint_r`, each joint's residual is
-// measured in the same look at its geometry (as max_residual() does) and the largest returned.
-template <typename Row>
-double for_each_row(const SolverState& s, const std::vector<int>& joints,
+// Every row of the joints first ... last, in order: `row(c, v1, v2, part, k)` for row k of a
+// part of joint c between the variables v1 and v2 (-1 for a body that does not move), then
+// `after()` at each joint's end. One walk serves the full gather and the chord step's, which
+// keep different things of each row (the chord step's, without `jacobian`, the residuals
+// alone). With `joint_r`, each joint's residual is measured in the same look at its geometry
+// (as max_residual() does) and the largest returned.
+template <typename Row, typename After>
+double for_each_row(const SolverState& s, const int* first, const int* last,
                     const std::vector<double>& band, bool jacobian, std::vector<double>* joint_r,
-                    Row&& row) {
+                    Row&& row, After&& after) {
   PartRows parts[kPartSlots];
   double largest = 0;
-  for (int c : joints) {
+  for (const int* joint = first; joint != last; ++joint) {
+    const int c = *joint;
     const JointState& js = s.joints[static_cast<size_t>(c)];
     const BodyState& s1 = s.bodies[static_cast<size_t>(js.b1)];
     const BodyState& s2 = s.bodies[static_cast<size_t>(js.b2)];
@@ -88,6 +94,7 @@ double for_each_row(const SolverState& s, const std::vector<int>& joints,
     for (const PartRows& p : parts) {
       for (int k = 0; k < p.count; ++k) row(c, v1, v2, p, k);
     }
+    after();
   }
   return largest;
 }
@@ -113,21 +120,24 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band,
     }
   };
   int last = -1;
-  for_each_row(s, group_->joints, band, true, nullptr,
-               [&](int c, int v1, int v2, const PartRows& p, int k) {
-                 if (c != last) {
-                   mark_boundary();
-                   last = c;
-                 }
-                 Entry e;
-                 e.v1 = v1;
-                 e.v2 = v2;
-                 e.j1 = p.J[k].segment<6>(0).transpose();
-                 e.j2 = p.J[k].segment<6>(6).transpose();
-                 w_->rows_.push_back(e);
-                 w_->residual_.push_back(p.residual[k]);
-                 if (soft) w_->soft_.push_back((*soft)[static_cast<size_t>(c)]);
-               });
+  const std::vector<int>& joints = group_->joints;
+  for_each_row(
+      s, joints.data(), joints.data() + joints.size(), band, true, nullptr,
+      [&](int c, int v1, int v2, const PartRows& p, int k) {
+        if (c != last) {
+          mark_boundary();
+          last = c;
+        }
+        Entry e;
+        e.v1 = v1;
+        e.v2 = v2;
+        e.j1 = p.J[k].segment<6>(0).transpose();
+        e.j2 = p.J[k].segment<6>(6).transpose();
+        w_->rows_.push_back(e);
+        w_->residual_.push_back(p.residual[k]);
+        if (soft) w_->soft_.push_back((*soft)[static_cast<size_t>(c)]);
+      },
+      [] {});
   mark_boundary();
   rows_hint_ = w_->rows_.size();
 }
@@ -136,21 +146,119 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band,
 // joints' residuals too (the largest returned).
 double Polisher::gather_residuals(const SolverState& s, const std::vector<double>& band,
                                   std::vector<double>* joint_r) {
-  chord_residual_.clear();
-  chord_pattern_.clear();
-  return for_each_row(s, group_->joints, band, false, joint_r,
-                      [&](int, int v1, int v2, const PartRows& p, int k) {
-                        chord_residual_.push_back(p.residual[k]);
-                        chord_pattern_.push_back(v1);
-                        chord_pattern_.push_back(v2);
-                      });
+  const std::vector<int>& joints = group_->joints;
+  chord_.start(joints.size());
+  int i = 0;
+  return for_each_row(
+      s, joints.data(), joints.data() + joints.size(), band, false, joint_r,
+      [&](int, int v1, int v2, const PartRows& p, int k) { chord_.add(p.residual[k], v1, v2); },
+      [&] { chord_.joint[static_cast<size_t>(++i)] = chord_.rows; });
 }
 
 double Polisher::measure(const SolverState& s, const std::vector<double>& band,
-                         std::vector<double>& joint_r) {
+                         std::vector<double>& joint_r, bool since_kept) {
+  const bool kept = since_kept && kept_;
+  kept_ = false;
   measured_ = factored_ && kkt_;
   if (!measured_) return max_residual(s, group_->joints, joint_r);
+  if (kept) return measure_moved(s, band, joint_r);
   return gather_residuals(s, band, &joint_r);
+}
+
+namespace {
+
+// A body's rotation and position, bit for bit: all that a joint's rows and residual read of it.
+constexpr int kPoseValues = 12;
+void copy_pose(const BodyState& b, double* to) {
+  std::memcpy(to, b.R.data(), 9 * sizeof(double));
+  std::memcpy(to + 9, b.x.data(), 3 * sizeof(double));
+}
+bool same_pose(const BodyState& b, const double* kept) {
+  return std::memcmp(b.R.data(), kept, 9 * sizeof(double)) == 0 &&
+         std::memcmp(b.x.data(), kept + 9, 3 * sizeof(double)) == 0;
+}
+constexpr int kJointValues = 7;  // the residual, p1, p2
+
+}  // namespace
+
+void Polisher::keep_measure(const SolverState& s, const std::vector<double>& joint_r) {
+  const std::vector<int>& joints = group_->joints;
+  kept_ = measured_ && chord_.joint.size() == joints.size() + 1;
+  if (!kept_) return;
+  if (joint_touched_.size() != 2 * joints.size()) {  // once: the bodies the joints join
+    std::vector<int> slot(s.bodies.size(), -1);
+    touched_.clear();
+    joint_touched_.clear();
+    for (int c : joints) {
+      const JointState& js = s.joints[static_cast<size_t>(c)];
+      for (int b : {js.b1, js.b2}) {
+        int& t = slot[static_cast<size_t>(b)];
+        if (t < 0) {
+          t = static_cast<int>(touched_.size());
+          touched_.push_back(b);
+        }
+        joint_touched_.push_back(t);
+      }
+    }
+  }
+  kept_pose_.resize(kPoseValues * touched_.size());
+  for (size_t t = 0; t < touched_.size(); ++t) {
+    copy_pose(s.bodies[static_cast<size_t>(touched_[t])], kept_pose_.data() + kPoseValues * t);
+  }
+  kept_joint_.resize(kJointValues * joints.size());
+  for (size_t i = 0; i < joints.size(); ++i) {
+    const Joint& j = *s.joints[static_cast<size_t>(joints[i])].joint;
+    double* k = kept_joint_.data() + kJointValues * i;
+    k[0] = joint_r[static_cast<size_t>(joints[i])];
+    std::memcpy(k + 1, j.p1.data(), 3 * sizeof(double));
+    std::memcpy(k + 4, j.p2.data(), 3 * sizeof(double));
+  }
+}
+
+// gather_residuals() where a joint's bodies moved, or its rows may depend on more than their
+// poses (a bound's band, a coupling's turns, a twist's range); the kept measure elsewhere.
+double Polisher::measure_moved(const SolverState& s, const std::vector<double>& band,
+                               std::vector<double>& joint_r) {
+  const std::vector<int>& joints = group_->joints;
+  moved_.resize(touched_.size());
+  for (size_t t = 0; t < touched_.size(); ++t) {
+    moved_[t] =
+        !same_pose(s.bodies[static_cast<size_t>(touched_[t])], kept_pose_.data() + kPoseValues * t);
+  }
+  spare_.start(joints.size());
+  double largest = 0;
+  for (size_t i = 0; i < joints.size(); ++i) {
+    const auto c = static_cast<size_t>(joints[i]);
+    const JointState& js = s.joints[c];
+    const Joint& j = *js.joint;
+    const double* k = kept_joint_.data() + kJointValues * i;
+    const bool same = !moved_[static_cast<size_t>(joint_touched_[2 * i])] &&
+                      !moved_[static_cast<size_t>(joint_touched_[2 * i + 1])] && !js.bounded &&
+                      !j.coupling && !j.twist &&
+                      std::memcmp(j.p1.data(), k + 1, 3 * sizeof(double)) == 0 &&
+                      std::memcmp(j.p2.data(), k + 4, 3 * sizeof(double)) == 0;
+    double rc;
+    if (same) {
+      rc = k[0];
+      const int first = chord_.joint[i], count = chord_.joint[i + 1] - first;
+      std::copy_n(chord_.residual.begin() + first, count, spare_.residual.begin() + spare_.rows);
+      std::copy_n(chord_.pattern.begin() + 2 * first, 2 * count,
+                  spare_.pattern.begin() + 2 * spare_.rows);
+      spare_.rows += count;
+    } else {
+      rc = for_each_row(
+          s, &joints[i], &joints[i] + 1, band, false, &joint_r,
+          [&](int, int v1, int v2, const PartRows& p, int row) {
+            spare_.add(p.residual[row], v1, v2);
+          },
+          [] {});
+    }
+    joint_r[c] = rc;
+    largest = larger_residual(largest, rc);
+    spare_.joint[i + 1] = spare_.rows;
+  }
+  std::swap(chord_, spare_);
+  return largest;
 }
 
 void Polisher::list_rows_by_body() {

@@ -72,8 +72,15 @@ class Polisher {
   // Each joint's residual at the current poses into `joint_r` and the largest, as max_residual()
   // gives them; when a chord step may follow (a factorisation to reuse), the same pass over the
   // joints' geometry also keeps the rows' residuals, so that step need not measure again.
+  // With `since_kept` (a solve's first measure), the joints whose bodies have not moved since
+  // keep_measure() (their rotations and positions the same bits) are not measured again: their
+  // residuals and rows' residuals are those kept. A drag's frame moves the held body only, so
+  // its first measure looks at the held body's joints alone.
   double measure(const SolverState& s, const std::vector<double>& band,
-                 std::vector<double>& joint_r);
+                 std::vector<double>& joint_r, bool since_kept = false);
+  // Keeps the last measure for the next solve's first one, when it was of the current poses
+  // (measure() the last thing done); `joint_r` holds its joints' residuals.
+  void keep_measure(const SolverState& s, const std::vector<double>& joint_r);
 
  private:
   using Vec6 = PolishWork::Vec6;
@@ -85,6 +92,8 @@ class Polisher {
   double soft(int a) const { return w_->soft_.empty() ? 0 : w_->soft_[static_cast<size_t>(a)]; }
   double gather_residuals(const SolverState& s, const std::vector<double>& band,
                           std::vector<double>* joint_r);
+  double measure_moved(const SolverState& s, const std::vector<double>& band,
+                       std::vector<double>& joint_r);
   static Vec6 apply_inverse_mass(const BodyState& b, const Vec6& j);
   // The state of unknown v's body (during step()).
   const BodyState& body(int v) const {
@@ -144,12 +153,39 @@ class Polisher {
   bool kkt_ = false;                // the sparse system is the saddle-point form
   bool factored_ = false;           // ... and its factorisation can serve a chord step
   bool reused_ = false;             // the last step was a chord step
-  bool measured_ = false;  // measure() kept the rows' residuals: chord_residual_, chord_pattern_
+  bool measured_ = false;           // measure() kept the rows' residuals in chord_
   // A chord step's right-hand side (the rows' residuals) and the bodies each row joins, which
-  // must be the analysed ones. Per group, not in PolishWork: measured at the start of a frame,
-  // before the groups are shared among threads.
-  std::vector<double> chord_residual_;
-  std::vector<int> chord_pattern_;
+  // must be the analysed ones (chord_). Per group, not in PolishWork: measured at the start of a
+  // frame, before the groups are shared among threads.
+  struct ChordRows {
+    std::vector<double> residual;
+    std::vector<int> pattern;  // the unknowns of each row's two bodies
+    std::vector<int> joint;    // the group's i-th joint's rows: joint[i] ... joint[i + 1] - 1
+    int rows = 0;
+    // Written by index into buffers sized once for the most rows the joints can have (a
+    // push_back a value cost as much as the residuals' arithmetic).
+    void start(size_t joints) {
+      const size_t most = 3 * kPartSlots * joints;
+      if (residual.size() < most) residual.resize(most), pattern.resize(2 * most);
+      joint.resize(joints + 1);
+      joint[0] = rows = 0;
+    }
+    void add(double r, int v1, int v2) {
+      residual[static_cast<size_t>(rows)] = r;
+      pattern[2 * static_cast<size_t>(rows)] = v1;
+      pattern[2 * static_cast<size_t>(rows) + 1] = v2;
+      ++rows;
+    }
+  };
+  ChordRows chord_, spare_;  // spare_: measure_moved()'s new rows, swapped in
+  // The measure kept by keep_measure(): the bodies the group's joints join (touched_; each
+  // joint's two as indices into it), their rotations and positions then (12 values a body),
+  // each joint's residual and hinge points then (7 values a joint: set_hinge() moves them
+  // without a new revision of the model).
+  bool kept_ = false;
+  std::vector<int> touched_, joint_touched_;
+  std::vector<double> kept_pose_, kept_joint_;
+  std::vector<char> moved_;
   std::vector<int> order_;  // fill-reducing order of the rows: row a is unknown order_[a]
   // The saddle-point form's blocks: the bodies', then runs of up to six rows joining the same
   // two bodies; run k holds rows run_start_[k] ... run_start_[k + 1].

@@ -291,6 +291,7 @@ PullOutcome Session::Impl::run_pull(int joint) {
     }
     found = true;
     out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, joint_r);
+    p.measured = false;  // the pull moved the poses since the first measure
     p.iterations = p.polish = out.iterations;
     p.r = p.best_r = out.hard;
     save_poses(s, *p.group, best);
@@ -312,8 +313,9 @@ void Session::Impl::start(const std::vector<Pose>& poses) {
   std::fill(band.begin(), band.end(), -0.5 * o.tolerance);
   for (GroupRun& p : runs) {
     p.reset();
-    // With what a first chord step needs, when the group has a factorisation from a last solve.
-    p.r = p.best_r = p.progress_mark = p.polisher.measure(s, band, joint_r);
+    // With what a first chord step needs, when the group has a factorisation from a last solve;
+    // the joints of bodies that have not moved since are not measured again.
+    p.r = p.best_r = p.progress_mark = p.polisher.measure(s, band, joint_r, true);
     p.measured = true;
     p.done = p.r <= o.tolerance;
     if (!std::isfinite(p.r)) finite = false;
@@ -401,6 +403,8 @@ SolveResult Session::Impl::finish(const std::vector<Pose>& poses) {
       max_residual(s, p.group->joints, joint_r);
     }
     if (p.iterations > 0) save_poses(s, *p.group, result.poses);
+    // A group that ends where it last measured keeps that measure for the next solve's first.
+    if (p.done && !p.stalled && p.measured && finite) p.polisher.keep_measure(s, joint_r);
     any_stalled = any_stalled || p.stalled;
     r = std::max(r, p.r);
     if (p.iterations == result.iterations) {

@@ -119,6 +119,32 @@ TEST(SparsePolish, DraggedVerticalShearsItsRow) {
   EXPECT_LT(spread(g.model, g.horizontal), 1e-8);
 }
 
+// A drag frame's first measure takes the joints whose bodies did not move from the last frame's
+// measure; a hinge moved between frames (set_hinge makes no new revision of the model) is
+// measured anew.
+TEST(SparsePolish, DragSeesAHingeMovedBetweenFrames) {
+  Grid g = grid(6);
+  ASSERT_TRUE(assemble(g.model).converged);
+  const BodyId first = g.vertical[0][0];
+  Pose target = g.model.body(first).pose;
+  target.q = quat_from_rotation_vector(Vec3(0, 0, -0.01)) * target.q;
+  Dragger drag(g.model, first);
+  ASSERT_TRUE(drag.move_to(target).converged);
+  const SolveResult still = drag.move_to(target);
+  ASSERT_TRUE(still.converged) << still.message;
+  EXPECT_EQ(still.iterations, 0) << "nothing moved";
+  const JointId far{g.model.joint_count() - 1};
+  const Joint& j = g.model.joint(far);
+  ASSERT_TRUE(j.body1 != first && j.body2 != first);
+  g.model.set_hinge(far, std::nullopt, j.p2 + Vec3(0.001, 0, 0));
+  const SolveResult moved = drag.move_to(target);
+  ASSERT_TRUE(moved.converged) << moved.message;
+  EXPECT_GT(moved.iterations, 0);
+  for (const ConstraintReport& c : measure(g.model, g.model.poses(), SolveOptions{})) {
+    EXPECT_LE(c.residual, 1e-9) << "joint " << c.joint.value;
+  }
+}
+
 TEST(SparsePolish, FreeClosedChainKeepsItsCentreOfMass) {
   const int n = 60;  // 180 rows: solved sparse
   Model m;
