@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <nlohmann/json.hpp>
 
@@ -20,6 +21,25 @@ struct Indent {
   }
 };
 const Indent kIndent;
+
+// Whether no byte of `s` needs escaping in a JSON string (a control character, a quote, a
+// backslash): eight bytes at a time, as names and keys are (the classic test for a byte below
+// a bound in a word: the bytes below 0x20, or equal to '"' or '\\' once xor'ed to zero).
+bool plain(std::string_view s) {
+  constexpr uint64_t kOnes = 0x0101010101010101, kHigh = 0x8080808080808080;
+  const auto below = [](uint64_t x, uint64_t n) { return (x - kOnes * n) & ~x & kHigh; };
+  size_t i = 0;
+  for (; i + 8 <= s.size(); i += 8) {
+    uint64_t x;
+    std::memcpy(&x, s.data() + i, 8);
+    if (below(x, 0x20) | below(x ^ (kOnes * '"'), 1) | below(x ^ (kOnes * '\\'), 1)) return false;
+  }
+  for (; i < s.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c < 0x20 || c == '"' || c == '\\') return false;
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -52,10 +72,8 @@ void JsonWriter::item() {
   new_line();
 }
 
-// A new line and the indent of the open containers (a document of 400 four-bars has some 60,000
-// of them).
-void JsonWriter::new_line() {
-  size_t indent = 2 * items_.size();
+// A new line and an indent of 30 spaces or more (new_line() in the header writes the shorter).
+void JsonWriter::long_line(size_t indent) {
   if (indent < kIndent.size) {  // the new line and its indent in one copy
     std::memcpy(room(indent + 1), kIndent.text, indent + 1);
     size_ += indent + 1;
@@ -98,9 +116,17 @@ void JsonWriter::end_array() {
 
 void JsonWriter::key(std::string_view k) {
   item();
-  string(k);
-  std::memcpy(room(2), ": ", 2);
-  size_ += 2;
+  if (k.size() + 4 <= kBuffer && plain(k)) {  // `"key": ` in one piece
+    char* const out = room(k.size() + 4);
+    out[0] = '"';
+    std::memcpy(out + 1, k.data(), k.size());
+    std::memcpy(out + 1 + k.size(), "\": ", 3);
+    size_ += k.size() + 4;
+  } else {
+    string(k);
+    std::memcpy(room(2), ": ", 2);
+    size_ += 2;
+  }
   after_key_ = true;
 }
 
@@ -157,7 +183,7 @@ void JsonWriter::string(std::string_view s) {
     const unsigned char c = static_cast<unsigned char>(ch);
     return c >= 0x20 && c != '"' && c != '\\';
   };
-  if (s.size() + 2 <= kBuffer && std::all_of(s.begin(), s.end(), plain_byte)) {
+  if (s.size() + 2 <= kBuffer && plain(s)) {
     char* const out = room(s.size() + 2);  // a name or a key: nothing to escape
     out[0] = '"';
     std::memcpy(out + 1, s.data(), s.size());
