@@ -1,6 +1,7 @@
 // The Newton polish's factorisation for small groups (up to kDenseRows rows): J M^-1 J^T
 // assembled dense, then a Cholesky written for these sizes, or a pivoting LDLT when rounding
 // defeats it.
+#include <algorithm>
 #include <cmath>
 
 #include "dispcon/solve/polish.hpp"
@@ -63,7 +64,9 @@ bool Polisher::factor_dense(double lambda) {
   Eigen::Map<Eigen::MatrixXd> A(w_->dense_.data(), m, m);
   Eigen::Map<Eigen::VectorXd> y(w_->y_.data(), m);
   auto assemble = [&] {
-    A.triangularView<Eigen::Lower>().setZero();
+    // The whole matrix in one fill, not the lower triangle column by column (a call each): the
+    // upper triangle is never read.
+    std::fill(w_->dense_.begin(), w_->dense_.end(), 0.0);
     couplings([&](int a, int b, double v) { A(a, b) += v; });
     const double scale = A.diagonal().maxCoeff();
     A.diagonal().array() += lambda * scale;
