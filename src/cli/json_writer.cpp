@@ -23,19 +23,34 @@ struct Indent {
 const Indent kIndent;
 
 // Whether no byte of `s` needs escaping in a JSON string (a control character, a quote, a
-// backslash): eight bytes at a time, as names and keys are (the classic test for a byte below
-// a bound in a word: the bytes below 0x20, or equal to '"' or '\\' once xor'ed to zero).
+// backslash), eight bytes at a time: the classic test for a byte below a bound in a word (the
+// bytes below 0x20, or equal to '"' or '\\' once xor'ed to zero). A name or a key shorter than
+// a word is read as two overlapping halves, a longer one's tail as the overlapping last word.
 bool plain(std::string_view s) {
   constexpr uint64_t kOnes = 0x0101010101010101, kHigh = 0x8080808080808080;
-  const auto below = [](uint64_t x, uint64_t n) { return (x - kOnes * n) & ~x & kHigh; };
-  size_t i = 0;
-  for (; i + 8 <= s.size(); i += 8) {
+  const auto clean = [](uint64_t x) {
+    const auto below = [](uint64_t y, uint64_t n) { return (y - kOnes * n) & ~y & kHigh; };
+    return !(below(x, 0x20) | below(x ^ (kOnes * '"'), 1) | below(x ^ (kOnes * '\\'), 1));
+  };
+  const char* const p = s.data();
+  const size_t n = s.size();
+  if (n >= 8) {
     uint64_t x;
-    std::memcpy(&x, s.data() + i, 8);
-    if (below(x, 0x20) | below(x ^ (kOnes * '"'), 1) | below(x ^ (kOnes * '\\'), 1)) return false;
+    for (size_t i = 0; i + 8 < n; i += 8) {
+      std::memcpy(&x, p + i, 8);
+      if (!clean(x)) return false;
+    }
+    std::memcpy(&x, p + n - 8, 8);
+    return clean(x);
   }
-  for (; i < s.size(); ++i) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
+  if (n >= 4) {
+    uint32_t lo, hi;
+    std::memcpy(&lo, p, 4);
+    std::memcpy(&hi, p + n - 4, 4);
+    return clean(lo | uint64_t{hi} << 32);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const unsigned char c = static_cast<unsigned char>(p[i]);
     if (c < 0x20 || c == '"' || c == '\\') return false;
   }
   return true;

@@ -1,12 +1,17 @@
 // JsonWriter's doubles against nlohmann's dump, digit for digit: the whole numbers it writes
 // itself (every integer in [-2e6, 2e6], powers of ten and their neighbours up to 1e15, millions
 // of random ones), and random doubles of every magnitude, which go through nlohmann's own
-// conversion. Exit 1 and the first differences when any differs.
+// conversion. Then its strings and keys, byte for byte as nlohmann's dump(2) escapes and lays
+// them out: every length up to 40 with a byte that must be escaped (each control character, the
+// quote, the backslash) at every place, among plain ASCII and multi-byte UTF-8 (the writer tests
+// eight bytes at a time, with overlapping words at the ends). Exit 1 and the first differences
+// when any differs.
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "json_writer.hpp"
 
@@ -35,5 +40,44 @@ int main() {
     test((random() & 1 ? -1 : 1) * magnitude);
   }
   std::printf("%ld doubles, %ld differ from nlohmann's\n", tested, differ);
-  return differ ? 1 : 0;
+
+  long strings = 0, strings_differ = 0;
+  auto test_string = [&](const std::string& s) {
+    std::string value, key;
+    dispcon::cli::JsonWriter(value).value(s);
+    {
+      dispcon::cli::JsonWriter w(key);
+      w.begin_object();
+      w.key(s);
+      w.value(1);
+      w.end_object();
+    }
+    const nlohmann::json object = {{s, 1}};
+    ++strings;
+    if ((value != nlohmann::json(s).dump() || key != object.dump(2)) && strings_differ++ < 10)
+      std::printf("string of %zu bytes: wrote %s and %s\n", s.size(), value.c_str(), key.c_str());
+  };
+  std::string special;  // every byte that must be escaped
+  for (int c = 0; c < 0x20; ++c) special += static_cast<char>(c);
+  special += "\"\\";
+  // Plain ASCII, and two-byte UTF-8 characters (a special byte goes between two of them).
+  const std::string fillers[] = {"abcdefghijklmnopqrstuvwxyz0123456789ABCD", "\xc3\xa9"};
+  for (size_t length = 0; length <= 40; ++length) {
+    for (const std::string& filler : fillers) {
+      const size_t step = filler.size() == 2 ? 2 : 1;
+      std::string plain;
+      while (plain.size() < length) plain += filler;
+      plain.resize(length - length % step);
+      test_string(plain);
+      for (size_t at = 0; at <= plain.size(); at += step) {
+        for (const char c : special) {
+          std::string s = plain;
+          s.insert(at, 1, c);
+          test_string(s);
+        }
+      }
+    }
+  }
+  std::printf("%ld strings, %ld differ from nlohmann's\n", strings, strings_differ);
+  return differ || strings_differ ? 1 : 0;
 }
