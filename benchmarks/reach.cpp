@@ -11,10 +11,20 @@
 //   BM_DragStep_PastLimit       the robot arm's hand (samples/robot-arm.dcl) dragged toward
 //                               (3, 0.5, 0) in 40 steps: the first step beyond its elbow's limit
 //                               (the links would reach it), told out of reach with the nearest pose
+//   BM_DragStep_PastLimitFar    the robot arm's hand held at (5, 0.5, 0), beyond its links' 2.5:
+//                               the arm stretched toward it breaks the elbow's limit (never quite
+//                               straight), so it is pulled to the nearest pose, 5 - 2 cos(0.1) away
+//   BM_DragStep_DeadPoint       a crank-rocker four-bar's rocker tip (a hand pinned there) held in
+//                               one step past its dead point: pulled to the dead point
+//   BM_DragStep_OutOfPlane      a planar 2-link arm's hand held at (3, 2.5, 1): out of its plane
+//                               and beyond its reach in it; pulled to the arm stretched in the
+//                               plane
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "common.hpp"
@@ -23,6 +33,38 @@
 namespace {
 
 using namespace dispcon;
+
+// A model from .dcl text, assembled; aborts when it does not load or assemble.
+Model assembled(const char* text) {
+  ParseResult r = parse_dcl(text);
+  if (!r.ok()) {
+    std::fprintf(stderr, "%s", r.messages().c_str());
+    std::abort();
+  }
+  Model m = std::move(*r.model);
+  if (!assemble(m).converged) std::abort();
+  return m;
+}
+
+// One step of a drag to `target` that is out of reach, repeated (a failed step leaves the model
+// as it was, so each repetition does the same work).
+void out_of_reach_step(benchmark::State& state, Model& m, const std::string& body,
+                       const Vec3& target) {
+  const BodyId held = *m.find(body);
+  Pose at = m.body(held).pose;
+  at.x = target;
+  Dragger drag(m, held);
+  int iterations = 0;
+  double distance = 0;
+  for (auto _ : state) {
+    const SolveResult r = drag.move_to(at);
+    if (r.status != SolveStatus::OutOfReach) state.SkipWithError(r.message.c_str());
+    iterations = r.iterations;
+    distance = r.distance_left;
+  }
+  state.counters["iterations"] = iterations;
+  state.counters["distance"] = distance;
+}
 
 Model curved_chain(int n) {
   Model m;
@@ -134,5 +176,45 @@ void BM_DragStep_PastLimit(benchmark::State& state) {
   state.counters["iterations"] = iterations;
 }
 BENCHMARK(BM_DragStep_PastLimit)->Unit(benchmark::kMicrosecond);
+
+void BM_DragStep_PastLimitFar(benchmark::State& state) {
+  Model m = bench::sample("robot-arm.dcl");
+  assemble(m);
+  out_of_reach_step(state, m, "hand", Vec3(5, 0.5, 0));
+}
+BENCHMARK(BM_DragStep_PastLimitFar)->Unit(benchmark::kMicrosecond);
+
+// Ground 3, crank 1, coupler 3, rocker 2 (its tip B swings between the dead points |B| = 2 and
+// |B| = 4, the latter at (3.5, 1.936)); the crank at 90 degrees, B on the upper branch. The hand
+// held at (3.5, 0.866): 1 from the rocker's pivot, angularly past that dead point.
+void BM_DragStep_DeadPoint(benchmark::State& state) {
+  Model m = assembled(R"(
+    object crank;   rotation 0 0 1.5708; center 0.5 0 0; end
+    object coupler; position 0 1 0;     rotation 0 0 0.3377; center 1.5 0 0; end
+    object rocker;  position 3 0 0;     rotation 0 0 1.656;  center 1 0 0; end
+    object hand;    position 2.83 1.993 0; end
+    constraint object2 crank;                    hinge 0 0 0  0 0 0; angle 0 0 1 0 0 1 max 0; end
+    constraint object1 crank;   object2 coupler; hinge 1 0 0  0 0 0; angle 0 0 1 0 0 1 max 0; end
+    constraint object1 coupler; object2 rocker;  hinge 3 0 0  2 0 0; angle 0 0 1 0 0 1 max 0; end
+    constraint object2 rocker;                   hinge 3 0 0  0 0 0; angle 0 0 1 0 0 1 max 0; end
+    constraint object1 rocker;  object2 hand;    hinge 2 0 0  0 0 0; end
+  )");
+  out_of_reach_step(state, m, "hand", Vec3(3.5, 0.866025403784439, 0));
+}
+BENCHMARK(BM_DragStep_DeadPoint)->Unit(benchmark::kMicrosecond);
+
+// Upper arm 2, forearm 1.5, revolutes about z; 3.5 stretched.
+void BM_DragStep_OutOfPlane(benchmark::State& state) {
+  Model m = assembled(R"(
+    object upper;   rotation 0 0 0.3; center 1 0 0; end
+    object forearm; position 1.9107 0.5910 0; rotation 0 0 1.5; center 0.75 0 0; end
+    object hand;    position 2.0168 2.0873 0; end
+    constraint object2 upper;                    hinge 0 0 0  0 0 0; angle 0 0 1 0 0 1 max 0; end
+    constraint object1 upper;   object2 forearm; hinge 2 0 0  0 0 0; angle 0 0 1 0 0 1 max 0; end
+    constraint object1 forearm; object2 hand;    hinge 1.5 0 0  0 0 0; end
+  )");
+  out_of_reach_step(state, m, "hand", Vec3(3, 2.5, 1));
+}
+BENCHMARK(BM_DragStep_OutOfPlane)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

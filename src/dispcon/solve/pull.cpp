@@ -1,15 +1,26 @@
 // The pull (pull.hpp): a constrained least-squares problem, min |soft residual|^2 with the hard
-// joints held, solved from a valid pose by steps that each do two things:
+// joints held, solved from a valid pose by steps that each do three things:
 // - a pull step: a Newton step in which the soft joint's rows are damped by `mu` (the polisher's
 //   soft rows): it meets the hard rows to first order and goes toward the target as far as the
-//   damping lets it; where the linkage cannot go (stretched, at a limit, at a loop's dead point)
-//   its first-order model sees a way that is not there, and the damping bounds the step;
+//   damping lets it;
 // - corrections: Newton steps on the hard joints alone (the soft rows damped out), back onto the
-//   valid poses, quadratically.
-// A step is kept when it ends nearer on valid poses (mu then shrinks, so a regular pull is
-// Gauss-Newton and converges fast), else undone (mu grows). The pull stops when the target is
-// reached, or when no step gets nearer by more than a thousandth of the tolerance: a point where
-// the gradient of the distance is normal to the valid poses, the nearest pose (locally).
+//   valid poses, quadratically;
+// - a search along the curve those two trace (the step scaled by t, then corrected): where the
+//   target cannot be met (stretched, at a limit, at a loop's dead point) the soft residual's
+//   curvature along the valid poses is not the Gauss-Newton model's |J dq|^2: it has a second
+//   term, the residual times the curvature of the valid poses (the tension), which that model
+//   leaves out. Near a loop's dead point it is all there is (the soft point's first-order motion
+//   vanishes), and past a limit short of straight or out of an angle joint's plane it makes the
+//   Gauss-Newton step too long by the ratio of the target's distance to the reach. The values of
+//   half the squared residual at the step's start (with its slope r . J dq, exact) and at the
+//   corrected end measure that curvature along the step, a parabola puts the nearest point of
+//   the curve (tried too when it lies far from the end), and the damping of the next step is
+//   set so that its model has the curvature found (a secant on the tension): the next step is
+//   then about Newton's, and the pull converges superlinearly instead of linearly.
+// A step is kept when it ends nearer on valid poses, else undone (mu grows). The pull stops when
+// the target is reached, when a kept step gains less than the tolerance, or when the next step
+// promises to gain less than a thousandth of it: a point where the gradient of the distance is
+// normal to the valid poses, the nearest pose (locally).
 #include "dispcon/solve/pull.hpp"
 
 #include <algorithm>
@@ -30,8 +41,12 @@ constexpr double kMinDamping = 1e-10;
 constexpr double kMaxDamping = 1e4;
 // Newton steps allowed to bring the hard joints back (from a valid pose: two or three suffice).
 constexpr int kCorrections = 6;
-// The weight of the hard joints' violation against the distance when steps are compared.
-constexpr double kWeight = 10;
+// Points of a step's curve tried (its end first), and how far from the last tried the parabola's
+// nearest point must lie for another (a fraction of that point's t).
+constexpr int kCurvePoints = 3;
+constexpr double kCloseEnough = 0.25;
+
+using Vec6 = PolishWork::Vec6;
 
 struct Measure {
   double hard = 0, distance = 0;
@@ -69,22 +84,68 @@ bool widen(const SolverState& s, const Group& group, int joint, const std::vecto
   return widened;
 }
 
+// The soft joint's rows at the current poses: half their squared residuals (what the pull makes
+// least), and along a step dq the slope and curvature of the first-order model of it.
+struct SoftRows {
+  PartRows parts[kPartSlots];
+
+  double read(const SolverState& s, const JointState& js, double band, bool jacobian) {
+    s.rows(js, BoundTest{band}, parts, jacobian);
+    double h = 0;
+    for (const PartRows& p : parts) {
+      for (int k = 0; k < p.count; ++k) h += p.residual[k] * p.residual[k];
+    }
+    return 0.5 * h;
+  }
+  // Of h(t) = |r + t J dq|^2 / 2 at t = 0: h'(0) = r . J dq, h''(0) = |J dq|^2 (the rows read
+  // with their Jacobian; dq one 6-vector per unknown, as the polisher numbers them).
+  void along(const SolverState& s, const JointState& js, const std::vector<Vec6>& dq, double& slope,
+             double& curvature) const {
+    auto motion = [&](int b) {
+      const BodyState& body = s.bodies[static_cast<size_t>(b)];
+      return body.movable ? dq[static_cast<size_t>(body.n_var)] : Vec6(Vec6::Zero());
+    };
+    const Vec6 d1 = motion(js.b1), d2 = motion(js.b2);
+    slope = curvature = 0;
+    for (const PartRows& p : parts) {
+      for (int k = 0; k < p.count; ++k) {
+        const double v = p.J[k].head<6>().dot(d1) + p.J[k].tail<6>().dot(d2);
+        slope += p.residual[k] * v;
+        curvature += v * v;
+      }
+    }
+  }
+};
+
+// The group moved from `from` by t times the step dq, as Polisher::step moves it (each body
+// turned about its centre, then its centre moved).
+void move_along(SolverState& s, const Group& group, const PoseBuffer& from,
+                const std::vector<Vec6>& dq, double t) {
+  load_poses(s, group, from);
+  for (size_t v = 0; v < group.bodies.size(); ++v) {
+    s.bodies[static_cast<size_t>(group.bodies[v])].displace(t * dq[v].head<3>(),
+                                                            t * dq[v].tail<3>());
+  }
+}
+
 }  // namespace
 
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
                        PolishWork& work, std::vector<double>& band, const SolveOptions& o,
-                       std::vector<double>& soft, PoseBuffer& before,
+                       std::vector<double>& soft, PoseBuffer& before, PoseBuffer& spare,
                        std::vector<double>& joint_r) {
   PullOutcome out;
+  const JointState& pulled = s.joints[static_cast<size_t>(joint)];
   double& damping = soft[static_cast<size_t>(joint)];
   // Newton on the hard joints until they hold; false when they do not within kCorrections.
   Measure now = measure(s, group, joint, joint_r);
   // (Past the cap too: the poses a pull leaves must be valid whenever they can be.)
-  auto correct = [&] {
+  // To well within the tolerance by default, so that the distances compared are of valid poses
+  // alike; to `within` where what is compared is larger.
+  auto correct = [&](double within) {
     damping = kOut;
     double lambda = 1e-12;
-    // To well within the tolerance, so that the distances compared are of valid poses alike.
-    for (int k = 0; k < kCorrections && now.hard > 1e-3 * o.tolerance; ++k) {
+    for (int k = 0; k < kCorrections && now.hard > within; ++k) {
       ++out.iterations;
       if (!polisher.step(s, work, band, lambda, o.max_rotation_step, false, false, &soft))
         return false;
@@ -96,7 +157,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     return now.hard <= o.tolerance;
   };
   save_poses(s, group, before);
-  if (!correct()) {
+  if (!correct(1e-3 * o.tolerance)) {
     load_poses(s, group, before);
     now = measure(s, group, joint, joint_r);
     damping = 0;
@@ -104,12 +165,15 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     out.hard = now.hard;
     return out;
   }
+  SoftRows rows;
+  const double band_soft = band[static_cast<size_t>(joint)];
+  double h = rows.read(s, pulled, band_soft, true);
+  std::vector<Vec6> dq;
   double mu = kFirstDamping;
-  // Steps are compared by the distance plus the hard joints' violation times kWeight: one
-  // correction follows each pull step, and the next pull step corrects what it leaves.
-  auto merit = [](const Measure& m) { return m.distance + kWeight * m.hard; };
+  bool calibrated = false;  // mu was set by the secant: the step's model has the curvature found
   while (now.distance > o.tolerance && out.iterations < o.max_iterations) {
     const Measure kept = now;
+    const double h0 = h;
     save_poses(s, group, before);
     damping = mu;
     ++out.iterations;
@@ -121,35 +185,134 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       // rather than the corrections undoing most of each step): the step is made again.
       load_poses(s, group, before);
       now = kept;
+      rows.read(s, pulled, band_soft, true);
       continue;
     }
-    bool corrected = stepped && std::isfinite(now.distance);
-    if (corrected && now.hard > 1e-3 * o.tolerance && out.iterations < o.max_iterations) {
-      damping = kOut;
-      ++out.iterations;
-      corrected = polisher.step(s, work, band, 1e-12, o.max_rotation_step, false, false, &soft);
-      if (corrected) now = measure(s, group, joint, joint_r);
-      corrected = corrected && std::isfinite(now.hard);
+    double slope = 0, gauss_newton = 0;
+    if (stepped) {
+      dq.assign(work.dq_.begin(), work.dq_.begin() + static_cast<long>(group.bodies.size()));
+      rows.along(s, pulled, dq, slope, gauss_newton);
     }
-    if (corrected && merit(now) < merit(kept)) {
-      mu = std::max(kMinDamping, mu / 10);
-      // Stationary: a kept step that gains less than the tolerance.
-      if (merit(kept) - merit(now) < o.tolerance) {
+    // The step's own model along it: h0 + slope t + (gauss_newton + damped) t^2 / 2, least at
+    // t = 1, so its curvature is -slope; the damping's share of it is what the secant adjusts.
+    const double damped = -slope - gauss_newton;
+    if (!stepped || !(slope < 0)) {
+      // No step, or one that does not go down: the gradient vanishes on the valid poses (to
+      // rounding) or the step is not to be had; more damping, else stationary.
+      load_poses(s, group, before);
+      now = kept;
+      rows.read(s, pulled, band_soft, true);
+      if (stepped) {
+        out.stationary = true;
+        break;
+      }
+      mu *= 100;
+      calibrated = false;
+      if (mu > kMaxDamping) {
         out.stationary = true;
         break;
       }
       continue;
     }
-    load_poses(s, group, before);
-    now = kept;
-    mu *= 100;
-    if (mu > kMaxDamping) {
+    // What the step promises, converted to distance (h = d^2 / 2): its model's least value when
+    // the damping was set by the secant, else Gauss-Newton's along it (which the tension only
+    // makes smaller where the linkage bends away from the target). A step that promises less
+    // than a tenth of the tolerance is not taken.
+    const double promise = calibrated         ? -0.5 * slope
+                           : gauss_newton > 0 ? slope * slope / (2 * gauss_newton)
+                                              : HUGE_VAL;
+    if (promise < 0.1 * o.tolerance * std::max(kept.distance, o.tolerance)) {
+      load_poses(s, group, before);
+      now = kept;
+      out.stationary = true;
+      break;
+    }
+    // The step as made (Polisher::step scales it so no body turns more than the seed allows).
+    double largest = 0;
+    for (const Vec6& d : dq) largest = std::max(largest, d.head<3>().norm());
+    const double longest = largest > o.max_rotation_step ? o.max_rotation_step / largest : 1.0;
+    // Along the curve: the step's end corrected first; then, while the parabola through
+    // (0, h0, slope) and the last point tried promises much more than that point gave, its
+    // least point (no farther than the step as made, or twice a whole step).
+    double t = longest, best_t = 0, best_h = h0, curvature = 0;
+    Measure best = kept;
+    int flat = 0;
+    for (int k = 0; k < kCurvePoints && out.iterations < o.max_iterations; ++k) {
+      if (k > 0) {
+        move_along(s, group, before, dq, t);
+        now = measure(s, group, joint, joint_r);
+      }
+      // The hard joints corrected until what they leave is a thousandth of the gain in h the
+      // step's first order promises there (h moves by about d times the violation).
+      const double within = std::min(
+          o.tolerance,
+          std::max(1e-3 * o.tolerance, 1e-2 * -slope * t / std::max(kept.distance, o.tolerance)));
+      const bool valid = correct(within) && std::isfinite(now.distance);
+      const double ht = valid ? rows.read(s, pulled, band_soft, false) : HUGE_VAL;
+      if (ht < best_h) {
+        best_t = t, best_h = ht, best = now;
+        save_poses(s, group, spare);
+      }
+      double next = 0.25 * t;  // no valid pose there: a shorter step
+      if (valid && std::abs(ht - h0) < 0.01 * -slope * t) {
+        // h does not move along the valid poses where the step's first order says it should,
+        // here and a tenth of the way: the step's motion of the soft rows is one the hard joints
+        // do not allow (their rows yield by the regularisation, lambda against the pull's
+        // damping), and nothing is to be gained.
+        if (++flat == 2) break;
+        next = 0.1 * t;
+      } else if (valid) {
+        curvature = 2 * (ht - h0 - slope * t) / (t * t);
+        const double least = curvature > 0 ? -slope / curvature : HUGE_VAL;
+        // The parabola's least value, and what the point tried gave of it.
+        const double lowest = curvature > 0 ? h0 + 0.5 * slope * least : -HUGE_VAL;
+        if (ht < h0 && ht - lowest <= kCloseEnough * (h0 - lowest)) break;
+        if (ht < h0 && least > t && t >= longest) break;  // the rest in the next step
+        next = std::min(least, longest < 1 ? longest : 2.0);
+      }
+      next = std::max(next, 1e-3 * t);
+      if (std::abs(next - t) <= 1e-3 * t) break;
+      t = next;
+    }
+    if (flat == 2) {
+      load_poses(s, group, before);
+      now = kept;
+      out.stationary = true;
+      break;
+    }
+    if (best_t == 0) {
+      load_poses(s, group, before);
+      now = kept;
+      rows.read(s, pulled, band_soft, true);
+      mu *= 100;
+      calibrated = false;
+      if (mu > kMaxDamping) {
+        out.stationary = true;
+        break;
+      }
+      continue;
+    }
+    load_poses(s, group, spare);
+    now = best;
+    h = rows.read(s, pulled, band_soft, true);
+    // The next step's damping: the curvature found along this one less the Gauss-Newton share
+    // (the tension the model leaves out), as a multiple of this step's damping.
+    if (curvature > 0 && damped > 0) {
+      const double wanted = std::max(curvature - gauss_newton, 1e-4 * damped);
+      mu = std::clamp(mu * wanted / damped, kMinDamping, kMaxDamping);
+      calibrated = true;
+    } else {
+      mu = std::max(kMinDamping, mu / 10);
+      calibrated = false;
+    }
+    // Stationary: a kept step that gains less than the tolerance.
+    if (kept.distance - now.distance < o.tolerance) {
       out.stationary = true;
       break;
     }
   }
   // Back onto the valid poses to well within the tolerance.
-  if (!correct()) {
+  if (!correct(1e-3 * o.tolerance)) {
     load_poses(s, group, before);
   }
   damping = 0;

@@ -18,9 +18,11 @@ struct PullOutcome {
 
 // Pulls from the group's current poses (they are left at the nearest poses found; where the hard
 // joints cannot be made to hold, at those given). `soft` has one entry per joint, all zero; it is
-// used as scratch for the pull joint's damping. `max_iterations` caps the Newton steps.
+// used as scratch for the pull joint's damping; `before` and `spare` hold poses aside.
+// `max_iterations` caps the Newton steps.
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
                        PolishWork& work, std::vector<double>& band, const SolveOptions& o,
-                       std::vector<double>& soft, PoseBuffer& before, std::vector<double>& joint_r);
+                       std::vector<double>& soft, PoseBuffer& before, PoseBuffer& spare,
+                       std::vector<double>& joint_r);
 
 }  // namespace dispcon

@@ -290,7 +290,8 @@ PullOutcome Session::Impl::run_pull(int joint) {
       continue;
     }
     found = true;
-    out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, joint_r);
+    // (`best` is the pull's spare: it is written below.)
+    out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, best, joint_r);
     p.measured = false;  // the pull moved the poses since the first measure
     p.iterations = p.polish = out.iterations;
     p.r = p.best_r = out.hard;

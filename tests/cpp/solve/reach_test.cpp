@@ -563,5 +563,88 @@ TEST(Reach, PullerAlongTheStretchedBoundary) {
   EXPECT_LT((arm.m.body(arm.hand).pose.x - Vec3(1, 2, 0)).norm(), 1e-9);
 }
 
+// The limited arm's hand held at (5, 2, 0), beyond what its links stretch to (3.5): the arm
+// stretched toward it breaks the elbow's limit (0.5 rad at least), so the hand is pulled, to the
+// nearest pose: the elbow at its limit, the hand r(0.5) from the shoulder toward the target.
+// Where the pull was linear (the Gauss-Newton step too long by |t| / r(0.5)) it stopped at 40
+// iterations and reported the links' bound (1.885) instead of the true distance (1.992).
+TEST(Reach, LimitedArmFarOutOfReachIsPulledToItsLimit) {
+  LimitedArm arm;
+  ASSERT_TRUE(assemble(arm.m).converged);
+  const std::vector<Pose> before = arm.m.poses();
+  Dragger drag(arm.m, arm.hand);
+  const Vec3 t(5, 2, 0);
+  const SolveResult r = drag.move_to(Pose::from(t, Vec3::Zero()));
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_LE(r.iterations, 20);
+  const double reach = LimitedArm::reach(LimitedArm::bend_min);
+  EXPECT_NEAR(r.distance_left, t.norm() - reach, 1e-9);
+  EXPECT_NE(r.message.find("nearest pose"), std::string::npos) << r.message;
+  expect_joints_hold(arm.m, 1e-9, &r.poses);
+  const Pose& upper = r.poses[static_cast<size_t>(arm.upper.value)];
+  const Pose& forearm = r.poses[static_cast<size_t>(arm.forearm.value)];
+  EXPECT_NEAR(std::remainder(angle_of(forearm) - angle_of(upper) - LimitedArm::bend_min, 2 * kPi),
+              0, 1e-9);
+  const double direction = std::atan2(t.y(), t.x());
+  EXPECT_NEAR(std::remainder(
+                  angle_of(upper) - LimitedArm::shoulder(direction, LimitedArm::bend_min), 2 * kPi),
+              0, 1e-4);
+  EXPECT_LT((r.poses[static_cast<size_t>(arm.hand.value)].x - reach * t.normalized()).norm(), 1e-4);
+  EXPECT_TRUE(r.constraints[1].at_limit);
+  expect_unchanged(arm.m, before);
+}
+
+// A planar 2-link arm (2 and 1.5, revolutes about z: the angle joints keep it in the xy plane, a
+// hand pinned at its tip) whose hand is dragged out of the plane: the nearest pose is the
+// nearest in the plane to the target's projection, at height |z| below or above it. Within the
+// plane's reach the hand goes to the projection (distance |z|); beyond it the arm is stretched
+// toward it (distance hypot(z, |t_xy| - 3.5)). The stretched path toward the target itself
+// leaves the plane (it breaks the angle joints), so the hand is pulled.
+struct PlanarArm {
+  Model m;
+  BodyId upper, forearm, hand;
+  PlanarArm() {
+    upper = add_bar(m, "upper", Vec3::Zero(), 0.3, 2);
+    const Vec3 elbow = 2 * Vec3(std::cos(0.3), std::sin(0.3), 0);
+    forearm = add_bar(m, "forearm", elbow, 1.5, 1.5);
+    Body h;
+    h.name = "hand";
+    h.pose = Pose::from(elbow + 1.5 * Vec3(std::cos(1.5), std::sin(1.5), 0), Vec3::Zero());
+    hand = m.add_body(h);
+    m.add_joint(revolute(Model::kWorld, upper, Vec3::Zero()));
+    m.add_joint(revolute(upper, forearm, Vec3(2, 0, 0)));
+    m.add_joint(pin(forearm, hand, Vec3(1.5, 0, 0)));
+  }
+};
+
+void expect_pulled_out_of_plane(const Vec3& t, int most) {
+  PlanarArm arm;
+  ASSERT_TRUE(assemble(arm.m).converged);
+  const std::vector<Pose> before = arm.m.poses();
+  Dragger drag(arm.m, arm.hand);
+  const SolveResult r = drag.move_to(Pose::from(t, Vec3::Zero()));
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_LE(r.iterations, most);
+  const Vec3 flat(t.x(), t.y(), 0);
+  const double beyond = std::max(0.0, flat.norm() - 3.5);
+  EXPECT_NEAR(r.distance_left, std::hypot(t.z(), beyond), 1e-9);
+  expect_joints_hold(arm.m, 1e-9, &r.poses);
+  const Vec3 at = r.poses[static_cast<size_t>(arm.hand.value)].x;
+  const Vec3 nearest = beyond > 0 ? Vec3(3.5 * flat.normalized()) : flat;
+  // (The distance is of second order in an error of the pose there: the pose to its root.)
+  EXPECT_LT((at - nearest).norm(), 1e-4) << at.transpose();
+  expect_unchanged(arm.m, before);
+}
+
+TEST(Reach, PlanarArmDraggedOutOfItsPlaneStopsAboveTheProjection) {
+  expect_pulled_out_of_plane(Vec3(1, 2, 0.5), 30);
+  expect_pulled_out_of_plane(Vec3(1, 2, -1), 30);
+}
+
+TEST(Reach, PlanarArmDraggedOutOfItsPlaneAndReachIsStretchedInIt) {
+  expect_pulled_out_of_plane(Vec3(3, 2.5, 0.5), 30);
+  expect_pulled_out_of_plane(Vec3(3, 2.5, 1), 30);
+}
+
 }  // namespace
 }  // namespace dispcon
