@@ -171,6 +171,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   std::vector<Vec6> dq;
   double mu = kFirstDamping;
   bool calibrated = false;  // mu was set by the secant: the step's model has the curvature found
+  bool moved = false;       // a step was kept
   while (now.distance > o.tolerance && out.iterations < o.max_iterations) {
     const Measure kept = now;
     const double h0 = h;
@@ -247,7 +248,10 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       const double within = std::min(
           o.tolerance,
           std::max(1e-3 * o.tolerance, 1e-2 * -slope * t / std::max(kept.distance, o.tolerance)));
-      const bool valid = correct(within) && std::isfinite(now.distance);
+      bool valid = correct(within) && std::isfinite(now.distance);
+      // Near the target what the corrections leave is of the order of the distance: to well
+      // within the tolerance there, as at the end.
+      if (valid && now.distance < 10 * o.tolerance) valid = correct(1e-3 * o.tolerance);
       const double ht = valid ? rows.read(s, pulled, band_soft, false) : HUGE_VAL;
       if (ht < best_h) {
         best_t = t, best_h = ht, best = now;
@@ -277,6 +281,16 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     if (flat == 2) {
       load_poses(s, group, before);
       now = kept;
+      if (!moved && mu > kMinDamping) {
+        // Or the pull began where h is stationary without being least (a loop's dead point
+        // seen from a target it moves toward either way; a pull that got nearer ends at a
+        // least point): the step undamped goes as far as the seed allows, and gets off it if
+        // it can.
+        rows.read(s, pulled, band_soft, true);
+        mu = kMinDamping;
+        calibrated = false;
+        continue;
+      }
       out.stationary = true;
       break;
     }
@@ -293,6 +307,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       continue;
     }
     load_poses(s, group, spare);
+    moved = true;
     now = best;
     h = rows.read(s, pulled, band_soft, true);
     // The next step's damping: the curvature found along this one less the Gauss-Newton share
