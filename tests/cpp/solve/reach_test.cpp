@@ -337,7 +337,8 @@ TEST(Reach, FourBarPastItsDeadPointStopsThere) {
   const SolveResult r = drag.move_to(Pose::from(FourBar::target(), Vec3::Zero()));
   ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
   EXPECT_FALSE(r.converged);
-  EXPECT_LE(r.iterations, 50);  // 48: a long step, ending at a dead point where the pull is slow
+  // A long step: the held step's Newton steps (11) before it pulls, and the pull's (31).
+  EXPECT_LE(r.iterations, 45);
   EXPECT_NEAR(r.distance_left, (FourBar::target() - FourBar::dead_point()).norm(), 1e-9);
   expect_joints_hold(f.m, 1e-9, &r.poses);
   // B is at the dead point (where it moves only to second order: the pose to the root of the
@@ -348,6 +349,41 @@ TEST(Reach, FourBarPastItsDeadPointStopsThere) {
                              2 * kPi),
               0, 1e-4);
   expect_unchanged(f.m, before);
+}
+
+// The hand dragged along B's circle (2 from the rocker's pivot) from where the assembly put it
+// (94.9 degrees) toward 60 degrees in 40 steps: the steps up to the dead point (75.5 degrees) are
+// made; the first past it is out of reach (farther than crank and coupler stretch, 4 from the
+// crank's pivot, but the stretched pair breaks the loop: pulled), with B at the dead point, the
+// distance from there to that step's target, and within the aim of 20 iterations.
+TEST(Reach, FourBarDraggedAcrossItsDeadPointStopsThere) {
+  FourBar f;
+  ASSERT_TRUE(assemble(f.m).converged);
+  const Vec3 pivot(3, 0, 0);
+  const Vec3 b0 = f.m.body(f.hand).pose.x - pivot;
+  const double from = std::atan2(b0.y(), b0.x()), to = 60 * kPi / 180;
+  const int steps = 40;
+  Dragger drag(f.m, f.hand);
+  std::vector<Pose> last = f.m.poses();
+  for (int k = 1; k <= steps; ++k) {
+    const double a = from + (to - from) * k / steps;
+    const Vec3 t = pivot + 2 * Vec3(std::cos(a), std::sin(a), 0);
+    const SolveResult r = drag.move_to(Pose::from(t, Vec3::Zero()));
+    const Vec3 dead = FourBar::dead_point() - pivot;
+    if (a >= std::atan2(dead.y(), dead.x())) {
+      ASSERT_TRUE(r.converged) << k << ": " << r.message;
+      last = f.m.poses();
+      continue;
+    }
+    ASSERT_EQ(r.status, SolveStatus::OutOfReach) << k << ": " << r.message;
+    EXPECT_LE(r.iterations, 20);
+    EXPECT_NEAR(r.distance_left, (t - FourBar::dead_point()).norm(), 1e-9);
+    expect_joints_hold(f.m, 1e-9, &r.poses);
+    EXPECT_LT((r.poses[static_cast<size_t>(f.hand.value)].x - FourBar::dead_point()).norm(), 1e-4);
+    expect_unchanged(f.m, last);
+    return;
+  }
+  FAIL() << "no step past the dead point";
 }
 
 // The same pull as a workbench's mouse drag makes it (Puller): the model goes to the nearest
