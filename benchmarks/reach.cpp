@@ -48,11 +48,7 @@ Model assembled(const char* text) {
 
 // One step of a drag to `target` that is out of reach, repeated (a failed step leaves the model
 // as it was, so each repetition does the same work).
-void out_of_reach_step(benchmark::State& state, Model& m, const std::string& body,
-                       const Vec3& target) {
-  const BodyId held = *m.find(body);
-  Pose at = m.body(held).pose;
-  at.x = target;
+void out_of_reach_step(benchmark::State& state, Model& m, BodyId held, const Pose& at) {
   Dragger drag(m, held);
   int iterations = 0;
   double distance = 0;
@@ -60,10 +56,19 @@ void out_of_reach_step(benchmark::State& state, Model& m, const std::string& bod
     const SolveResult r = drag.move_to(at);
     if (r.status != SolveStatus::OutOfReach) state.SkipWithError(r.message.c_str());
     iterations = r.iterations;
-    distance = r.distance_left;
+    distance = r.distance_left + r.angle_left;
   }
   state.counters["iterations"] = iterations;
-  state.counters["distance"] = distance;
+  state.counters["distance"] = distance;  // or the angle left (radians), out of reach by a turn
+}
+
+// The same, the body's origin held at `target` and its rotation as it is.
+void out_of_reach_step(benchmark::State& state, Model& m, const std::string& body,
+                       const Vec3& target) {
+  const BodyId held = *m.find(body);
+  Pose at = m.body(held).pose;
+  at.x = target;
+  out_of_reach_step(state, m, held, at);
 }
 
 Model curved_chain(int n) {
@@ -216,5 +221,24 @@ void BM_DragStep_OutOfPlane(benchmark::State& state) {
   out_of_reach_step(state, m, "hand", Vec3(3, 2.5, 1));
 }
 BENCHMARK(BM_DragStep_OutOfPlane)->Unit(benchmark::kMicrosecond);
+
+// The same arm with a hand on a wrist whose twist is kept within +-1 rad, held where it is and
+// turned 1.5 rad about z: out of reach by its rotation, 0.5 rad left.
+void BM_DragStep_TurnPastLimit(benchmark::State& state) {
+  Model m = assembled(R"(
+    object upper;   rotation 0 0 0.3; center 1 0 0; end
+    object forearm; position 1.9107 0.5910 0; rotation 0 0 1.5; center 0.75 0 0; end
+    object hand;    position 2.0168 2.0873 0; rotation 0 0 1.5; center 0.25 0 0; end
+    constraint object2 upper;                    hinge 0 0 0  0 0 0; angle 0 0 1 0 0 1 max 0; end
+    constraint object1 upper;   object2 forearm; hinge 2 0 0  0 0 0; angle 0 0 1 0 0 1 max 0; end
+    constraint object1 forearm; object2 hand;    hinge 1.5 0 0  0 0 0; angle 0 0 1 0 0 1 max 0;
+      twist 1 0 0 1 0 0 min -1 max 1; end
+  )");
+  const BodyId hand = *m.find("hand");
+  Pose at = m.body(hand).pose;
+  at.q = (Quat(Eigen::AngleAxisd(1.5, Vec3::UnitZ())) * at.q).normalized();
+  out_of_reach_step(state, m, hand, at);
+}
+BENCHMARK(BM_DragStep_TurnPastLimit)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

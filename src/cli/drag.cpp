@@ -55,10 +55,16 @@ int run_drag(const DragArgs& a) {
                            {"converged", [&](JsonWriter& v) { v.value(s.converged); }}});
           continue;
         }
-        // An extension of cli.md's step: the body held out of reach and the distance left.
+        // An extension of cli.md's step: the body held out of reach and the distance left (and
+        // the angle left, when the rotation is what is out of reach).
         auto reach = [&](JsonWriter& v) {
-          write_object(v, {{"body", [&](JsonWriter& b) { b.value(m->body(s.held).name); }},
-                           {"distance_left", [&](JsonWriter& b) { b.value(s.distance_left); }}});
+          std::vector<Member> members = {
+              {"body", [&](JsonWriter& b) { b.value(m->body(s.held).name); }},
+              {"distance_left", [&](JsonWriter& b) { b.value(s.distance_left); }}};
+          if (s.angle_left > 0) {
+            members.push_back({"angle_left", [&](JsonWriter& b) { b.value(s.angle_left); }});
+          }
+          write_object(v, std::move(members));
         };
         write_object(w, {{"iterations", [&](JsonWriter& v) { v.value(s.iterations); }},
                          {"max_residual", [&](JsonWriter& v) { v.value(s.max_residual); }},

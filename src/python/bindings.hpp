@@ -58,6 +58,7 @@ struct PySolveResult {
   std::vector<Report> constraints;
   std::optional<std::string> out_of_reach;  // a drag step's held body, when out of reach
   double distance_left = 0;
+  double angle_left = 0;  // out of reach by its rotation only: the angle left (radians)
 };
 
 PySolveResult convert(const Model& model, const SolveResult& r);

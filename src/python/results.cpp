@@ -34,6 +34,7 @@ PySolveResult convert(const Model& model, const SolveResult& r) {
   out.constraints = convert(model, r.constraints);
   if (r.status == SolveStatus::OutOfReach) out.out_of_reach = model.body(r.held).name;
   out.distance_left = r.distance_left;
+  out.angle_left = r.angle_left;
   return out;
 }
 
@@ -153,6 +154,10 @@ void bind_results(pyb::module_& m) {
                     "A drag step whose target the linkage cannot reach: the held body's name "
                     "(else None); distance_left is how far it stays from the target at least.")
       .def_readonly("distance_left", &PySolveResult::distance_left)
+      .def_readonly("angle_left", &PySolveResult::angle_left,
+                    "Out of reach by its rotation only (distance_left within the tolerance): the "
+                    "angle in radians between the held body's rotation at the nearest pose and "
+                    "the target's; else 0.")
       .def("__bool__", [](const PySolveResult& r) { return r.converged; })
       .def("__repr__", [](const PySolveResult& r) { return "<SolveResult " + r.message + ">"; });
 }

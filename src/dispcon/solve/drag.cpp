@@ -1,5 +1,6 @@
 // Dragging: one body held at a target (or along a path of targets) while the rest follows.
 #include <algorithm>
+#include <cstdint>
 #include <optional>
 #include <sstream>
 
@@ -116,6 +117,42 @@ SolveResult Puller::pull_to(const Vec3& target, bool move) {
   return r;
 }
 
+// A step whose target the held body's origin can reach but whose rotation it cannot: the model
+// with a fixed ghost of the held body at the target and two joints from it to the held body,
+// the origin held there (hard) and the rotation matched (the pull's soft joint). The ghost's
+// pose is the target's, given with the poses at each pull: the session is built once.
+struct Dragger::Turn {
+  Model model;
+  BodyId ghost{-1};
+  JointId rotation{-1};
+  std::uint64_t revision = 0;  // the dragged model's when this was made
+  std::unique_ptr<Session> session;
+
+  Turn(const Model& dragged, BodyId body, const SolveOptions& options)
+      : model(dragged), revision(dragged.revision()) {
+    Body g;
+    g.name = "target";
+    while (model.find(g.name)) g.name += "_";
+    g.fixed = true;
+    g.pose = dragged.body(body).pose;
+    ghost = model.add_body(g);
+    Joint origin;
+    origin.body1 = ghost;
+    origin.body2 = body;
+    origin.has_hinge = true;
+    origin.label = "target origin";
+    model.add_joint(origin);
+    Joint turn;
+    turn.body1 = ghost;
+    turn.body2 = body;
+    turn.angle = AngleSpec{Vec3::UnitZ(), Vec3::UnitZ(), 0, 0};
+    turn.twist = TwistSpec{Vec3::UnitX(), Vec3::UnitX(), 0, 0};
+    turn.label = "target rotation";
+    rotation = model.add_joint(turn);
+    session = std::make_unique<Session>(model, options);
+  }
+};
+
 Dragger::Dragger(Model& model, BodyId body, const SolveOptions& options)
     : model_(model),
       body_(body),
@@ -169,24 +206,78 @@ SolveResult Dragger::pull(const Pose& target, SolveResult held) {
   SolveResult near = puller().pull_to(target.x, false);
   const int tried = held.iterations + near.iterations;
   if (near.status != SolveStatus::OutOfReach) {
+    const bool reached = near.status == SolveStatus::Converged;
+    // The origin got there: the rotation is pulled toward the target's with the origin held
+    // (Dragger::turn), which tells a rotation out of reach within a few dozen iterations (the
+    // held solve below would go on to its stall rule, hundreds).
+    SolveResult turned;
+    turned.converged = false;
+    if (reached) {
+      turned = turn(target, near.poses);
+      if (turned.status == SolveStatus::OutOfReach) {
+        turned.iterations += tried;
+        turned.polish_iterations += held.polish_iterations + near.polish_iterations;
+        turned.seed_iterations = held.seed_iterations;
+        return nearest(target, std::move(turned));
+      }
+    }
     // The held solve that persists (seed iterations between Newton's, the stall rule): from the
     // pose the pull reached when it got there, else from where the step began (a pull that
     // crawls: a nearly stretched linkage; or a step the pull does not describe: a turn).
-    const bool reached = near.status == SolveStatus::Converged;
     poses_ = reached ? near.poses : model_.poses();
     poses_[static_cast<size_t>(body_.value)] = target;
     if (!persist_) persist_ = std::make_unique<Session>(model_, options_, held_only(model_, body_));
     SolveResult r = persist_->solve(poses_);
     if (r.converged) model_.set_poses(poses_);
-    r.iterations += tried;
-    r.polish_iterations += held.polish_iterations + near.polish_iterations;
-    r.seed_iterations += held.seed_iterations;
+    if (!r.converged && turned.converged) {
+      // The turn got the held body to its target with every joint holding: that pose is the
+      // step's.
+      model_.set_poses(turned.poses);
+      std::swap(r, turned);
+    }
+    r.iterations += tried + turned.iterations;
+    r.polish_iterations +=
+        held.polish_iterations + near.polish_iterations + turned.polish_iterations;
+    r.seed_iterations += held.seed_iterations + turned.seed_iterations;
     return r;
   }
   near.iterations = tried;
   near.seed_iterations = held.seed_iterations;
   near.polish_iterations += held.polish_iterations;
   return nearest(target, std::move(near));
+}
+
+// The held body's rotation pulled toward the target's with its origin held where the target
+// puts it, from `from` (a pose with the origin there and every joint holding). OutOfReach at the
+// nearest pose when the rotation cannot get there (angle_left the angle between the body's
+// rotation there and the target's); Converged with the held body at its target; else what the
+// pull reached (the poses are the model's bodies', the constraints its joints).
+SolveResult Dragger::turn(const Pose& target, const std::vector<Pose>& from) {
+  if (!turn_ || turn_->revision != model_.revision()) {
+    SolveOptions capped = options_;
+    capped.max_iterations = std::min(options_.max_iterations, kPullIterations);
+    turn_ = std::make_unique<Turn>(model_, body_, capped);
+  }
+  std::vector<Pose> poses = from;
+  poses.push_back(target);  // the ghost's
+  SolveResult r = turn_->session->pull(poses, turn_->rotation);
+  r.poses.pop_back();
+  r.constraints.resize(static_cast<size_t>(model_.joint_count()));
+  r.max_residual = largest_residual(r.constraints);
+  r.held = body_;
+  const Pose& at = r.poses[static_cast<size_t>(body_.value)];
+  r.distance_left = (at.x - target.x).norm();
+  if (r.status == SolveStatus::Converged) {
+    r.poses[static_cast<size_t>(body_.value)] = target;
+  } else if (r.status == SolveStatus::OutOfReach) {
+    r.angle_left = at.q.angularDistance(target.q);
+    std::ostringstream msg;
+    msg << "out of reach: '" << model_.body(body_).name << "' stays " << r.angle_left
+        << " rad from its target's rotation at the nearest pose its joints allow (its origin at "
+           "the target's)";
+    r.message = msg.str();
+  }
+  return r;
 }
 
 // The pull of a step that cannot be made (its Newton steps failed, or its target is out of

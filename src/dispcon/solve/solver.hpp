@@ -79,6 +79,10 @@ struct SolveResult {
   // puts it at the least (length units): the joints cannot stretch that far.
   BodyId held{-1};
   double distance_left = 0;
+  // OutOfReach with the held body's origin where the target puts it (distance_left within the
+  // tolerance) but its rotation not: the angle (radians) between its rotation at the nearest
+  // pose and the target's. 0 otherwise.
+  double angle_left = 0;
 
   std::vector<JointId> violated() const;
 };
@@ -176,24 +180,37 @@ class Dragger {
   ~Dragger();
   // Holds the body at `target` (checked: a finite pose within range) and solves from the model's
   // poses. On success the model takes the new poses; otherwise it is left as it was, bit for bit,
-  // and the result names what is violated. A step whose Newton steps fail (a limit, a loop, a
-  // slide's end, a nearly stretched linkage) is pulled instead: the body's origin drawn toward
-  // the target's (Puller); when that gets there the step is made from the pose reached, else the
-  // status is OutOfReach and the result's poses are the nearest valid pose, distance_left how far
-  // the body's origin stays from the target's there, and its constraints what holding the body
-  // at its target leaves open. A pull still getting nearer after 40 iterations (a nearly
-  // stretched linkage crawls) hands over to the held solve from where the step began, which
-  // persists until the stall rule. A target farther from the fixed parts than the joints can
-  // stretch is not solved for: it is pulled at once (OutOfReach with the nearest pose, without
-  // iterating when the linkage stretched toward the target breaks no joint); when that pull
-  // does not end out of reach either, the result has the bound alone as distance_left and the
-  // model's poses with the body at its target.
+  // and the result names what is violated. In order, while the step is not made:
+  // - A target farther from the fixed parts than the joints can stretch is not solved for: it
+  //   is pulled at once (OutOfReach with the nearest pose, without iterating when the linkage
+  //   stretched toward the target breaks no joint); when that pull does not end out of reach
+  //   either, the result has the bound alone as distance_left and the model's poses with the
+  //   body at its target.
+  // - The held solve: Newton steps, stopped at the first that fails.
+  // - Near a path's full stretch (where those steps crawl) the path straightened by the one
+  //   factor that meets the target (every body's direction across the line from the anchor
+  //   scaled alike, the linkage kept on its branch), what hangs off it carried along, then the
+  //   held solve from there.
+  // - The pull (Puller): the body's origin drawn toward the target's, each Newton step followed
+  //   by a search along the curve it traces and its damping set by a secant on the curvature
+  //   found (the tension that a Gauss-Newton step leaves out: past a limit short of straight,
+  //   out of an angle joint's plane, at a loop's dead point). When it cannot get there the
+  //   status is OutOfReach: the result's poses are the nearest valid pose, distance_left how far
+  //   the body's origin stays from the target's there, and its constraints what holding the body
+  //   at its target leaves open.
+  // - When the origin got there, the body's rotation is pulled toward the target's with the
+  //   origin held (a turn past a limit): OutOfReach at the nearest pose, angle_left the angle
+  //   left; else the held solve that persists (seed iterations, the stall rule) from the pose
+  //   the pull reached (from where the step began when a pull was still getting nearer after 40
+  //   iterations, a nearly stretched linkage), the turn's pose if that one does not converge.
   SolveResult move_to(const Pose& target);
 
  private:
+  struct Turn;
   Puller& puller();
   SolveResult out_of_reach(const Pose& target);
   SolveResult pull(const Pose& target, SolveResult held);
+  SolveResult turn(const Pose& target, const std::vector<Pose>& from);
   SolveResult nearest(const Pose& target, SolveResult near) const;
 
   Model& model_;
@@ -203,6 +220,7 @@ class Dragger {
   std::unique_ptr<ReachBound> reach_;  // built at the first move, again when the model changed
   std::unique_ptr<Puller> puller_;     // built at the first step that fails
   std::unique_ptr<Session> persist_;   // the held solve that persists: after a pull that crawls
+  std::unique_ptr<Turn> turn_;         // built at the first step whose rotation is pulled
   std::vector<Pose> poses_;
 };
 

@@ -682,5 +682,87 @@ TEST(Reach, PlanarArmDraggedOutOfItsPlaneAndReachIsStretchedInIt) {
   expect_pulled_out_of_plane(Vec3(3, 2.5, 1), 30);
 }
 
+// The planar arm with a hand on a wrist (a revolute whose twist is kept within +-1 rad) held
+// where it is but turned about z: within the wrist's range the step is made; past it the origin
+// can stay (the arm holds the wrist where it is) but the rotation cannot, and the step is out of
+// reach by its rotation: the nearest pose has the wrist at its limit, the hand's origin at the
+// target, angle_left what the wrist cannot turn (the turn less 1 rad). Before, the held solve
+// went on to its stall rule (404 iterations) and reported no pose.
+struct WristArm {
+  Model m;
+  BodyId forearm, hand;
+  WristArm() {
+    const BodyId upper = add_bar(m, "upper", Vec3::Zero(), 0.3, 2);
+    const Vec3 elbow = 2 * Vec3(std::cos(0.3), std::sin(0.3), 0);
+    forearm = add_bar(m, "forearm", elbow, 1.5, 1.5);
+    hand = add_bar(m, "hand", elbow + 1.5 * Vec3(std::cos(1.5), std::sin(1.5), 0), 1.5, 0.5);
+    m.add_joint(revolute(Model::kWorld, upper, Vec3::Zero()));
+    m.add_joint(revolute(upper, forearm, Vec3(2, 0, 0)));
+    Joint wrist = revolute(forearm, hand, Vec3(1.5, 0, 0));
+    wrist.twist = TwistSpec{Vec3::UnitX(), Vec3::UnitX(), -1, 1};
+    m.add_joint(wrist);
+  }
+};
+
+void expect_turn_stops_at_the_limit(double turn) {
+  WristArm arm;
+  ASSERT_TRUE(assemble(arm.m).converged);
+  const std::vector<Pose> before = arm.m.poses();
+  const Pose start = arm.m.body(arm.hand).pose;
+  const Pose target{(Quat(Eigen::AngleAxisd(turn, Vec3::UnitZ())) * start.q).normalized(), start.x};
+  Dragger drag(arm.m, arm.hand);
+  const SolveResult r = drag.move_to(target);
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_LE(r.iterations, 35);  // 25 and 32: the held step's, the origin's pull and the turn's
+  EXPECT_EQ(r.held.value, arm.hand.value);
+  EXPECT_NEAR(r.angle_left, turn - 1, 1e-9);
+  EXPECT_LE(r.distance_left, 1e-9);
+  EXPECT_NE(r.message.find("rad from its target's rotation"), std::string::npos) << r.message;
+  expect_joints_hold(arm.m, 1e-9, &r.poses);
+  const Pose& hand = r.poses[static_cast<size_t>(arm.hand.value)];
+  const Pose& forearm = r.poses[static_cast<size_t>(arm.forearm.value)];
+  EXPECT_LT((hand.x - start.x).norm(), 1e-9);
+  EXPECT_NEAR(std::remainder(angle_of(hand) - angle_of(forearm) - 1, 2 * kPi), 0, 1e-9);
+  EXPECT_TRUE(r.constraints[2].at_limit);
+  expect_unchanged(arm.m, before);
+}
+
+TEST(Reach, WristTurnedPastItsLimitStopsThere) {
+  expect_turn_stops_at_the_limit(1.5);
+  expect_turn_stops_at_the_limit(2.5);
+}
+
+TEST(Reach, WristTurnedWithinItsLimitIsMade) {
+  WristArm arm;
+  ASSERT_TRUE(assemble(arm.m).converged);
+  const Pose start = arm.m.body(arm.hand).pose;
+  const Pose target{(Quat(Eigen::AngleAxisd(0.8, Vec3::UnitZ())) * start.q).normalized(), start.x};
+  Dragger drag(arm.m, arm.hand);
+  const SolveResult r = drag.move_to(target);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_EQ(r.angle_left, 0);
+  EXPECT_LT(arm.m.body(arm.hand).pose.q.angularDistance(target.q), 1e-9);
+  expect_joints_hold(arm.m, 1e-9);
+}
+
+// A door on a revolute at its origin (twist within +-1 rad), the only body: turned to 1.5 rad it
+// stops at 1.
+TEST(Reach, DoorTurnedPastItsLimitStopsThere) {
+  Model m;
+  const BodyId door = add_bar(m, "door", Vec3::Zero(), 0, 1);
+  Joint j = revolute(Model::kWorld, door, Vec3::Zero());
+  j.twist = TwistSpec{Vec3::UnitX(), Vec3::UnitX(), -1, 1};
+  m.add_joint(j);
+  ASSERT_TRUE(assemble(m).converged);
+  const std::vector<Pose> before = m.poses();
+  Dragger drag(m, door);
+  const SolveResult r = drag.move_to(Pose::from(Vec3::Zero(), Vec3(0, 0, 1.5)));
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_LE(r.iterations, 35);  // 21
+  EXPECT_NEAR(r.angle_left, 0.5, 1e-9);
+  EXPECT_NEAR(angle_of(r.poses[static_cast<size_t>(door.value)]), 1, 1e-9);
+  expect_unchanged(m, before);
+}
+
 }  // namespace
 }  // namespace dispcon
