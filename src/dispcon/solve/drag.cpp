@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "dispcon/solve/reach.hpp"
+#include "dispcon/solve/report.hpp"
 #include "dispcon/solve/solver.hpp"
 
 namespace dispcon {
@@ -218,7 +219,19 @@ SolveResult Dragger::pull(const Pose& target, SolveResult held) {
         turned.iterations += tried;
         turned.polish_iterations += held.polish_iterations + near.polish_iterations;
         turned.seed_iterations = held.seed_iterations;
-        return nearest(target, std::move(turned));
+        SolveResult r = nearest(target, std::move(turned));
+        // What holding the body at its target leaves open there, largest first (a lock names
+        // its couplings).
+        std::vector<ConstraintReport> open;
+        for (const ConstraintReport& c : r.constraints) {
+          if (!c.satisfied) open.push_back(c);
+        }
+        std::stable_sort(open.begin(), open.end(),
+                         [](const auto& a, const auto& b) { return a.residual > b.residual; });
+        for (size_t k = 0; k < open.size() && k < 3; ++k) {
+          r.message += (k ? "; " : "; held there it leaves open: ") + describe(model_, open[k]);
+        }
+        return r;
       }
     }
     // The held solve that persists (seed iterations between Newton's, the stall rule): from the

@@ -197,19 +197,22 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     // The step's own model along it: h0 + slope t + (gauss_newton + damped) t^2 / 2, least at
     // t = 1, so its curvature is -slope; the damping's share of it is what the secant adjusts.
     const double damped = -slope - gauss_newton;
-    if (!stepped || !(slope < 0)) {
-      // No step, or one that does not go down: the gradient vanishes on the valid poses (to
-      // rounding) or the step is not to be had; more damping, else stationary.
+    // The step undone and more damping asked for: false when that is past its bound (a
+    // vanishing gradient step that still does not get nearer: stationary).
+    auto undo_and_damp = [&] {
       load_poses(s, group, before);
       now = kept;
       rows.read(s, pulled, band_soft, true);
-      if (stepped) {
-        out.stationary = true;
-        break;
-      }
       mu *= 100;
       calibrated = false;
-      if (mu > kMaxDamping) {
+      return mu <= kMaxDamping;
+    };
+    if (!stepped || !(slope < 0)) {
+      // No step, or one that does not go down: the gradient vanishes on the valid poses (to
+      // rounding) or the step is not to be had; more damping, else stationary.
+      if (stepped || !undo_and_damp()) {
+        load_poses(s, group, before);
+        now = kept;
         out.stationary = true;
         break;
       }
@@ -295,12 +298,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       break;
     }
     if (best_t == 0) {
-      load_poses(s, group, before);
-      now = kept;
-      rows.read(s, pulled, band_soft, true);
-      mu *= 100;
-      calibrated = false;
-      if (mu > kMaxDamping) {
+      if (!undo_and_damp()) {
         out.stationary = true;
         break;
       }
