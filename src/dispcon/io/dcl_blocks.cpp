@@ -83,12 +83,12 @@ void Parser::object_block() {
     error(place(ob.seen, e.field(), ob.at), object_label(ob.name) + ": " + e.what());
   }
   ob.ok = errors_ == errors_before;
-  objects_.push_back(std::move(ob));
+  add_object(ob);
+  statements_.resize(ob.seen.begin);  // its places were needed only for the model's refusals
 }
 
 void Parser::component_statement(const ComponentRow& row, std::string_view k, ConstraintBlock& cb) {
   ComponentValues v;
-  v.vectors.reserve(row.args.size());  // grown one at a time, a hinge's two would move once
   for (const ArgSpec& a : row.args) {
     const What what(k, " ", a.name);
     mark(cb.seen, k, a.name, at(peek()));
@@ -139,7 +139,7 @@ void Parser::component_statement(const ComponentRow& row, std::string_view k, Co
   } else {
     options(row, k, v, cb);
   }
-  set_component(cb.joint, row.id, v);
+  set_component(cb.joint, row, v);
   if (row.guide) cb.guide = k;
   if (row.coupling) cb.coupling = k;
 }
@@ -245,7 +245,16 @@ void Parser::constraint_block() {
     }
   }
   cb.ok = errors_ == errors_before;
-  constraints_.push_back(std::move(cb));
+  // Added now when nothing before it waits and both its objects are bodies already; a
+  // constraint that names an object declared later, or whose object was refused, waits for the
+  // end, and every constraint after it, so that the joints keep the file's order.
+  if (in_place_ && cb.has_object2 && known(cb.object1) && known(cb.object2)) {
+    add_constraint(cb, &constraints_later_);
+    statements_.resize(cb.seen.begin);
+  } else {
+    in_place_ = false;
+    constraints_.push_back(std::move(cb));
+  }
 }
 
 }  // namespace dispcon::dcl

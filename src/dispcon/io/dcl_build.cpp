@@ -1,85 +1,121 @@
-// The second pass: names resolved, the model built from the blocks that parsed cleanly, and the
+// The model built from the blocks: each object added as its block ends, each constraint too when
+// both its objects are known by then (the rest, and the includes, at the end), and the
 // diagnostics put in order under the cap.
+#include <algorithm>
+
 #include "dispcon/io/dcl_parser.hpp"
 
 namespace dispcon::dcl {
 
+void LaterList::add(Place at, bool error, std::string message) {
+  if ((error ? errors++ : warnings++) < kErrorCap)
+    listed.push_back({at, error, std::move(message)});
+}
+
+void Parser::report(LaterList* later, Place at, bool is_error, std::string message) {
+  if (later) {
+    later->add(at, is_error, std::move(message));
+  } else if (is_error) {
+    error(at, message);
+  } else {
+    warning(at, message);
+  }
+}
+
+void Parser::replay(const LaterList& later) {
+  for (const Later& l : later.listed) report(nullptr, l.at, l.error, l.message);
+  // Those past the cap were counted, not kept: none of them would be listed.
+  const auto cap = static_cast<long long>(kErrorCap);
+  errors_ += later.errors - std::min(later.errors, cap);
+  warnings_ += later.warnings - std::min(later.warnings, cap);
+}
+
+void Parser::add_object(ObjectBlock& ob) {
+  if (ob.name.empty() || ob.name == "world") return;
+  const auto [it, first] = declared_.try_emplace(ob.name, Declared{ob.at, std::nullopt});
+  if (!first) {
+    objects_later_.add(ob.at, true,
+                       "duplicate object '" + std::string(ob.name) + "' (first declared at line " +
+                           std::to_string(it->second.at.line) + ")");
+    return;
+  }
+  if (!ob.ok) return;
+  ob.body.name = std::string(ob.name);
+  try {
+    it->second.body = model_.add_body(std::move(ob.body));
+  } catch (const ValueError& e) {
+    objects_later_.add(place(ob.seen, e.field(), ob.at), true, e.what());
+  } catch (const std::invalid_argument& e) {
+    objects_later_.add(ob.at, true, e.what());
+  }
+}
+
+bool Parser::known(std::string_view name) const {
+  if (name == "world") return true;
+  const auto it = declared_.find(name);
+  return it != declared_.end() && it->second.body;
+}
+
+void Parser::add_constraint(ConstraintBlock& cb, LaterList* later) {
+  Joint& j = cb.joint;
+  bool ok = cb.ok;
+  auto resolve = [&](std::string_view name, const char* keyword, BodyId& out) {
+    if (name == "world") {
+      out = Model::kWorld;
+      return;
+    }
+    const auto it = declared_.find(name);
+    if (it == declared_.end()) {
+      std::string why = "no 'object " + std::string(name) + "' block declares it";
+      for (const std::string& r : rigid_) {
+        if (name.size() > r.size() && name.compare(0, r.size(), r) == 0 && name[r.size()] == '.')
+          why = r + " is a rigid include: its objects are one, '" + r + "'";
+      }
+      report(later, place(cb.seen, keyword, cb.at), true,
+             "unknown object '" + std::string(name) + "' (" + why + ")");
+      ok = false;
+      return;
+    }
+    if (it->second.body) {
+      out = *it->second.body;
+    } else {
+      ok = false;  // its object block had an error, reported there
+    }
+  };
+  if (!cb.has_object2) {
+    report(later, cb.at, true, "constraint needs 'object2'");
+    ok = false;
+  } else {
+    resolve(cb.object1, "object1", j.body1);
+    resolve(cb.object2, "object2", j.body2);
+  }
+  if (!ok) return;
+  const size_t warned = model_.warnings().size();
+  try {
+    model_.add_joint(std::move(j));
+  } catch (const JointError& e) {
+    const Place statement = place(cb.seen, e.keyword(), cb.at);
+    report(later, e.arg().empty() ? statement : place(cb.seen, e.keyword(), statement, e.arg()),
+           true, e.detail());
+  } catch (const ValueError& e) {
+    report(later, place(cb.seen, e.field(), cb.at), true, e.what());
+  } catch (const std::invalid_argument& e) {
+    report(later, cb.at, true, e.what());
+  }
+  for (size_t k = warned; k < model_.warnings().size(); ++k) {
+    const ModelWarning& w = model_.warnings()[k];
+    report(later, place(cb.seen, w.keyword, cb.at), false, w.message);
+  }
+}
+
 ParseResult Parser::build() {
   ParseResult result;
-  Model model;
-  model.reserve(objects_.size() + 1, constraints_.size());
-  Declarations declared;
-  declared.reserve(objects_.size());
-  for (ObjectBlock& ob : objects_) {
-    if (ob.name.empty() || ob.name == "world") continue;
-    const auto [it, first] = declared.try_emplace(ob.name, Declared{ob.at, std::nullopt});
-    if (!first) {
-      error(ob.at, "duplicate object '" + std::string(ob.name) + "' (first declared at line " +
-                       std::to_string(it->second.at.line) + ")");
-      continue;
-    }
-    if (!ob.ok) continue;
-    ob.body.name = std::string(ob.name);
-    try {
-      it->second.body = model.add_body(std::move(ob.body));
-    } catch (const ValueError& e) {
-      error(place(ob.seen, e.field(), ob.at), e.what());
-    } catch (const std::invalid_argument& e) {
-      error(ob.at, e.what());
-    }
-  }
-  for (IncludeBlock& ib : includes_) include_into(model, ib, declared);
-  for (ConstraintBlock& cb : constraints_) {
-    Joint& j = cb.joint;
-    bool ok = cb.ok;
-    auto resolve = [&](std::string_view name, const char* keyword, BodyId& out) {
-      if (name == "world") {
-        out = Model::kWorld;
-        return;
-      }
-      const auto it = declared.find(name);
-      if (it == declared.end()) {
-        std::string why = "no 'object " + std::string(name) + "' block declares it";
-        for (const std::string& r : rigid_) {
-          if (name.size() > r.size() && name.compare(0, r.size(), r) == 0 && name[r.size()] == '.')
-            why = r + " is a rigid include: its objects are one, '" + r + "'";
-        }
-        error(place(cb.seen, keyword, cb.at),
-              "unknown object '" + std::string(name) + "' (" + why + ")");
-        ok = false;
-        return;
-      }
-      if (it->second.body) {
-        out = *it->second.body;
-      } else {
-        ok = false;  // its object block had an error, reported there
-      }
-    };
-    if (!cb.has_object2) {
-      error(cb.at, "constraint needs 'object2'");
-      ok = false;
-    } else {
-      resolve(cb.object1, "object1", j.body1);
-      resolve(cb.object2, "object2", j.body2);
-    }
-    if (!ok) continue;
-    const size_t warned = model.warnings().size();
-    try {
-      model.add_joint(std::move(j));
-    } catch (const JointError& e) {
-      const Place statement = place(cb.seen, e.keyword(), cb.at);
-      error(e.arg().empty() ? statement : place(cb.seen, e.keyword(), statement, e.arg()),
-            e.detail());
-    } catch (const ValueError& e) {
-      error(place(cb.seen, e.field(), cb.at), e.what());
-    } catch (const std::invalid_argument& e) {
-      error(cb.at, e.what());
-    }
-    for (size_t k = warned; k < model.warnings().size(); ++k) {
-      const ModelWarning& w = model.warnings()[k];
-      warning(place(cb.seen, w.keyword, cb.at), w.message);
-    }
-  }
+  // In the order they have always been listed: the objects' problems, the includes', then the
+  // constraints'.
+  replay(objects_later_);
+  for (IncludeBlock& ib : includes_) include_into(model_, ib, declared_);
+  replay(constraints_later_);
+  for (ConstraintBlock& cb : constraints_) add_constraint(cb, nullptr);
   // The lexer's errors first, then the parser's, up to kErrorCap together.
   const long long lexed = static_cast<long long>(lex_errors_.listed.size()) + lex_errors_.more;
   result.diagnostics.reserve(diagnostics_.size() + lex_errors_.listed.size() + 2);
@@ -104,7 +140,7 @@ ParseResult Parser::build() {
                                       " more warnings (only the first " +
                                       std::to_string(kErrorCap) + " are listed)"});
   }
-  if (errors_ == 0) result.model = std::move(model);
+  if (errors_ == 0) result.model = std::move(model_);
   return result;
 }
 

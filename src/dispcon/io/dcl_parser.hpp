@@ -1,12 +1,16 @@
-// The .dcl reader's parser, inside src/dispcon/io only (format.md). Two passes: the statements are
-// parsed into blocks with their places (dcl_parser.cpp: the pieces of a statement; dcl_blocks.cpp:
-// object and constraint blocks; dcl_include.cpp: include statements), then names are resolved and
-// the model is built (dcl_build.cpp), so objects may be declared after the constraints that name
-// them. Every problem becomes a diagnostic naming its place; parsing resumes at the next `;` or
-// `end`.
+// The .dcl reader's parser, inside src/dispcon/io only (format.md). The statements are parsed
+// into blocks with their places (dcl_parser.cpp: the pieces of a statement; dcl_blocks.cpp:
+// object and constraint blocks; dcl_include.cpp: include statements) and the model is built
+// (dcl_build.cpp): each object is added to it as its block ends, each constraint too when both
+// its objects are known by then; the constraints after one that names an object not yet declared
+// wait, with the includes, for the end, so objects may be declared after the constraints that
+// name them. Every problem becomes a diagnostic naming its place; parsing resumes at the next `;`
+// or `end`. The model's own refusals are listed after the parse's errors, as if found at the end.
 //
 // Memory speed: tokens are views of the file's text pulled one at a time, each name becomes a
-// string once (in its object's Body), and a message is built only when it is written.
+// string once (in its object's Body), a message is built only when it is written, and a block
+// added as it ends is built in place (one block, its marks dropped once added): the parse touches
+// little memory beside the model it builds.
 #pragma once
 
 #include <forward_list>
@@ -79,6 +83,21 @@ struct Declared {
 };
 using Declarations = std::unordered_map<std::string_view, Declared>;
 
+// A diagnostic of the model's (a value it refuses, a bound it clamps, a duplicate object) met
+// while a block was added as it ended: kept to be listed where the model's diagnostics have always
+// been, after every error of the parse itself. Past kErrorCap errors (or warnings) they are only
+// counted: none of those could be listed.
+struct Later {
+  Place at;
+  bool error = true;
+  std::string message;
+};
+struct LaterList {
+  std::vector<Later> listed;
+  long long errors = 0, warnings = 0;  // all of them, listed or not
+  void add(Place at, bool error, std::string message);
+};
+
 // Thrown inside the parser to abandon one statement; caught at statement level.
 struct StatementError {};
 
@@ -86,17 +105,18 @@ class Parser {
  public:
   Parser(std::string_view text, const std::string& file, IncludeStack& stack)
       : file_(file), lexer_(text, lex_errors_), current_(lexer_.next()), stack_(stack) {
-    // Room for every block at once (a count of the words, in comments too, is an upper bound):
-    // blocks of half a kilobyte copied at each growth cost more than the count.
-    // Room for every block at once: a count of the words (in comments too, so an upper bound),
-    // not of object1 and object2, whose room would push the model and the solver's state up into
-    // more of the heap's huge pages (each zeroed when first touched).
-    objects_.reserve(words(text, "object", 1));
-    constraints_.reserve(words(text, "constraint", 3));
-    // Marks: a statement's, and its arguments' (a hinge: three), about one each 18 bytes of a
-    // file as dispcon writes it; should a file hold more, the list grows (counting the ';' took
-    // more than the growth saves).
-    statements_.reserve(text.size() / 16);
+    // The model's room for every body and joint at once: a count of the words (in comments too,
+    // so an upper bound), not of object1 and object2, whose room would push the model and the
+    // solver's state up into more of the heap's huge pages (each zeroed when first touched).
+    const size_t objects = words(text, "object", 1);
+    model_.reserve(objects + 1, words(text, "constraint", 3));
+    declared_.reserve(objects);
+    // An included model's joints come before the constraints' (include_into runs at the end):
+    // with an include in the text, no constraint is added as it ends.
+    in_place_ = words(text, "include", 3) == 0;
+    // Marks: a block's statements and their arguments (a hinge: three), dropped when the block is
+    // added as it ends; the list grows when blocks wait for the end.
+    statements_.reserve(64);
   }
 
   ParseResult run();
@@ -224,8 +244,21 @@ class Parser {
 
   void constraint_block();
 
-  // Names are resolved and the model checks every block that parsed cleanly, so that each
-  // problem is reported once, at the statement it is about.
+  // An error or a warning at `at`, listed now, or kept in `later` when not null.
+  void report(LaterList* later, Place at, bool is_error, std::string message);
+  // Lists what `later` kept (and counts what it only counted), as if met now.
+  void replay(const LaterList& later);
+  // The object declared (a duplicate is an error), its body checked by the model and added to it
+  // when its block parsed cleanly; the problems kept in objects_later_.
+  void add_object(ObjectBlock& ob);
+  // Whether `name` is the world or a body of the model already.
+  bool known(std::string_view name) const;
+  // The constraint's objects resolved and its joint checked by the model and added to it when
+  // its block parsed cleanly; the problems listed, or kept in `later`.
+  void add_constraint(ConstraintBlock& cb, LaterList* later);
+
+  // The includes and the constraints that waited are added, and the diagnostics put in order:
+  // each problem is reported once, at the statement it is about.
   ParseResult build();
 
   std::string file_;
@@ -236,8 +269,11 @@ class Parser {
   std::vector<Diagnostic> diagnostics_;
   long long errors_ = 0;  // every error of the parser's, listed or not (the lexer's: in build())
   long long warnings_ = 0;
-  std::vector<ObjectBlock> objects_;
-  std::vector<ConstraintBlock> constraints_;
+  Model model_;
+  Declarations declared_;
+  bool in_place_ = true;  // constraints are added as they end (no include, none waiting)
+  LaterList objects_later_, constraints_later_;
+  std::vector<ConstraintBlock> constraints_;  // those that wait for the end, in order
   std::vector<IncludeBlock> includes_;
   std::vector<std::string> rigid_;                 // the names of rigid includes
   std::forward_list<std::string> included_names_;  // what `declared` views for included bodies

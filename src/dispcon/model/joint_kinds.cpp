@@ -240,7 +240,11 @@ bool is_optional(Arg a) {
 }
 
 bool has_component(const Joint& j, Component id) {
-  switch (id) {
+  return has_component(j, component(id));
+}
+
+bool has_component(const Joint& j, const ComponentRow& row) {
+  switch (row.id) {
     case Component::Hinge:
       return j.has_hinge;
     case Component::Angle:
@@ -251,9 +255,9 @@ bool has_component(const Joint& j, Component id) {
     case Component::Belt:
     case Component::Rack:
     case Component::Screw:
-      return j.coupling && component(id).coupling == j.coupling->kind;
+      return j.coupling && row.coupling == j.coupling->kind;
     default:
-      return j.guide && component(id).guide == j.guide->kind;
+      return j.guide && row.guide == j.guide->kind;
   }
 }
 
@@ -307,7 +311,11 @@ ComponentValues get_component(const Joint& j, Component id) {
 }
 
 void set_component(Joint& j, Component id, const ComponentValues& v) {
-  const ComponentRow& row = component(id);
+  set_component(j, component(id), v);
+}
+
+void set_component(Joint& j, const ComponentRow& row, const ComponentValues& v) {
+  const Component id = row.id;
   auto vec = [&](size_t k) { return k < v.vectors.size() ? v.vectors[k] : Vec3::Zero(); };
   auto scalar = [&](size_t k) { return k < v.scalars.size() ? v.scalars[k] : 0.0; };
   switch (id) {
@@ -394,9 +402,9 @@ const char* to_string(JointKind kind) {
 namespace {
 
 // A component's vectors and bounds, nothing else.
-ComponentValues values(std::vector<Vec3> vectors, Range bounds = {}) {
+ComponentValues values(const decltype(ComponentValues::vectors)& vectors, Range bounds = {}) {
   ComponentValues v;
-  v.vectors = std::move(vectors);
+  v.vectors = vectors;
   v.bounds = bounds;
   return v;
 }
@@ -450,7 +458,7 @@ Joint make_joint(JointKind kind, BodyId body1, const Anchor& at1, BodyId body2, 
     }
     set_component(j, c.id, g);
   }
-  const std::vector<Vec3> axes{at1.axis, at2.axis};
+  const decltype(ComponentValues::vectors) axes{at1.axis, at2.axis};
   switch (row.angle) {
     case AngleUse::None:
       break;
@@ -465,7 +473,7 @@ Joint make_joint(JointKind kind, BodyId body1, const Anchor& at1, BodyId body2, 
       set_component(j, Component::Angle, values(axes, *limits.angle));
       break;
   }
-  const std::vector<Vec3> across{at1.across, at2.across};
+  const decltype(ComponentValues::vectors) across{at1.across, at2.across};
   switch (row.twist) {
     case TwistUse::None:
       break;

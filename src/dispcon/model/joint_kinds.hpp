@@ -14,9 +14,12 @@
 //   a row, classify finds the row a Joint matches.
 #pragma once
 
+#include <initializer_list>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "dispcon/model/joint.hpp"
@@ -88,22 +91,82 @@ const ComponentRow* find_component(std::string_view keyword);
 const ComponentRow& component(GuideKind kind);
 const ComponentRow& component(CouplingKind kind);
 
+// A list of at most N items held in place: a component's values are read and checked for every
+// joint a file holds (the model checks each component it is given), and in place they cost no
+// allocation. More than N is a bug in the table (a logic_error).
+template <class T, size_t N>
+class Few {
+ public:
+  using value_type = T;
+  using iterator = T*;
+  using const_iterator = const T*;
+
+  Few() = default;
+  Few(std::initializer_list<T> items) {
+    for (const T& x : items) push_back(x);
+  }
+  // Only the items held are copied (the rest may be unset: an Eigen vector is not zeroed).
+  Few(const Few& other) { *this = other; }
+  Few& operator=(const Few& other) {
+    for (size_t i = 0; i < other.n_; ++i) items_[i] = other.items_[i];
+    n_ = other.n_;
+    return *this;
+  }
+
+  void push_back(const T& x) {
+    if (n_ == N) throw std::logic_error("a component has more values than ComponentValues holds");
+    items_[n_++] = x;
+  }
+  template <class... Args>
+  T& emplace_back(Args&&... args) {
+    push_back(T(std::forward<Args>(args)...));
+    return items_[n_ - 1];
+  }
+  size_t size() const { return n_; }
+  bool empty() const { return n_ == 0; }
+  T& operator[](size_t i) { return items_[i]; }
+  const T& operator[](size_t i) const { return items_[i]; }
+  T& at(size_t i) { return i < n_ ? items_[i] : throw std::out_of_range("Few::at"); }
+  const T& at(size_t i) const { return i < n_ ? items_[i] : throw std::out_of_range("Few::at"); }
+  T* begin() { return items_; }
+  T* end() { return items_ + n_; }
+  const T* begin() const { return items_; }
+  const T* end() const { return items_ + n_; }
+
+  friend bool operator==(const Few& a, const Few& b) {
+    if (a.n_ != b.n_) return false;
+    for (size_t i = 0; i < a.n_; ++i)
+      if (!(a.items_[i] == b.items_[i])) return false;
+    return true;
+  }
+  friend bool operator!=(const Few& a, const Few& b) { return !(a == b); }
+
+ private:
+  T items_[N];
+  size_t n_ = 0;
+};
+
 // A component's values in the row's generic form: `vectors` holds the Point and Direction
 // arguments in order, `scalars` the lengths and NamedPositive values, `points` a Points argument,
-// `flags` the Flag arguments, `options` the NamedOption ones (absent when not given).
+// `flags` the Flag arguments, `options` the NamedOption ones (absent when not given). Each list
+// holds as many as the table's rows have at most (a coupling: four vectors); `points` is the one
+// list of any length (empty, it allocates nothing).
 struct ComponentValues {
-  std::vector<Vec3> vectors;
-  std::vector<double> scalars;
+  Few<Vec3, 4> vectors;
+  Few<double, 1> scalars;
   std::vector<Vec3> points;
   Range bounds;
-  std::vector<bool> flags;
-  std::vector<std::optional<double>> options;
+  Few<bool, 1> flags;
+  Few<std::optional<double>, 1> options;
 };
 
 bool has_component(const Joint& j, Component id);
 ComponentValues get_component(const Joint& j, Component id);
 // Sets the component on the joint (a guide replaces any other guide).
 void set_component(Joint& j, Component id, const ComponentValues& v);
+// The same by the component's row (no search of the table: the model's check of every joint).
+bool has_component(const Joint& j, const ComponentRow& row);
+void set_component(Joint& j, const ComponentRow& row, const ComponentValues& v);
 
 // ---------------------------------------------------------------------------------------------
 // Joint kinds: the named joints.

@@ -15,7 +15,9 @@ namespace dispcon {
 
 namespace {
 
-void require(bool ok, const std::string& message) {
+// The message a literal: made a string only for a refusal (a std::string parameter built one,
+// on the heap, for every body accepted).
+void require(bool ok, const char* message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
@@ -244,11 +246,11 @@ JointId Model::add_joint(Joint j) {
   const JointId id{static_cast<int>(joints_.size())};
   std::vector<ModelWarning> clamped;  // kept only if the joint is accepted
   for (const ComponentRow& row : components()) {
-    if (!has_component(j, row.id)) continue;
+    if (!has_component(j, row)) continue;
     ComponentValues v = get_component(j, row.id);
     std::vector<std::string> messages;
     ComponentCheck(who, row, messages)(v);
-    set_component(j, row.id, v);
+    set_component(j, row, v);
     for (std::string& m : messages) clamped.push_back({id, std::string(row.keyword), std::move(m)});
   }
   if (j.coupling) {
