@@ -108,7 +108,7 @@ void Parser::component_statement(const ComponentRow& row, std::string_view k, Co
                            quote(w));
           throw StatementError{};
         }
-        next();
+        skip();
         mark(cb.seen, k, a.name, at(peek()));
         v.scalars.push_back(number(what));
         break;
@@ -161,7 +161,7 @@ void Parser::options(const ComponentRow& row, std::string_view k, ComponentValue
     if (i == row.args.size()) break;
     given |= std::uint64_t{1} << i;
     const ArgSpec& a = row.args[i];
-    next();
+    skip();
     mark(cb.seen, k, a.name, at(peek()));
     if (a.kind == Arg::Flag) {
       v.flags[flag] = true;
@@ -180,7 +180,7 @@ void Parser::options(const ComponentRow& row, std::string_view k, ComponentValue
           "expected " + expected + "';' in " + std::string(k) + ", found " + quote(peek()));
     throw StatementError{};
   }
-  next();
+  skip();
 }
 
 void Parser::constraint_block() {

@@ -23,7 +23,7 @@ void Parser::include_statement() {
       error(at(peek()), "expected 'as' and a name after the included file, found " + quote(peek()));
       throw StatementError{};
     }
-    next();
+    skip();
     mark(ib.seen, "as", {}, at(peek()));
     ib.inc.name = std::string(name("the included model's name"));
     while (peek().kind == Token::Word) {
@@ -40,7 +40,7 @@ void Parser::include_statement() {
                             quote(peek()));
       throw StatementError{};
     }
-    next();
+    skip();
     includes_.push_back(std::move(ib));
   } catch (const StatementError&) {
     recover();

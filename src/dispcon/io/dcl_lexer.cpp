@@ -62,17 +62,42 @@ bool is_alpha(char c) {
   return is(c, kAlpha);
 }
 
+// m / 10^after for 2^53 < m < 2^64, where doubles lose m's last digits: in the x87's 64-bit
+// significand (long double on x86) both are still exact, so the division rounds once to 64 bits;
+// rounding that to a double gives the correctly rounded value too, unless the quotient fell
+// exactly half-way between two doubles (11 bits below a double's last: 100 0000 0000), where a
+// second rounding may go the wrong way: those, and every number where long double is not the
+// x87's, are left to from_chars. (Half-way points are 64-bit numbers: a quotient on either side
+// of one rounds to that side or onto it, never across.)
+bool wide_decimal(std::uint64_t m, int after, double& value) {
+  if constexpr (std::numeric_limits<long double>::digits != 64) {
+    return false;
+  } else {
+    static constexpr long double kPowers[] = {
+        1e0L,  1e1L,  1e2L,  1e3L,  1e4L,  1e5L,  1e6L,  1e7L,  1e8L,  1e9L,  1e10L, 1e11L,
+        1e12L, 1e13L, 1e14L, 1e15L, 1e16L, 1e17L, 1e18L, 1e19L, 1e20L, 1e21L, 1e22L};
+    const long double q = static_cast<long double>(m) / kPowers[after];
+    std::uint64_t significand = 0;  // the low 8 bytes of the x87 format
+    std::memcpy(&significand, &q, sizeof significand);
+    if ((significand & 0x7FF) == 0x400) return false;
+    value = static_cast<double>(q);
+    return true;
+  }
+}
+
 // Most numbers of a file are short decimals ("0", "1", "2.5", "0.7648421872844885"): digits with
 // at most one '.', whose digits as a whole number m fit in a double (m <= 2^53) and with at most
 // 22 of them after the point. Their value m / 10^k is then one correctly rounded division of two
 // exact doubles, the very double std::from_chars gives (Clinger's fast path), at a fraction of
-// its cost. `digits` counts them all (beyond 19, m may have wrapped); false when the fast path
-// does not apply (from_chars reads the number).
+// its cost; up to 19 digits (a double's 17 significant digits as the writer writes them:
+// "0.69999999999999996"), wide_decimal. `digits` counts them all (beyond 19, m may have
+// wrapped); false when neither applies (from_chars reads the number).
 bool exact_decimal(std::uint64_t m, int digits, int after, double& value) {
   static constexpr double kPowers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                        1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  if (digits == 0 || digits > 19 || m > (std::uint64_t{1} << 53) || after > 22) return false;
+  if (digits == 0 || digits > 19 || after > 22) return false;
+  if (m > (std::uint64_t{1} << 53)) return wide_decimal(m, after, value);
   value = static_cast<double>(m) / kPowers[after];
   return true;
 }
@@ -109,12 +134,33 @@ bool fast_decimal(std::string_view body, double& value) {
 
 }  // namespace
 
-Token DclLexer::next() {
-  Token t;
-  while (skip_space_and_comments()) {
+// Blanks are the bulk of a file between tokens: walked here, with the place in locals; comments
+// out of line.
+void DclLexer::next(Token& t) {
+  for (;;) {
+    const char* p = p_;
+    if (p < end_ && is(*p, kSpace)) {
+      const char* line_start = line_start_;
+      int line = line_;
+      do {
+        if (*p++ == '\n') {
+          ++line;
+          line_start = p;
+        }
+      } while (p < end_ && is(*p, kSpace));
+      p_ = p;
+      line_start_ = line_start;
+      line_ = line;
+    }
+    if (p == end_) break;
+    const char c = *p;
+    if (c == '/' && p + 1 < end_ && (p[1] == '/' || p[1] == '*')) {
+      if (!comment()) break;
+      continue;
+    }
     t.line = line_;
     t.column = column();
-    const char c = *p_;
+    t.value = 0;
     if (c == ';') {
       t.kind = Token::Semicolon;
       t.text = std::string_view(p_, 1);
@@ -142,12 +188,13 @@ Token DclLexer::next() {
       ++p_;
       continue;
     }
-    return t;
+    return;
   }
   t.kind = Token::End;
+  t.text = {};
+  t.value = 0;
   t.line = line_;
   t.column = column();
-  return t;
 }
 
 // Moves past one byte, which may be a new line.
@@ -162,47 +209,28 @@ void DclLexer::error(std::string message) {
   errors_.add({line_, column(), std::move(message)});
 }
 
-// Skips white space and comments; false at the end of the text. Runs of blanks are the bulk of
-// a file: they are walked with the place kept in locals.
-bool DclLexer::skip_space_and_comments() {
-  while (p_ < end_) {
-    const char c = *p_;
-    if (is(c, kSpace)) {
-      const char* p = p_;
-      const char* line_start = line_start_;
-      int line = line_;
-      do {
-        if (*p++ == '\n') {
-          ++line;
-          line_start = p;
-        }
-      } while (p < end_ && is(*p, kSpace));
-      p_ = p;
-      line_start_ = line_start;
-      line_ = line;
-    } else if (c == '/' && p_ + 1 < end_ && p_[1] == '/') {
-      const void* eol = std::memchr(p_, '\n', static_cast<size_t>(end_ - p_));
-      p_ = eol ? static_cast<const char*>(eol) : end_;
-    } else if (c == '/' && p_ + 1 < end_ && p_[1] == '*') {
-      const int l0 = line_, c0 = column();
-      p_ += 2;
-      while (p_ < end_ && !(*p_ == '*' && p_ + 1 < end_ && p_[1] == '/')) {
-        const unsigned char b = static_cast<unsigned char>(*p_);
-        if (b == 0 || (b < 0x20 && b != '\n' && b != '\r' && b != '\t')) {
-          error("byte " + describe_byte(b) + " is not text");
-        }
-        step();
-      }
-      if (p_ >= end_) {
-        errors_.add({l0, c0, "comment '/*' is never closed with '*/'"});
-        return false;
-      }
-      p_ += 2;
-    } else {
-      return true;
-    }
+// A line comment ends before its new line (read as a blank); a block comment after its "*/".
+bool DclLexer::comment() {
+  if (p_[1] == '/') {
+    const void* eol = std::memchr(p_, '\n', static_cast<size_t>(end_ - p_));
+    p_ = eol ? static_cast<const char*>(eol) : end_;
+    return true;
   }
-  return false;
+  const int l0 = line_, c0 = column();
+  p_ += 2;
+  while (p_ < end_ && !(*p_ == '*' && p_ + 1 < end_ && p_[1] == '/')) {
+    const unsigned char b = static_cast<unsigned char>(*p_);
+    if (b == 0 || (b < 0x20 && b != '\n' && b != '\r' && b != '\t')) {
+      error("byte " + describe_byte(b) + " is not text");
+    }
+    step();
+  }
+  if (p_ >= end_) {
+    errors_.add({l0, c0, "comment '/*' is never closed with '*/'"});
+    return false;
+  }
+  p_ += 2;
+  return true;
 }
 
 // A number: a sign, then letters, digits, '.', '_' and exponent signs, read as one token so
@@ -362,9 +390,11 @@ std::string quote_string(std::string_view value) {
 Tokens lex_dcl(std::string_view text, LexErrors& errors) {
   Tokens out;
   DclLexer lexer(text, errors);
+  Token t;
   do {
-    out.list.push_back(lexer.next());
-  } while (out.list.back().kind != Token::End);
+    lexer.next(t);
+    out.list.push_back(t);
+  } while (t.kind != Token::End);
   out.decoded = std::move(lexer).decoded();
   return out;
 }

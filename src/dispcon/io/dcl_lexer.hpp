@@ -51,8 +51,9 @@ class DclLexer {
  public:
   DclLexer(std::string_view text, LexErrors& errors)
       : errors_(errors), p_(text.data()), end_(text.data() + text.size()), line_start_(p_) {}
-  // The next token; End at the end of the text, and again after that.
-  Token next();
+  // The next token, written over `t` (the parser's one token: no copy of it is returned); End at
+  // the end of the text, and again after that.
+  void next(Token& t);
   // The values of the strings written with escapes so far, which their tokens view.
   std::forward_list<std::string> decoded() && { return std::move(decoded_); }
 
@@ -62,7 +63,8 @@ class DclLexer {
   int column() const { return static_cast<int>(p_ - line_start_) + 1; }
   void step();
   void error(std::string message);
-  bool skip_space_and_comments();
+  // A comment at p_ ("//" or "/*") skipped; false when it is never closed (the text ends).
+  bool comment();
   void number(Token& t);
   void string(Token& t);
 

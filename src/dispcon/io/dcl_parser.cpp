@@ -19,7 +19,7 @@ ParseResult Parser::run() {
       // A bad token was reported by the lexer; saying so twice would double a flood.
       if (t.kind != Token::Bad)
         error(at(t), "expected 'object', 'constraint' or 'include', found " + quote(t));
-      next();
+      skip();
     }
   }
   return build();
@@ -29,25 +29,29 @@ void Parser::recover() {
   while (peek().kind != Token::End) {
     const Token& t = peek();
     if (t.kind == Token::Semicolon) {
-      next();
+      skip();
       return;
     }
     if (t.kind == Token::Word &&
         (t.text == "end" || t.text == "object" || t.text == "constraint" || t.text == "include"))
       return;
-    next();
+    skip();
   }
 }
 
 double Parser::number(const What& what, bool allow_inf) {
   const Token& t = peek();
-  if (t.kind == Token::Number && (allow_inf || !std::isinf(t.value))) return next().value;
+  if (t.kind == Token::Number && (allow_inf || !std::isinf(t.value))) {
+    const double v = t.value;
+    skip();
+    return v;
+  }
   if (t.kind == Token::Word && t.text == "inf") {
     if (!allow_inf) {
       error(at(t), what.str() + " must be finite, found 'inf' (inf is allowed only as a bound)");
       throw StatementError{};
     }
-    next();
+    skip();
     return kInf;
   }
   if (t.kind == Token::Number) {
@@ -75,7 +79,9 @@ std::string_view Parser::name(const char* what) {
     error(at(t), std::string("expected ") + what + ", found " + quote(t));
     throw StatementError{};
   }
-  return next().text;
+  const std::string_view text = t.text;
+  skip();
+  return text;
 }
 
 void Parser::semicolon(std::string_view after, bool quoted) {
@@ -85,7 +91,7 @@ void Parser::semicolon(std::string_view after, bool quoted) {
     error(at(t), "expected ';' after " + what + ", found " + quote(t));
     throw StatementError{};
   }
-  next();
+  skip();
 }
 
 void Parser::bounds(std::string_view what, double& lo, double& hi) {
@@ -105,7 +111,7 @@ void Parser::bounds(std::string_view what, double& lo, double& hi) {
           "expected 'min', 'max' or ';' in " + std::string(what) + ", found " + quote(peek()));
     throw StatementError{};
   }
-  next();
+  skip();
 }
 
 std::string_view Parser::keyword(const Token& t, const char* block, std::string_view object_name,
@@ -129,8 +135,8 @@ std::string_view Parser::keyword(const Token& t, const char* block, std::string_
 bool Parser::block_end(bool object, std::string_view object_name, Place open) {
   const Token& t = peek();
   if (t.kind == Token::Word && t.text == "end") {
-    next();
-    if (peek().kind == Token::Semicolon) next();
+    skip();
+    if (peek().kind == Token::Semicolon) skip();
     return true;
   }
   if (t.kind == Token::End ||

@@ -104,7 +104,8 @@ struct StatementError {};
 class Parser {
  public:
   Parser(std::string_view text, const std::string& file, IncludeStack& stack)
-      : file_(file), lexer_(text, lex_errors_), current_(lexer_.next()), stack_(stack) {
+      : file_(file), lexer_(text, lex_errors_), stack_(stack) {
+    lexer_.next(current_);
     // The model's room for every body and joint at once: a count of the words (in comments too,
     // so an upper bound), not of object1 and object2, whose room would push the model and the
     // solver's state up into more of the heap's huge pages (each zeroed when first touched).
@@ -122,12 +123,16 @@ class Parser {
   ParseResult run();
 
  private:
-  // Tokens, read as the parser goes: peek() is valid until the next call of next().
+  // Tokens, read as the parser goes: peek() is valid until the next call of next() or skip().
   const Token& peek() const { return current_; }
   Token next() {
     const Token t = current_;
-    if (t.kind != Token::End) current_ = lexer_.next();
+    skip();
     return t;
+  }
+  // Past the token peek() gives (no copy of it).
+  void skip() {
+    if (current_.kind != Token::End) lexer_.next(current_);
   }
   static Place at(const Token& t) { return {t.line, t.column}; }
   // How many times `word` stands alone in `text` (no name's byte after it). It is sought by its

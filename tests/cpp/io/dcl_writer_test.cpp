@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 
@@ -161,9 +163,11 @@ TEST(DclLexer, StringEscapes) {
   EXPECT_NE(escape.listed[0].message.find("unknown escape"), std::string::npos);
 }
 
-// The lexer reads short decimals itself (parse_number's fast path) and the rest with
-// std::from_chars: both must give the same double for every number, at the fast path's edges
-// too (2^53 and 2^53 + 1 as digits, 22 and 23 digits after the point, 19 and 20 digits).
+// The lexer reads short decimals itself (parse_number's fast path, and beyond 2^53 up to 19
+// digits by a long double division) and the rest with std::from_chars: both must give the same
+// double for every number, read alone or as the lexer's token, at the fast paths' edges too (2^53
+// and 2^53 + 1 as digits, 22 and 23 digits after the point, 19 and 20 digits, and numbers exactly
+// half-way between two doubles, where the long double's quotient would round twice).
 TEST(DclLexer, NumbersAsFromChars) {
   auto expect_same = [](const std::string& text) {
     double fast = 0, exact = 0;
@@ -174,12 +178,44 @@ TEST(DclLexer, NumbersAsFromChars) {
         << text;
     if (text[0] == '-') exact = -exact;
     EXPECT_EQ(std::memcmp(&fast, &exact, sizeof fast), 0) << text;  // -0 too
+    LexErrors errors;
+    const Tokens lexed = lex_dcl(text + ";", errors);
+    ASSERT_EQ(lexed[0].kind, Token::Number) << text;
+    EXPECT_EQ(std::memcmp(&lexed[0].value, &exact, sizeof exact), 0) << text;
   };
   for (const char* edge :
        {"0", "-0", "0.", ".5", "9007199254740992", "9007199254740993", "900719925474099.3",
         "0.9007199254740993", "1.0000000000000000000001", "1.00000000000000000000001",
-        "1234567890123456789", "12345678901234567890", "0.69999999999999996", "2.5", "007"}) {
+        "1234567890123456789", "12345678901234567890", "0.69999999999999996", "2.5", "007",
+        // half-way between two doubles: 2^53 + 1, 2^54 + 2, 2^63 + 2^10, 2^64 - 2^10, and
+        // 2^53 + 3 (rounds up to even); just beside them
+        "9007199254740993", "18014398509481986", "9223372036854776832", "18446744073709550592",
+        "9007199254740995", "9007199254740994", "18014398509481985", "18014398509481987",
+        "900719925474099.3", "9.007199254740993", "0.9007199254740993", "1.8014398509481986",
+        "9999999999999999999", "0.0000009007199254740993", "-9007199254740993"}) {
     expect_same(edge);
+  }
+  // Half-way points between two doubles in [1, 10) written with 19 digits: about half of their
+  // long double quotients land on the half-way point itself (the second rounding would then go
+  // the wrong way for half of those): they must be left to from_chars.
+  std::mt19937_64 halves(53);
+  for (int i = 0; i < 20000; ++i) {
+    const double d = 1 + static_cast<double>(halves() >> 11) * 0x1p-53 * 9;
+    const long double mid =
+        (static_cast<long double>(d) + static_cast<long double>(std::nextafter(d, 20.0))) / 2;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.18Lf", mid);
+    expect_same(buf);
+  }
+  // Doubles written with 17 significant digits (as the writer writes them) read back exactly.
+  std::mt19937_64 bits(17);
+  for (int i = 0; i < 20000; ++i) {
+    const double x =
+        std::ldexp(static_cast<double>(bits() >> 11), -53 + static_cast<int>(bits() % 40));
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    if (std::strchr(buf, 'e')) continue;
+    expect_same(buf);
   }
   std::mt19937_64 rng(14);
   std::uniform_int_distribution<int> digits(1, 20), point(0, 20), coin(0, 1);
