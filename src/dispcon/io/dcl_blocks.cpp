@@ -195,28 +195,28 @@ void Parser::constraint_block() {
     const Token t = next();
     try {
       const std::string_view k = keyword(t, "constraint", {}, cb.seen);
-      const ComponentRow* row = find_component(k);
-      if (row && row->guide && !cb.guide.empty()) {
-        error(at(t), "a constraint has at most one translation guide: '" + std::string(k) +
-                         "' after '" + std::string(cb.guide) + "' at line " +
-                         std::to_string(place(cb.seen, cb.guide, cb.at).line));
-        throw StatementError{};
-      }
-      if (row && row->coupling && !cb.coupling.empty()) {
-        error(at(t), "a constraint has at most one coupling: '" + std::string(k) + "' after '" +
-                         std::string(cb.coupling) + "' at line " +
-                         std::to_string(place(cb.seen, cb.coupling, cb.at).line));
-        throw StatementError{};
-      }
-      if (row) {
-        component_statement(*row, k, cb);
-      } else if (k == "object1") {
+      // object1 and object2 first: no component is named so, and every block has them.
+      if (k == "object1") {
         cb.object1 = name("an object name");
         semicolon("object1");
       } else if (k == "object2") {
         cb.object2 = name("an object name");
         cb.has_object2 = true;
         semicolon("object2");
+      } else if (const ComponentRow* row = find_component(k)) {
+        if (row->guide && !cb.guide.empty()) {
+          error(at(t), "a constraint has at most one translation guide: '" + std::string(k) +
+                           "' after '" + std::string(cb.guide) + "' at line " +
+                           std::to_string(place(cb.seen, cb.guide, cb.at).line));
+          throw StatementError{};
+        }
+        if (row->coupling && !cb.coupling.empty()) {
+          error(at(t), "a constraint has at most one coupling: '" + std::string(k) + "' after '" +
+                           std::string(cb.coupling) + "' at line " +
+                           std::to_string(place(cb.seen, cb.coupling, cb.at).line));
+          throw StatementError{};
+        }
+        component_statement(*row, k, cb);
       } else if (k == "move") {
         j.move = number("move");
         semicolon("move");
@@ -248,8 +248,12 @@ void Parser::constraint_block() {
   // Added now when nothing before it waits and both its objects are bodies already; a
   // constraint that names an object declared later, or whose object was refused, waits for the
   // end, and every constraint after it, so that the joints keep the file's order.
-  if (in_place_ && cb.has_object2 && known(cb.object1) && known(cb.object2)) {
-    add_constraint(cb, &constraints_later_);
+  const std::optional<BodyId> body1 = in_place_ ? body_of(cb.object1) : std::nullopt;
+  const std::optional<BodyId> body2 = body1 && cb.has_object2 ? body_of(cb.object2) : std::nullopt;
+  if (body2) {
+    j.body1 = *body1;
+    j.body2 = *body2;
+    if (cb.ok) add_resolved(cb, &constraints_later_);
     statements_.resize(cb.seen.begin);
   } else {
     in_place_ = false;

@@ -50,10 +50,10 @@ void Parser::add_object(ObjectBlock& ob) {
   }
 }
 
-bool Parser::known(std::string_view name) const {
-  if (name == "world") return true;
+std::optional<BodyId> Parser::body_of(std::string_view name) const {
+  if (name == "world") return Model::kWorld;
   const auto it = declared_.find(name);
-  return it != declared_.end() && it->second.body;
+  return it != declared_.end() ? it->second.body : std::nullopt;
 }
 
 void Parser::add_constraint(ConstraintBlock& cb, LaterList* later) {
@@ -89,7 +89,11 @@ void Parser::add_constraint(ConstraintBlock& cb, LaterList* later) {
     resolve(cb.object1, "object1", j.body1);
     resolve(cb.object2, "object2", j.body2);
   }
-  if (!ok) return;
+  if (ok) add_resolved(cb, later);
+}
+
+void Parser::add_resolved(ConstraintBlock& cb, LaterList* later) {
+  Joint& j = cb.joint;
   const size_t warned = model_.warnings().size();
   try {
     model_.add_joint(std::move(j));

@@ -256,11 +256,13 @@ class Parser {
   // The object declared (a duplicate is an error), its body checked by the model and added to it
   // when its block parsed cleanly; the problems kept in objects_later_.
   void add_object(ObjectBlock& ob);
-  // Whether `name` is the world or a body of the model already.
-  bool known(std::string_view name) const;
+  // The body `name` is already (the world too), or none: not declared yet, or refused.
+  std::optional<BodyId> body_of(std::string_view name) const;
   // The constraint's objects resolved and its joint checked by the model and added to it when
   // its block parsed cleanly; the problems listed, or kept in `later`.
   void add_constraint(ConstraintBlock& cb, LaterList* later);
+  // The same once its objects are resolved (its joint's bodies set) and its block is clean.
+  void add_resolved(ConstraintBlock& cb, LaterList* later);
 
   // The includes and the constraints that waited are added, and the diagnostics put in order:
   // each problem is reported once, at the statement it is about.

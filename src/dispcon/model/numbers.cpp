@@ -6,17 +6,6 @@
 
 namespace dispcon {
 
-What What::operator+(std::string_view more) const {
-  What out = *this;
-  for (std::string_view& p : out.pieces_) {
-    if (p.empty()) {
-      p = more;
-      return out;
-    }
-  }
-  throw std::logic_error("What: more than four pieces");
-}
-
 std::string What::str() const {
   std::string out;
   for (const std::string_view p : pieces_) out += p;
@@ -33,27 +22,23 @@ std::string format_vector(const Vec3& v) {
   return format_number(v.x()) + " " + format_number(v.y()) + " " + format_number(v.z());
 }
 
-double check_number(double v, std::string_view field, const What& what) {
+// Called only for a value the inline check refused: the same tests, in the same order, name
+// what is wrong.
+void refuse_number(double v, std::string_view field, const What& what) {
   if (std::isnan(v)) throw ValueError(std::string(field), what.str() + " is not a number (nan)");
-  if (!(std::abs(v) <= kLargest)) {
-    throw ValueError(std::string(field), what.str() + " " + format_number(v) +
-                                             " is out of range (at most " +
-                                             format_number(kLargest) + " in magnitude)");
-  }
-  return v;
+  throw ValueError(std::string(field), what.str() + " " + format_number(v) +
+                                           " is out of range (at most " + format_number(kLargest) +
+                                           " in magnitude)");
 }
 
-double check_positive(double v, std::string_view field, const What& what) {
+void refuse_positive(double v, std::string_view field, const What& what) {
   if (std::isnan(v)) throw ValueError(std::string(field), what.str() + " is not a number (nan)");
-  if (!(v >= kSmallest && v <= kLargest)) {
-    throw ValueError(std::string(field), what.str() + " " + format_number(v) +
-                                             " is out of range [" + format_number(kSmallest) +
-                                             ", " + format_number(kLargest) + "]");
-  }
-  return v;
+  throw ValueError(std::string(field), what.str() + " " + format_number(v) + " is out of range [" +
+                                           format_number(kSmallest) + ", " +
+                                           format_number(kLargest) + "]");
 }
 
-Vec3 check_vector(const Vec3& v, std::string_view field, const What& what) {
+void refuse_vector(const Vec3& v, std::string_view field, const What& what) {
   for (int k = 0; k < 3; ++k) {
     if (std::isnan(v[k]) || !(std::abs(v[k]) <= kLargest)) {
       throw ValueError(std::string(field),
@@ -63,7 +48,7 @@ Vec3 check_vector(const Vec3& v, std::string_view field, const What& what) {
                                                    " in magnitude)"));
     }
   }
-  return v;
+  throw std::logic_error("refuse_vector: the vector is within range");
 }
 
 Vec3 check_direction(const Vec3& v, std::string_view field, const What& what) {

@@ -4,6 +4,7 @@
 // products would overflow inside the solver, is refused with a message naming it and its place.
 #pragma once
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -44,8 +45,18 @@ class What {
   What(std::string_view a, std::string_view b = {}, std::string_view c = {},
        std::string_view d = {})
       : pieces_{a, b, c, d} {}
-  // These pieces and `more` after them (the last piece must be free).
-  What operator+(std::string_view more) const;
+  // These pieces and `more` after them (the last piece must be free). Inline, as the checks'
+  // accepting paths below: a file's every number passes here.
+  What operator+(std::string_view more) const {
+    What out = *this;
+    for (std::string_view& p : out.pieces_) {
+      if (p.empty()) {
+        p = more;
+        return out;
+      }
+    }
+    throw std::logic_error("What: more than four pieces");
+  }
   std::string str() const;
 
  private:
@@ -56,12 +67,28 @@ class What {
 std::string format_number(double v);
 std::string format_vector(const Vec3& v);
 
-// Each returns its (checked) value or throws ValueError "WHAT VALUE is ...".
+// The refusals of the checks below, out of line (they build the message).
+[[noreturn]] void refuse_number(double v, std::string_view field, const What& what);
+[[noreturn]] void refuse_positive(double v, std::string_view field, const What& what);
+[[noreturn]] void refuse_vector(const Vec3& v, std::string_view field, const What& what);
+
+// Each returns its (checked) value or throws ValueError "WHAT VALUE is ...". The accepting path
+// is inline: one comparison a coordinate (NaN fails it).
 // Finite with |v| <= kLargest.
-double check_number(double v, std::string_view field, const What& what);
+inline double check_number(double v, std::string_view field, const What& what) {
+  if (!(std::abs(v) <= kLargest)) refuse_number(v, field, what);
+  return v;
+}
 // In [kSmallest, kLargest].
-double check_positive(double v, std::string_view field, const What& what);
-Vec3 check_vector(const Vec3& v, std::string_view field, const What& what);
+inline double check_positive(double v, std::string_view field, const What& what) {
+  if (!(v >= kSmallest && v <= kLargest)) refuse_positive(v, field, what);
+  return v;
+}
+inline Vec3 check_vector(const Vec3& v, std::string_view field, const What& what) {
+  if (!(std::abs(v.x()) <= kLargest && std::abs(v.y()) <= kLargest && std::abs(v.z()) <= kLargest))
+    refuse_vector(v, field, what);
+  return v;
+}
 // A direction of any finite length but zero; returns it as a unit vector.
 Vec3 check_direction(const Vec3& v, std::string_view field, const What& what);
 // A rotation vector (axis times angle, |v| <= kLargestAngle) as a unit quaternion.
