@@ -222,12 +222,7 @@ SolveResult Dragger::pull(const Pose& target, SolveResult held) {
         SolveResult r = nearest(target, std::move(turned));
         // What holding the body at its target leaves open there, largest first (a lock names
         // its couplings).
-        std::vector<ConstraintReport> open;
-        for (const ConstraintReport& c : r.constraints) {
-          if (!c.satisfied) open.push_back(c);
-        }
-        std::stable_sort(open.begin(), open.end(),
-                         [](const auto& a, const auto& b) { return a.residual > b.residual; });
+        const std::vector<ConstraintReport> open = violated_worst_first(r.constraints);
         for (size_t k = 0; k < open.size() && k < 3; ++k) {
           r.message += (k ? "; " : "; held there it leaves open: ") + describe(model_, open[k]);
         }

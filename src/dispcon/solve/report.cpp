@@ -36,6 +36,20 @@ std::vector<ConstraintReport> report(const SolverState& s, double tolerance,
   return out;
 }
 
+std::vector<ConstraintReport> violated_worst_first(const std::vector<ConstraintReport>& all) {
+  std::vector<ConstraintReport> bad;
+  for (const ConstraintReport& c : all) {
+    if (!c.satisfied) bad.push_back(c);
+  }
+  // Non-finite first (a NaN compares false, so it is ranked as infinite).
+  auto key = [](double r) { return std::isnan(r) ? std::numeric_limits<double>::infinity() : r; };
+  std::stable_sort(bad.begin(), bad.end(),
+                   [&](const ConstraintReport& a, const ConstraintReport& b) {
+                     return key(a.residual) > key(b.residual);
+                   });
+  return bad;
+}
+
 std::string solve_message(const Model& model, const SolveResult& result) {
   std::ostringstream msg;
   if (result.converged) {
@@ -54,16 +68,7 @@ std::string solve_message(const Model& model, const SolveResult& result) {
                 : "")
         << "; still violated: ";
   }
-  std::vector<ConstraintReport> bad;
-  for (const ConstraintReport& c : result.constraints) {
-    if (!c.satisfied) bad.push_back(c);
-  }
-  // Non-finite first (a NaN compares false, so it is ranked as infinite).
-  auto key = [](double r) { return std::isnan(r) ? std::numeric_limits<double>::infinity() : r; };
-  std::stable_sort(bad.begin(), bad.end(),
-                   [&](const ConstraintReport& a, const ConstraintReport& b) {
-                     return key(a.residual) > key(b.residual);
-                   });
+  const std::vector<ConstraintReport> bad = violated_worst_first(result.constraints);
   for (size_t k = 0; k < bad.size() && k < 5; ++k) {
     msg << (k ? "; " : "") << describe(model, bad[k]);
   }

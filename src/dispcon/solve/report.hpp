@@ -15,6 +15,10 @@ std::string describe(const Model& model, const ConstraintReport& c);
 std::vector<ConstraintReport> report(const SolverState& s, double tolerance,
                                      const std::vector<double>* known = nullptr);
 
+// The joints a result leaves unsatisfied, the largest residual first (a non-finite one ranked as
+// infinite), in the joints' order among equals.
+std::vector<ConstraintReport> violated_worst_first(const std::vector<ConstraintReport>& all);
+
 // The one line: what happened and the joints at fault (the worst five).
 std::string solve_message(const Model& model, const SolveResult& result);
 
