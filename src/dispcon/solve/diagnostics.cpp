@@ -14,6 +14,7 @@
 #include "dispcon/parts/twist.hpp"
 #include "dispcon/solve/group.hpp"
 #include "dispcon/solve/rank.hpp"
+#include "dispcon/solve/report.hpp"
 #include "dispcon/solve/state.hpp"
 
 namespace dispcon {
@@ -69,13 +70,8 @@ CheckResult check(const Model& input, const SolveOptions& options) {
   // trying the most violated first.
   int removed = -1;
   if (!out.solve.converged) {
-    std::vector<ConstraintReport> bad;
-    for (const ConstraintReport& c : out.solve.constraints) {
-      if (!c.satisfied) bad.push_back(c);
-    }
-    std::sort(bad.begin(), bad.end(), [](const ConstraintReport& a, const ConstraintReport& b) {
-      return a.residual > b.residual;
-    });
+    // A NaN residual ranks first (and cannot break the sort's ordering); ties keep file order.
+    const std::vector<ConstraintReport> bad = violated_worst_first(out.solve.constraints);
     SolveOptions o = options;
     o.max_iterations = std::min(options.max_iterations, 2000);
     // Groups of bodies solve independently: a removal can only mend the group it is in, so when
