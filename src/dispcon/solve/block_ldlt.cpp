@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#if defined(__x86_64__) && __has_include(<sys/platform/x86.h>)
+#include <sys/platform/x86.h>  // glibc's CPU_FEATURE_ACTIVE
+#endif
 
 namespace dispcon {
 
@@ -155,15 +158,16 @@ namespace {
 constexpr int kSize = BlockLdlt::kSize, kArea = BlockLdlt::kArea;
 
 // The kernels below run over every block of the factor; on x86-64 they are also compiled for
-// AVX2 and the processor picks, and for AVX-512 as separate "wide" functions that BlockLdlt
-// calls where the processor has it (the same arithmetic in the same order, so the same bits).
-// Measured on the 105-link grid's drag (Zen 5, AVX-512 on full-width units): the factorisation
-// 131 -> 62-79 us, a solve 12.6 -> 10.0 us, the same bits.
+// AVX2 and for AVX-512 (the "wide" ones), and BlockLdlt calls the widest the processor has (the
+// same arithmetic in the same order, so the same bits). Measured on the 105-link grid's drag
+// (Zen 5, AVX-512 on full-width units): the factorisation 131 -> 62-79 us, a solve 12.6 -> 10.0
+// us, the same bits. Separate functions chosen where a BlockLdlt is made, not GCC's
+// target_clones: those link in libgcc's processor check, a constructor that runs the cpuid
+// instruction 10 times at every start of every program (about 7 us each on a VM, where it
+// traps), drags or not; glibc has already asked the processor once, and says what it found.
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-#define DISPCON_KERNEL __attribute__((target_clones("arch=x86-64-v3", "default")))
+#define DISPCON_AVX2 __attribute__((target("arch=x86-64-v3")))
 #define DISPCON_WIDE 1
-#else
-#define DISPCON_KERNEL
 #endif
 
 // The solve's block products on a block's columns split 4 + 2 (GCC's vector types: AVX2 in that
@@ -339,13 +343,17 @@ __attribute__((always_inline)) inline bool factor_kernel(int n, const int* start
   return true;
 }
 
-DISPCON_KERNEL
 bool factor_columns(int n, const int* start, const int* targets, double* values, double* pivots,
                     double* y) {
   return factor_kernel<false>(n, start, targets, values, pivots, y);
 }
 
 #ifdef DISPCON_WIDE
+DISPCON_AVX2 bool factor_columns_avx2(int n, const int* start, const int* targets, double* values,
+                                      double* pivots, double* y) {
+  return factor_kernel<false>(n, start, targets, values, pivots, y);
+}
+
 __attribute__((target("arch=x86-64-v4"))) bool factor_columns_wide(int n, const int* start,
                                                                    const int* targets,
                                                                    double* values, double* pivots,
@@ -495,7 +503,6 @@ __attribute__((always_inline)) inline void solve_kernel(int n, const int* start,
   }
 }
 
-DISPCON_KERNEL
 void solve_columns(int n, const int* start, const int* row, const int* row_start,
                    const int* row_block, const int* row_column, const int* forward, const int* back,
                    const double* values, const double* pivots, double* z) {
@@ -504,6 +511,14 @@ void solve_columns(int n, const int* start, const int* row, const int* row_start
 }
 
 #ifdef DISPCON_WIDE
+DISPCON_AVX2 void solve_columns_avx2(int n, const int* start, const int* row, const int* row_start,
+                                     const int* row_block, const int* row_column,
+                                     const int* forward, const int* back, const double* values,
+                                     const double* pivots, double* z) {
+  solve_kernel<false>(n, start, row, row_start, row_block, row_column, forward, back, values,
+                      pivots, z);
+}
+
 __attribute__((target("arch=x86-64-v4"))) void solve_columns_wide(
     int n, const int* start, const int* row, const int* row_start, const int* row_block,
     const int* row_column, const int* forward, const int* back, const double* values,
@@ -515,22 +530,42 @@ __attribute__((target("arch=x86-64-v4"))) void solve_columns_wide(
 
 }  // namespace
 
-bool BlockLdlt::wide_supported() {
-#ifdef DISPCON_WIDE
-  return __builtin_cpu_supports("x86-64-v4");
+// What the processor and the system let the kernels use: x86-64-v3 (AVX2, FMA, BMI1/2, F16C,
+// LZCNT, MOVBE, and the system saving the YMM registers) and x86-64-v4 (AVX-512 F, BW, CD, DQ,
+// VL, and the ZMM registers saved), as GCC's target names define them. glibc's answer (2.33 and
+// later) is what its start found, read from its memory: no cpuid here.
+BlockLdlt::Kernel BlockLdlt::best_kernel() {
+#if defined(DISPCON_WIDE) && __has_include(<sys/platform/x86.h>)
+  const bool v3 = CPU_FEATURE_ACTIVE(AVX) && CPU_FEATURE_ACTIVE(AVX2) && CPU_FEATURE_ACTIVE(BMI1) &&
+                  CPU_FEATURE_ACTIVE(BMI2) && CPU_FEATURE_ACTIVE(F16C) && CPU_FEATURE_ACTIVE(FMA) &&
+                  CPU_FEATURE_ACTIVE(LZCNT) && CPU_FEATURE_ACTIVE(MOVBE) &&
+                  CPU_FEATURE_ACTIVE(OSXSAVE);
+  const bool v4 = v3 && CPU_FEATURE_ACTIVE(AVX512F) && CPU_FEATURE_ACTIVE(AVX512BW) &&
+                  CPU_FEATURE_ACTIVE(AVX512CD) && CPU_FEATURE_ACTIVE(AVX512DQ) &&
+                  CPU_FEATURE_ACTIVE(AVX512VL);
+  return v4 ? Kernel::kWide : v3 ? Kernel::kAvx2 : Kernel::kBase;
+#elif defined(DISPCON_WIDE)
+  return __builtin_cpu_supports("x86-64-v4") ? Kernel::kWide
+         : __builtin_cpu_supports("x86-64-v3") ? Kernel::kAvx2
+                                               : Kernel::kBase;
 #else
-  return false;
+  return Kernel::kBase;
 #endif
 }
 
 void BlockLdlt::set_wide(bool on) {
-  wide_ = on && wide_supported();
+  const Kernel best = best_kernel();
+  kernel_ = on || best != Kernel::kWide ? best : Kernel::kAvx2;
 }
 
 bool BlockLdlt::factorize() {
 #ifdef DISPCON_WIDE
-  if (wide_) {
+  if (kernel_ == Kernel::kWide) {
     return factor_columns_wide(blocks(), start_.data(), targets_.data(), values_.data(),
+                               pivots_.data(), w_.data());
+  }
+  if (kernel_ == Kernel::kAvx2) {
+    return factor_columns_avx2(blocks(), start_.data(), targets_.data(), values_.data(),
                                pivots_.data(), w_.data());
   }
 #endif
@@ -552,8 +587,14 @@ void BlockLdlt::clear_values() {
 void BlockLdlt::solve() {
   const int n = blocks();
 #ifdef DISPCON_WIDE
-  if (wide_) {
+  if (kernel_ == Kernel::kWide) {
     solve_columns_wide(n, start_.data(), row_.data(), row_start_.data(), row_block_.data(),
+                       row_column_.data(), forward_.data(), back_.data(), values_.data(),
+                       pivots_.data(), z_.data());
+    return;
+  }
+  if (kernel_ == Kernel::kAvx2) {
+    solve_columns_avx2(n, start_.data(), row_.data(), row_start_.data(), row_block_.data(),
                        row_column_.data(), forward_.data(), back_.data(), values_.data(),
                        pivots_.data(), z_.data());
     return;

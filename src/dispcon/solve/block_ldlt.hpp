@@ -63,7 +63,7 @@ class BlockLdlt {
   // Whether factorize() and solve() take a block's column of six in one vector of eight
   // (AVX-512) rather than four and two: on by default where the processor has it. Both do the
   // same operations in the same order, so they give the same bits; tests compare them.
-  bool wide() const { return wide_; }
+  bool wide() const { return kernel_ == Kernel::kWide; }
   void set_wide(bool on);
 
  private:
@@ -86,8 +86,10 @@ class BlockLdlt {
   // for the other as a post-order's parent and child do.
   std::vector<int> row_start_, row_block_, row_column_;
   std::vector<int> forward_, back_;
-  bool wide_ = wide_supported();
-  static bool wide_supported();
+  // The kernels' build: x86-64's baseline, AVX2 (x86-64-v3) or AVX-512 (v4, the wide one).
+  enum class Kernel { kBase, kAvx2, kWide };
+  static Kernel best_kernel();
+  Kernel kernel_ = best_kernel();
   std::vector<double> w_;  // a column's blocks times Lk^-T (before scaling by dk^-1)
   std::vector<double> z_;  // the solve's right-hand side in elimination order
 };
