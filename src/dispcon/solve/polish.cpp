@@ -36,15 +36,26 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
     return false;
   }
   if (!reused_ && (m <= kDenseRows || !kkt_)) {
-    // dq = M^-1 J^T y
+    // dq = M^-1 J^T y, each body's terms summed in the order of its rows
     for (Vec6& d : w_->dq_) d.setZero();
-    for (int a = 0; a < m; ++a) {
-      const Entry& e = w_->rows_[static_cast<size_t>(a)];
-      const double ya = w_->y_[static_cast<size_t>(a)];
-      if (e.v1 >= 0)
-        w_->dq_[static_cast<size_t>(e.v1)] += ya * apply_inverse_mass(body(e.v1), e.j1);
-      if (e.v2 >= 0)
-        w_->dq_[static_cast<size_t>(e.v2)] += ya * apply_inverse_mass(body(e.v2), e.j2);
+    if (m <= kDenseRows) {  // with the M^-1 J^T that couplings() kept
+      for (int v = 0; v < nv_; ++v) {
+        Vec6& d = w_->dq_[static_cast<size_t>(v)];
+        for (int p = w_->var_start_[static_cast<size_t>(v)];
+             p < w_->var_start_[static_cast<size_t>(v) + 1]; ++p) {
+          const int a = w_->var_rows_[static_cast<size_t>(p)].first;
+          d += w_->y_[static_cast<size_t>(a)] * w_->u_[static_cast<size_t>(p)];
+        }
+      }
+    } else {
+      for (int a = 0; a < m; ++a) {
+        const Entry& e = w_->rows_[static_cast<size_t>(a)];
+        const double ya = w_->y_[static_cast<size_t>(a)];
+        if (e.v1 >= 0)
+          w_->dq_[static_cast<size_t>(e.v1)] += ya * apply_inverse_mass(body(e.v1), e.j1);
+        if (e.v2 >= 0)
+          w_->dq_[static_cast<size_t>(e.v2)] += ya * apply_inverse_mass(body(e.v2), e.j2);
+      }
     }
   }
   // Keep each body's turn small (seed 2.3): scale the whole step, never bend it.

@@ -28,7 +28,7 @@ struct PolishWork {
   std::vector<int> var_start_, fill_;         // rows of body v: var_rows_[var_start_[v] ...]
   HugeVector<std::pair<int, int>> var_rows_;  // (row, side 1 or 2)
   std::vector<Vec6> dq_;
-  std::vector<Vec6> u_;  // M^-1 times the blocks of one body's rows (couplings)
+  std::vector<Vec6> u_;  // M^-1 times the blocks of one body's rows, or all rows' (couplings)
   // Plain buffers under Eigen maps: groups of different sizes share them, and an Eigen matrix
   // would reallocate at every change of size.
   std::vector<double> y_;
@@ -105,23 +105,28 @@ class Polisher {
   // Calls f(a, b, value) for every coupling a >= b of J M^-1 J^T, body by body. Without
   // Values, the same calls in the same order with 0 for the value: the pattern alone, without
   // the products.
+  // A dense system's M^-1 J^T is kept whole (u_[p] for var_rows_[p]) for the step's dq, which
+  // then need not compute it again; a large system's one body at a time (see Entry).
   template <bool Values = true, typename F>
   void couplings(F&& f) {
     list_rows_by_body();
+    const bool keep = w_->rows_.size() <= static_cast<size_t>(kDenseRows);
+    if (keep) w_->u_.resize(static_cast<size_t>(w_->var_start_.back()));
     for (int v = 0; v < nv_; ++v) {
       const int begin = w_->var_start_[static_cast<size_t>(v)];
       const int end = w_->var_start_[static_cast<size_t>(v) + 1];
-      if (w_->u_.size() < static_cast<size_t>(end - begin)) w_->u_.resize(end - begin);
+      const int base = keep ? 0 : begin;  // u_[p - base] holds row p's M^-1 j
+      if (w_->u_.size() < static_cast<size_t>(end - base)) w_->u_.resize(end - base);
       [[maybe_unused]] const BodyState& b = body(v);
       for (int p = begin; p < end; ++p) {
         const auto [ra, sa] = w_->var_rows_[static_cast<size_t>(p)];
         const Entry& ea = w_->rows_[static_cast<size_t>(ra)];
         const Vec6& ja = sa == 1 ? ea.j1 : ea.j2;
-        if constexpr (Values) w_->u_[static_cast<size_t>(p - begin)] = apply_inverse_mass(b, ja);
+        if constexpr (Values) w_->u_[static_cast<size_t>(p - base)] = apply_inverse_mass(b, ja);
         for (int q = begin; q <= p; ++q) {
           const int rb = w_->var_rows_[static_cast<size_t>(q)].first;
           if constexpr (Values) {
-            f(ra, rb, ja.dot(w_->u_[static_cast<size_t>(q - begin)]));
+            f(ra, rb, ja.dot(w_->u_[static_cast<size_t>(q - base)]));
           } else {
             f(ra, rb, 0.0);
           }

@@ -1,53 +1,12 @@
 // The Newton polish's factorisation for small groups (up to kDenseRows rows): J M^-1 J^T
-// assembled dense, then a Cholesky written for these sizes, or a pivoting LDLT when rounding
-// defeats it.
+// assembled dense, then a Cholesky on its non-zero pattern (pattern_cholesky.hpp), or a
+// pivoting LDLT when rounding defeats it.
 #include <algorithm>
-#include <cmath>
 
+#include "dispcon/solve/pattern_cholesky.hpp"
 #include "dispcon/solve/polish.hpp"
 
 namespace dispcon {
-
-namespace {
-
-// Solves A y = b in place for a small symmetric positive definite A given by its lower triangle
-// (column-major, overwritten by the factor L). Column-oriented so every inner loop runs over
-// contiguous memory; for the few dozen rows of a mechanism's group this beats the general
-// blocked factorisations. Returns false when a pivot is not positive.
-bool cholesky_solve(Eigen::Ref<Eigen::MatrixXd> A, Eigen::Ref<Eigen::VectorXd> y) {
-  const Eigen::Index m = A.rows();
-  double* a = A.data();
-  for (Eigen::Index j = 0; j < m; ++j) {
-    double* cj = a + j * m;
-    for (Eigen::Index k = 0; k < j; ++k) {
-      const double* ck = a + k * m;
-      const double f = ck[j];
-      if (f == 0) continue;
-      for (Eigen::Index i = j; i < m; ++i) cj[i] -= f * ck[i];
-    }
-    if (!(cj[j] > 0)) return false;
-    const double d = std::sqrt(cj[j]);
-    cj[j] = d;
-    const double inv = 1 / d;
-    for (Eigen::Index i = j + 1; i < m; ++i) cj[i] *= inv;
-  }
-  double* x = y.data();
-  for (Eigen::Index j = 0; j < m; ++j) {  // L z = b
-    const double* cj = a + j * m;
-    x[j] /= cj[j];
-    const double xj = x[j];
-    for (Eigen::Index i = j + 1; i < m; ++i) x[i] -= xj * cj[i];
-  }
-  for (Eigen::Index j = m - 1; j >= 0; --j) {  // L^T y = z
-    const double* cj = a + j * m;
-    double sum = x[j];
-    for (Eigen::Index i = j + 1; i < m; ++i) sum -= cj[i] * x[i];
-    x[j] = sum / cj[j];
-  }
-  return true;
-}
-
-}  // namespace
 
 bool Polisher::factor(const SolverState& s, double lambda) {
   return static_cast<int>(w_->rows_.size()) <= kDenseRows ? factor_dense(lambda)
@@ -75,7 +34,8 @@ bool Polisher::factor_dense(double lambda) {
   };
   if (!(assemble() > 0)) return false;
   y = -r;
-  if (cholesky_solve(A, y)) return y.allFinite();
+  static_assert(kDenseRows <= kPatternRows, "pattern_cholesky_solve() takes the dense systems");
+  if (pattern_cholesky_solve(A.data(), m, y.data())) return y.allFinite();
   assemble();
   w_->full_ = A.selfadjointView<Eigen::Lower>();
   w_->dense_ldlt_.compute(w_->full_);
