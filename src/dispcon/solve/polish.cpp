@@ -273,6 +273,19 @@ double Polisher::measure_moved(const SolverState& s, const std::vector<double>& 
 }
 
 void Polisher::list_rows_by_body() {
+  // A dense system's lists serve again while its rows join the same unknowns: the group's next
+  // step, or the next group of the same shape (the 400 four-bars list theirs once).
+  const auto& rows = w_->rows_;
+  const bool small = rows.size() <= static_cast<size_t>(kDenseRows);
+  if (small && w_->listed_nv_ == nv_ && w_->listed_.size() == 2 * rows.size()) {
+    size_t a = 0;
+    while (a < rows.size() && rows[a].v1 == w_->listed_[2 * a] &&
+           rows[a].v2 == w_->listed_[2 * a + 1]) {
+      ++a;
+    }
+    if (a == rows.size()) return;
+  }
+  w_->listed_nv_ = -1;
   w_->var_start_.assign(static_cast<size_t>(nv_) + 1, 0);
   for (const Entry& e : w_->rows_) {
     if (e.v1 >= 0) ++w_->var_start_[static_cast<size_t>(e.v1) + 1];
@@ -289,13 +302,14 @@ void Polisher::list_rows_by_body() {
     if (e.v2 >= 0)
       w_->var_rows_[static_cast<size_t>(w_->fill_[static_cast<size_t>(e.v2)]++)] = {a, 2};
   }
-}
-
-PolishWork::Vec6 Polisher::apply_inverse_mass(const BodyState& b, const Vec6& j) {
-  Vec6 u;
-  u.head<3>() = b.K * (b.inv_m * j.head<3>());
-  u.tail<3>() = b.inv_m * j.tail<3>();
-  return u;
+  if (small) {
+    w_->listed_.resize(2 * rows.size());
+    for (size_t a = 0; a < rows.size(); ++a) {
+      w_->listed_[2 * a] = rows[a].v1;
+      w_->listed_[2 * a + 1] = rows[a].v2;
+    }
+    w_->listed_nv_ = nv_;
+  }
 }
 
 }  // namespace dispcon

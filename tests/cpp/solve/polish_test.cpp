@@ -1,12 +1,16 @@
 // The Newton polish of large groups (sparse systems), checked against properties every answer
-// must have. A grid of unit links pinned at lattice nodes (loops sharing bodies: the
-// saddle-point form) is made of four-bars with four equal sides, so every cell is a rhombus: the
-// verticals of a row stay parallel, and so do the horizontals of a level. A free closed chain of
-// masses (a few rows per body: J M^-1 J^T itself) keeps its centre of mass, since every
-// correction is a pair of opposite impulses (seed 4.2, footnote 5).
+// must have; and small groups (dense systems) solved one after another as each alone. A grid of
+// unit links pinned at lattice nodes (loops sharing bodies: the saddle-point form) is made of
+// four-bars with four equal sides, so every cell is a rhombus: the verticals of a row stay
+// parallel, and so do the horizontals of a level. A free closed chain of masses (a few rows per
+// body: J M^-1 J^T itself) keeps its centre of mass, since every correction is a pair of opposite
+// impulses (seed 4.2, footnote 5).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "dispcon/solve/solver.hpp"
@@ -84,6 +88,85 @@ double spread(const Model& m, const std::vector<std::vector<BodyId>>& lists) {
     }
   }
   return worst;
+}
+
+// A four-bar (the benchmark's: crank fixed, coupler and rocker from a rough start) at height z;
+// `reversed` lists its three joints the other way round: the same rows joining other unknowns in
+// turn. Returns its moving bodies.
+std::vector<BodyId> add_fourbar(Model& m, double z, bool reversed, const std::string& name) {
+  auto body = [&](const char* part, Vec3 x, double turn, bool fixed) {
+    Body b;
+    b.name = part + name;
+    b.pose = Pose::from(x + Vec3(0, 0, z), Vec3(0, 0, turn));
+    b.fixed = fixed;
+    return m.add_body(b);
+  };
+  const BodyId crank = body("crank", Vec3::Zero(), 0.7, true);
+  const BodyId coupler = body("coupler", Vec3(0.7648, 0.6442, 0), 0.757, false);
+  const BodyId rocker = body("rocker", Vec3(3, 0, 0), 1.951, false);
+  auto revolute = [&](BodyId b1, BodyId b2, Vec3 p1, Vec3 p2) {
+    Joint j;
+    j.body1 = b1;
+    j.body2 = b2;
+    j.has_hinge = true;
+    j.p1 = p1;
+    j.p2 = p2;
+    j.angle = AngleSpec{Vec3::UnitZ(), Vec3::UnitZ(), 0, 0};
+    return j;
+  };
+  std::vector<Joint> joints = {revolute(crank, coupler, Vec3(1, 0, 0), Vec3::Zero()),
+                               revolute(coupler, rocker, Vec3(3, 0, 0), Vec3(2.5, 0, 0)),
+                               revolute(Model::kWorld, rocker, Vec3(3, 0, z), Vec3::Zero())};
+  if (reversed) std::swap(joints.front(), joints.back());
+  for (const Joint& j : joints) m.add_joint(j);
+  return {coupler, rocker};
+}
+
+bool same_bits(const Pose& a, const Pose& b) {
+  return std::memcmp(a.x.data(), b.x.data(), 3 * sizeof(double)) == 0 &&
+         std::memcmp(a.q.coeffs().data(), b.q.coeffs().data(), 4 * sizeof(double)) == 0;
+}
+
+// Small groups share one thread's scratch space, where a group's step reuses what the last step
+// listed of its rows while they join the same unknowns: groups of the same size but another
+// order of joints, or another size, must list theirs anew. Solved together on one thread, each
+// lands where it lands solved alone, bit for bit.
+TEST(DensePolish, GroupsSolvedTogetherAsEachAlone) {
+  const std::vector<bool> order = {false, true, false, true};
+  Model together;
+  std::vector<std::vector<BodyId>> moving;
+  for (size_t k = 0; k < order.size(); ++k) {
+    moving.push_back(add_fourbar(together, 10.0 * k, order[k], std::to_string(k)));
+  }
+  Body lone;  // a pendulum: a group of five rows between the four-bars' fifteen
+  lone.name = "pendulum";
+  lone.pose = Pose::from(Vec3(0.1, -1, 50), Vec3(0, 0, 0.2));
+  const BodyId pendulum = together.add_body(lone);
+  Joint pin;
+  pin.body1 = Model::kWorld;
+  pin.body2 = pendulum;
+  pin.has_hinge = true;
+  pin.p1 = Vec3(0, 0, 50);
+  pin.p2 = Vec3(0, 1, 0);
+  pin.angle = AngleSpec{Vec3::UnitZ(), Vec3::UnitZ(), 0, 0};
+  together.add_joint(pin);
+  moving.push_back(add_fourbar(together, 60, false, "last"));
+  SolveOptions o;
+  o.threads = 1;
+  const SolveResult all = assemble(together, o);
+  ASSERT_TRUE(all.converged) << all.message;
+  EXPECT_GT(all.polish_iterations, 1);
+  for (size_t k = 0; k < moving.size(); ++k) {
+    Model alone;
+    const bool last = k + 1 == moving.size();
+    const std::vector<BodyId> mine = add_fourbar(alone, last ? 60 : 10.0 * k, !last && order[k],
+                                                 last ? "last" : std::to_string(k));
+    ASSERT_TRUE(assemble(alone, o).converged);
+    for (size_t b = 0; b < mine.size(); ++b) {
+      EXPECT_TRUE(same_bits(alone.body(mine[b]).pose, together.body(moving[k][b]).pose))
+          << "four-bar " << k << ", body " << b;
+    }
+  }
 }
 
 TEST(SparsePolish, GridOfFourBarsAssemblesIntoRhombi) {
