@@ -234,6 +234,7 @@ class DragMode:
         self.solver_seconds = self.solver_cpu = 0.0
         self.write_seconds = self.write_cpu = 0.0
         self.release_seconds = 0.0
+        self.unmoved = 0  # frames whose cursor had not moved since the last (no solve, no writes)
         self.lighter = None  # what the view leaves out during a drag (Lighter)
         self.callbacks = [
             self.view.addEventCallbackPivy(coin.SoMouseButtonEvent.getClassTypeId(), self.button),
@@ -357,8 +358,10 @@ class DragMode:
         t0, c0 = time.perf_counter(), time.thread_time()
         moved = self.drag.move(hit)
         t1, c1 = time.perf_counter(), time.thread_time()
-        if moved:
+        if moved and self.drag.changed:
             self.shown.update()
+        elif moved:
+            self.unmoved += 1  # the cursor at the pixel of the last frame: nothing was solved
         self.solver_seconds += t1 - t0
         self.solver_cpu += c1 - c0
         self.write_seconds += time.perf_counter() - t1

@@ -565,6 +565,11 @@ class PointDrag(_Motion):
         self._begin(asm, part, live)
         self.frames = 0
         self.solver_seconds = 0.0
+        # The last frame's target and answer when its pull ended where it can go no nearer (at
+        # the target, or at the nearest pose): a pull from there toward the same point ends
+        # where it starts. `changed` says whether the last move() moved the model.
+        self._settled = None
+        self.changed = False
 
     def move(self, target):
         """Pulls the grabbed point towards `target`; returns whether the linkage holds (the
@@ -572,15 +577,26 @@ class PointDrag(_Motion):
         import time
 
         t0 = time.perf_counter()
+        to = _vec(target)
+        self.frames += 1
+        if self._settled is not None and self._settled[0] == to:
+            # The cursor has not moved since a pull that settled (a mouse event at the same
+            # pixel): nothing to solve, nothing moves. The engine's pull would take a few
+            # iterations to find that it is already at the nearest pose (docs/performance.md).
+            self.changed = False
+            self.solver_seconds += time.perf_counter() - t0
+            return self._settled[1]
         with self.adapter.engine_errors():
-            r = self.puller.pull_to(_vec(target))
+            r = self.puller.pull_to(to)
         # Stopped short (the nearest pose, or the cap with the point still getting nearer): the
         # engine moved the model only where every joint holds; a result naming a violated joint
         # left it as it was.
         ok = r.converged or (r.status in ("out-of-reach", "iteration-limit") and not r.violated)
         if ok:
             self._solved()
-        self.frames += 1
+        self.changed = ok
+        # At the cap the point was still getting nearer: the next frame goes on, even unmoved.
+        self._settled = (to, ok) if r.converged or r.status == "out-of-reach" else None
         self.solver_seconds += time.perf_counter() - t0
         return ok
 

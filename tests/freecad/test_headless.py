@@ -585,6 +585,47 @@ class RobustOperations(unittest.TestCase):
         self.assertAlmostEqual(math.degrees(math.remainder(angle_of(arm) - start, 2 * math.pi)), 30, places=6)
         self.assertEqual(base.Placement, App.Placement())
 
+    def test_a_mouse_event_where_the_last_pull_settled_solves_nothing(self):
+        # Drag mode's mouse drag: an event at the point where the last pull settled (the cursor
+        # at the same pixel) leaves the model as it is, without a pull; a pull stopped by its
+        # iteration cap while still getting nearer goes on from where it stopped.
+        asm, base, arm = arm_on_base(self.doc)
+        da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)))
+        self.assertTrue(da.solve(asm).converged)
+        d = da.PointDrag(asm, arm, arm.Placement.multVec(App.Vector(1.5, 0, 0.1)), live=False)
+        engine, statuses = d.puller, []
+
+        class Counted:
+            def pull_to(self, target):
+                r = engine.pull_to(target)
+                statuses.append(r.status)
+                return r
+
+        d.puller = Counted()
+
+        def settle(target):
+            """Moves until a pull settles (out of reach, at the nearest pose)."""
+            for _ in range(5):
+                self.assertTrue(d.move(target))
+                self.assertTrue(d.changed)
+                if statuses[-1] != "iteration-limit":
+                    break
+            self.assertEqual(statuses[-1], "out-of-reach", statuses)
+
+        far = App.Vector(0, 3, 0.1)  # twice the arm's reach from its pin, in the grabbed point's plane
+        settle(far)
+        pulls, poses = len(statuses), d.adapter.model.poses()
+        self.assertTrue(d.move(far))  # the same point again: the linkage stays where it settled
+        self.assertFalse(d.changed)
+        self.assertEqual(len(statuses), pulls)
+        self.assertTrue((d.adapter.model.poses() == poses).all())
+        beside = far + App.Vector(0.1, 0, 0)  # moved: pulled again
+        settle(beside)
+        self.assertGreater(len(statuses), pulls)
+        d.finish()
+        tip = arm.Placement.multVec(App.Vector(1.5, 0, 0.1))
+        self.assertAlmostEqual((tip - beside).Length, math.hypot(beside.x, beside.y) - 1.5, delta=1e-6)
+
     def test_a_joint_whose_part_was_deleted_is_named_and_skipped(self):
         asm, base, arm = arm_on_base(self.doc)
         da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)))
