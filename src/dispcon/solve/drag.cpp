@@ -158,7 +158,7 @@ Dragger::Dragger(Model& model, BodyId body, const SolveOptions& options)
     : model_(model),
       body_(body),
       options_(options),
-      session_(model, options, held_only(model, body), Session::Stuck::Stop) {}
+      session_(model, options, held_only(model, body), Session::Stuck::StopWhenSlow) {}
 Dragger::Dragger(Dragger&&) noexcept = default;
 Dragger::~Dragger() = default;
 
@@ -181,10 +181,45 @@ SolveResult Dragger::move_to(const Pose& target) {
   // Near a path's full stretch Newton steps crawl (the first-order model sees almost no way to
   // change the path's reach); the path straightened by the factor that meets the target
   // (ReachBound::straighten) is a valid pose from which the held solve has nothing or little left.
-  if (std::optional<std::vector<Pose>> straight =
-          reach_->straighten(model_, model_.poses(), at, options_)) {
+  std::optional<std::vector<Pose>> straight =
+      reach_->straighten(model_, model_.poses(), at, options_);
+  // The held solve as it was before the slow rule (kept for what follows it), so that a
+  // reachable step's pose is the one it always was.
+  auto patient = [this](std::vector<Pose>& poses) {
+    session_.set_stuck(Session::Stuck::Stop);
+    SolveResult p = session_.solve(poses);
+    session_.set_stuck(Session::Stuck::StopWhenSlow);
+    return p;
+  };
+  std::optional<SolveResult> near;
+  if (session_.slowed()) {
+    // Whole Newton steps that do not halve the violation: the joints settle on a misfit, as
+    // where the target is out of reach, and the pull tells that sooner than the held steps would
+    // give up (a four-bar held past its dead point: 5 held steps instead of 11). Not near a
+    // path's full stretch, where they crawl toward a target in reach.
+    SolveResult spent = r;
+    if (!straight) {
+      near = puller().pull_to(at.x, false);
+      spent = pull(at, std::move(r), near, true);
+      if (spent.status == SolveStatus::OutOfReach) return spent;
+      near->iterations = near->polish_iterations = 0;  // counted in `spent`
+    }
+    // Reachable after all (or not told): the held solve without that rule.
+    poses_ = model_.poses();
+    poses_[static_cast<size_t>(body_.value)] = at;
+    r = patient(poses_);
+    r.iterations += spent.iterations;
+    r.polish_iterations += spent.polish_iterations;
+    r.seed_iterations += spent.seed_iterations;
+    if (r.converged) {
+      model_.set_poses(poses_);
+      return r;
+    }
+    if (r.status == SolveStatus::Diverged) return r;
+  }
+  if (straight) {
     poses_ = std::move(*straight);
-    SolveResult s = session_.solve(poses_);
+    SolveResult s = patient(poses_);
     if (s.converged) {
       model_.set_poses(poses_);
       s.iterations += r.iterations;
@@ -196,15 +231,18 @@ SolveResult Dragger::move_to(const Pose& target) {
     r.polish_iterations += s.polish_iterations;
     r.seed_iterations += s.seed_iterations;
   }
-  return pull(at, std::move(r));
+  return pull(at, std::move(r), std::move(near));
 }
 
 // The held step's Newton steps failed: the body's origin is pulled toward the target's from the
 // model's poses. Where that gets there the held step is made from the pose reached (a step too
 // long for Newton, or a nearly stretched linkage, whose Newton steps crawl); else the target is
-// out of reach and the pose reached is the nearest.
-SolveResult Dragger::pull(const Pose& target, SolveResult held) {
-  SolveResult near = puller().pull_to(target.x, false);
+// out of reach and the pose reached is the nearest. `pulled`: that pull when made already. With
+// `told_only` the step is not made when in reach: the result is then not OutOfReach, and counts
+// the iterations spent (the held solve's given and the pulls').
+SolveResult Dragger::pull(const Pose& target, SolveResult held, std::optional<SolveResult> pulled,
+                          bool told_only) {
+  SolveResult near = pulled ? std::move(*pulled) : puller().pull_to(target.x, false);
   const int tried = held.iterations + near.iterations;
   if (near.status != SolveStatus::OutOfReach) {
     const bool reached = near.status == SolveStatus::Converged;
@@ -228,6 +266,13 @@ SolveResult Dragger::pull(const Pose& target, SolveResult held) {
         }
         return r;
       }
+    }
+    if (told_only) {
+      held.status = SolveStatus::Stalled;
+      held.iterations = tried + turned.iterations;
+      held.polish_iterations += near.polish_iterations + turned.polish_iterations;
+      held.seed_iterations += turned.seed_iterations;
+      return held;
     }
     // The held solve that persists (seed iterations between Newton's, the stall rule): from the
     // pose the pull reached when it got there, else from where the step began (a pull that

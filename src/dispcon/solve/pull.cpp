@@ -154,7 +154,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       if (next.hard >= now.hard) lambda *= 100;
       now = next;
     }
-    return now.hard <= o.tolerance;
+    return now.hard <= std::max(within, o.tolerance);
   };
   save_poses(s, group, before);
   if (!correct(1e-3 * o.tolerance)) {
@@ -169,6 +169,14 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   const double band_soft = band[static_cast<size_t>(joint)];
   double h = rows.read(s, pulled, band_soft, true);
   std::vector<Vec6> dq;
+  // A pose on the way is corrected only as far as its step's gain asks; before the pull is judged
+  // stationary at one, it is corrected to well within the tolerance (the distances compared
+  // there are then of valid poses) and the pull goes on from it: true when it was.
+  auto tighten = [&] {
+    if (now.hard <= o.tolerance || !correct(1e-3 * o.tolerance)) return false;
+    h = rows.read(s, pulled, band_soft, true);
+    return true;
+  };
   double mu = kFirstDamping;
   bool calibrated = false;  // mu was set by the secant: the step's model has the curvature found
   bool moved = false;       // a step was kept
@@ -213,6 +221,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       if (stepped || !undo_and_damp()) {
         load_poses(s, group, before);
         now = kept;
+        if (tighten()) continue;
         out.stationary = true;
         break;
       }
@@ -228,6 +237,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     if (promise < 0.1 * o.tolerance * std::max(kept.distance, o.tolerance)) {
       load_poses(s, group, before);
       now = kept;
+      if (tighten()) continue;
       out.stationary = true;
       break;
     }
@@ -246,11 +256,14 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
         move_along(s, group, before, dq, t);
         now = measure(s, group, joint, joint_r);
       }
-      // The hard joints corrected until what they leave is a thousandth of the gain in h the
-      // step's first order promises there (h moves by about d times the violation).
-      const double within = std::min(
-          o.tolerance,
-          std::max(1e-3 * o.tolerance, 1e-2 * -slope * t / std::max(kept.distance, o.tolerance)));
+      // The hard joints corrected until what they leave moves h by a hundredth of the gain the
+      // step's first order promises there (h moves by about d times the violation): within the
+      // tolerance, and on a step cut short by the turn its bodies may make (a pull on its way,
+      // not yet near the nearest pose: the next step corrects the rest with its own) no further
+      // than that, which spares a correction or two a step.
+      const double gain =
+          std::max(1e-3 * o.tolerance, 1e-2 * -slope * t / std::max(kept.distance, o.tolerance));
+      const double within = longest < 1 ? gain : std::min(o.tolerance, gain);
       bool valid = correct(within) && std::isfinite(now.distance);
       // Near the target what the corrections leave is of the order of the distance: to well
       // within the tolerance there, as at the end.
@@ -294,11 +307,13 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
         calibrated = false;
         continue;
       }
+      if (tighten()) continue;
       out.stationary = true;
       break;
     }
     if (best_t == 0) {
       if (!undo_and_damp()) {
+        if (tighten()) continue;
         out.stationary = true;
         break;
       }
@@ -320,6 +335,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     }
     // Stationary: a kept step that gains less than the tolerance.
     if (kept.distance - now.distance < o.tolerance) {
+      if (tighten()) continue;
       out.stationary = true;
       break;
     }

@@ -45,6 +45,12 @@ void check_poses(const Model& model, const std::vector<Pose>& poses) {
 constexpr int kStallIterations = 400;
 // With Session::Stuck::Stop, the damping of a failed Newton step beyond which the solve stops.
 constexpr double kStopDamping = 1e-11;
+// With Session::Stuck::StopWhenSlow, the solve stops after kSlowSteps whole Newton steps in a row
+// (not cut short by the turn a body may make) that each leave more than kSlowStep of the
+// violation: Newton's steps on joints that can be met close in quadratically, and whole steps
+// that do not halve the violation are a least-squares misfit settling (a target out of reach).
+constexpr double kSlowStep = 0.5;
+constexpr int kSlowSteps = 2;
 
 // One group's run through the loop.
 struct GroupRun {
@@ -62,6 +68,8 @@ struct GroupRun {
   int last_progress = 0;     // the iteration at which the best violation last shrank by 0.1 %
   double progress_mark = 0;  // the best violation then
   bool stalled = false;
+  bool slowed = false;  // stalled by slow whole steps (Session::Stuck::StopWhenSlow)
+  int slow = 0;         // whole steps in a row that did not halve the violation
   bool done = false;
   std::vector<double> history;  // r after each iteration (record_history)
 
@@ -69,7 +77,8 @@ struct GroupRun {
   void reset() {
     lambda = 1e-12;
     iterations = seed = polish = seed_only_until = last_progress = 0;
-    stalled = false;
+    stalled = slowed = false;
+    slow = 0;
     measured = false;
     done = false;
     history.clear();
@@ -90,7 +99,7 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
   // A session that stops when stuck (a drag step, which pulls then) takes Newton steps from the
   // start: its poses are valid but for the held body, and the pull is its fallback.
   const bool polish =
-      o.newton_polish && (stuck == Session::Stuck::Stop ||
+      o.newton_polish && (stuck != Session::Stuck::Persist ||
                           (p.r < polish_threshold && p.iterations > p.seed_only_until));
   if (!polish) {
     if (o.scheme == Scheme::Jacobi) {
@@ -116,6 +125,15 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
     // After a Newton step the next may reuse its factorisation; a chord step that gained less
     // than a hundredfold asks for a new one.
     p.chord = !chord || next < 0.01 * p.r;
+    if (stuck == Session::Stuck::StopWhenSlow) {
+      double largest = 0;
+      for (size_t v = 0; v < group.bodies.size(); ++v) {
+        largest = std::max(largest, work.dq_[v].head<3>().norm());
+      }
+      const bool slow = !chord && next > kSlowStep * p.r && largest <= o.max_rotation_step;
+      p.slow = slow ? p.slow + 1 : 0;
+      p.slowed = p.stalled = p.slow >= kSlowSteps;
+    }
     p.r = next;
     p.lambda = std::max(1e-12, p.lambda * 0.1);
     return;
@@ -139,7 +157,7 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
   }
   load_poses(s, group, before);
   if (!widened) p.lambda *= 100;
-  if (stuck == Session::Stuck::Stop && (!stepped || p.lambda > kStopDamping)) {
+  if (stuck != Session::Stuck::Persist && (!stepped || p.lambda > kStopDamping)) {
     // The caller pulls instead (a drag step: Dragger::move_to): damped Newton steps that keep
     // failing are a linkage that cannot be where it is held, or a step too long for the
     // first-order model; either way seed iterations would crawl.
@@ -250,6 +268,17 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
   if (result.converged) poses = result.poses;
   result.message = solve_message(session.model, result);
   return result;
+}
+
+bool Session::slowed() const {
+  for (const GroupRun& p : impl_->runs) {
+    if (p.slowed) return true;
+  }
+  return false;
+}
+
+void Session::set_stuck(Stuck stuck) {
+  impl_->stuck = stuck;
 }
 
 SolveResult Session::pull(std::vector<Pose>& poses, JointId joint) {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -101,8 +102,9 @@ class Session {
  public:
   // What a solve does when its damped Newton steps keep failing: Persist (seed iterations a
   // while, then Newton again, until the stall rule or the cap) or Stop at once, status Stalled
-  // (a drag step's held solve, which then pulls instead: Dragger::move_to).
-  enum class Stuck { Persist, Stop };
+  // (a drag step's held solve, which then pulls instead: Dragger::move_to), or StopWhenSlow: as
+  // Stop, and also after a whole Newton step that does not halve the violation (slowed()).
+  enum class Stuck { Persist, Stop, StopWhenSlow };
   Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held = {},
           Stuck stuck = Stuck::Persist);
   ~Session();
@@ -119,6 +121,10 @@ class Session {
   // place in the first two cases; the result's poses are those reached. Throws
   // std::invalid_argument for an unknown or inactive joint.
   SolveResult pull(std::vector<Pose>& poses, JointId joint);
+  // Whether the last solve stopped at a slow whole step (Stuck::StopWhenSlow).
+  bool slowed() const;
+  // What the next solves do when stuck.
+  void set_stuck(Stuck stuck);
 
  private:
   struct Impl;
@@ -186,7 +192,11 @@ class Dragger {
   //   stretched toward the target breaks no joint); when that pull does not end out of reach
   //   either, the result has the bound alone as distance_left and the model's poses with the
   //   body at its target.
-  // - The held solve: Newton steps, stopped at the first that fails.
+  // - The held solve: Newton steps, stopped at the first that fails, or after two whole steps in
+  //   a row that each leave more than half the violation (a least-squares misfit settling, as
+  //   where the target is out of reach; not near a path's full stretch, below): then the pull
+  //   (below) comes first, and only where it does not end out of reach (nor the turn) is the
+  //   held solve made again without that rule, so a step in reach keeps its pose.
   // - Near a path's full stretch (where those steps crawl) the path straightened by the one
   //   factor that meets the target (every body's direction across the line from the anchor
   //   scaled alike, the linkage kept on its branch), what hangs off it carried along, then the
@@ -194,10 +204,11 @@ class Dragger {
   // - The pull (Puller): the body's origin drawn toward the target's, each Newton step followed
   //   by a search along the curve it traces and its damping set by a secant on the curvature
   //   found (the tension that a Gauss-Newton step leaves out: past a limit short of straight,
-  //   out of an angle joint's plane, at a loop's dead point). When it cannot get there the
-  //   status is OutOfReach: the result's poses are the nearest valid pose, distance_left how far
-  //   the body's origin stays from the target's there, and its constraints what holding the body
-  //   at its target leaves open.
+  //   out of an angle joint's plane, at a loop's dead point); a step cut short by the seed's
+  //   turn is corrected only as far as its gain needs, the nearest pose to the tolerance. When
+  //   it cannot get there the status is OutOfReach: the result's poses are the nearest valid
+  //   pose, distance_left how far the body's origin stays from the target's there, and its
+  //   constraints what holding the body at its target leaves open.
   // - When the origin got there, the body's rotation is pulled toward the target's with the
   //   origin held (a turn past a limit): OutOfReach at the nearest pose, angle_left the angle
   //   left; else the held solve that persists (seed iterations, the stall rule) from the pose
@@ -209,7 +220,8 @@ class Dragger {
   struct Turn;
   Puller& puller();
   SolveResult out_of_reach(const Pose& target);
-  SolveResult pull(const Pose& target, SolveResult held);
+  SolveResult pull(const Pose& target, SolveResult held, std::optional<SolveResult> pulled,
+                   bool told_only = false);
   SolveResult turn(const Pose& target, const std::vector<Pose>& from);
   SolveResult nearest(const Pose& target, SolveResult near) const;
 
