@@ -6,8 +6,11 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
-#if defined(__x86_64__) && __has_include(<sys/platform/x86.h>)
-#include <sys/platform/x86.h>  // glibc's CPU_FEATURE_ACTIVE
+// glibc's CPU_FEATURE_ACTIVE, for GCC only (the kernels below are GCC's): the header's inline
+// functions return C's _Bool, which g++ takes and clang++ refuses (the fuzz targets' build).
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__) && \
+    __has_include(<sys/platform/x86.h>)
+#include <sys/platform/x86.h>
 #endif
 
 namespace dispcon {
