@@ -195,6 +195,37 @@ Model fourbar_grid(int rows, int cols) {
   return m;
 }
 
+Model crank_chain(int cranks) {
+  Model m;
+  const double pitch = 1.5, length = 1.0, turn = M_PI / 3;
+  // A part of the chain: its centre midway along it, 0.05 above its pins' plane (the solids').
+  auto part = [&](const std::string& name, const Vec3& at, double angle, double along,
+                  bool fixed = false) {
+    Body b;
+    b.name = name;
+    b.pose = Pose::from(at, Vec3(0, 0, angle));
+    b.center = Vec3(0.5 * along, 0, 0.05);
+    b.fixed = fixed;
+    return m.add_body(b);
+  };
+  const BodyId ground = part("ground", Vec3::Zero(), 0, pitch * (cranks - 1), true);
+  const Vec3 tip(length * std::cos(turn), length * std::sin(turn), 0);
+  std::vector<BodyId> cs;
+  for (int k = 0; k < cranks; ++k) {
+    const Vec3 pin(k * pitch, 0, 0.1);
+    cs.push_back(part("crank" + std::to_string(k), pin, turn, length));
+    revolute(m, ground, cs.back(), pin, Vec3::Zero());
+  }
+  for (int k = 0; k + 1 < cranks; ++k) {
+    const double layer = 0.1 * (k % 2);
+    const BodyId c =
+        part("coupler" + std::to_string(k), Vec3(k * pitch, 0, 0.2 + layer) + tip, 0, pitch);
+    revolute(m, cs[static_cast<size_t>(k)], c, Vec3(length, 0, 0.1 + layer), Vec3::Zero());
+    revolute(m, cs[static_cast<size_t>(k) + 1], c, Vec3(length, 0, 0.1 + layer), Vec3(pitch, 0, 0));
+  }
+  return m;
+}
+
 Model gear_train(int n) {
   Model m;
   auto radius = [](int i) { return i % 2 ? 0.5 : 1.0; };

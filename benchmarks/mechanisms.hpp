@@ -41,4 +41,11 @@ dispcon::Model fourbar_grid(int rows, int cols);
 // each meshing the next (a gear coupling of ratio r_i / r_(i+1)); all at turn 0.
 dispcon::Model gear_train(int n);
 
+// The FreeCAD GUI test's 100-part drag (tests/freecad/gui_drag.py's crank_chain): `cranks` cranks
+// of length 1 pinned 1.5 apart along x to a fixed ground plate, turned 60 degrees, each pair of
+// neighbours joined by a coupler of length 1.5 (alternate couplers one layer higher); revolutes
+// about z. 2 * cranks bodies with the ground, one degree of freedom. Coupler k is body
+// "coupler<k>".
+dispcon::Model crank_chain(int cranks);
+
 }  // namespace bench

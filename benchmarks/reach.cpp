@@ -6,6 +6,13 @@
 //   BM_Pull_AlongStretch/<n>    a pull of the end by its start point moved along the circle 0.5
 //                               beyond the n - 1 links' reach, 0.001 rad a frame (a mouse drag
 //                               around the stretched chain): each frame the nearest pose
+//   BM_Pull_CrankChain/<pixel>  the FreeCAD GUI test's 100-part drag (a chain of 50 cranks and 49
+//                               couplers, one degree of freedom): a coupler's point pulled along
+//                               its circle, 1.5 degrees a frame from 60 to 150 degrees and back,
+//                               each frame from the last one's pose; pixel 0: the targets on the
+//                               circle (in reach); pixel p: rounded to a grid of p thousandths
+//                               (the GUI test's view from the top: 110), frames at the last
+//                               one's point skipped, out of reach by up to half a pixel's diagonal
 //   BM_DragStep_NearStretch/<n> the reachable step before it (0.04 short of full stretch), from
 //                               the same curved pose each time
 //   BM_DragStep_PastLimit       the robot arm's hand (samples/robot-arm.dcl) dragged toward
@@ -26,9 +33,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "common.hpp"
 #include "dispcon/solve/solver.hpp"
+#include "mechanisms.hpp"
 
 namespace {
 
@@ -133,6 +142,42 @@ void BM_Pull_AlongStretch(benchmark::State& state) {
   state.counters["iterations"] = iterations;  // the most of any frame
 }
 BENCHMARK(BM_Pull_AlongStretch)->Arg(2)->Arg(1000)->Unit(benchmark::kMicrosecond);
+
+void BM_Pull_CrankChain(benchmark::State& state) {
+  const double pixel = 1e-3 * static_cast<double>(state.range(0));
+  Model m = bench::crank_chain(50);
+  if (!assemble(m).converged) std::abort();
+  const BodyId grabbed = *m.find("coupler25");
+  const Vec3 point(0.75, 0, 0.1);
+  const Vec3 start = m.body(grabbed).pose.apply(point);
+  // The frames' targets (the cursor's: each different from the last), then back again.
+  std::vector<Vec3> path;
+  const double a0 = M_PI / 3;
+  for (int k = 1; k <= 60; ++k) {
+    const double a = a0 + k * 1.5 * M_PI / 180;
+    Vec3 to(std::cos(a) - std::cos(a0), std::sin(a) - std::sin(a0), 0);
+    if (pixel > 0) {
+      to.x() = pixel * std::round(to.x() / pixel);
+      to.y() = pixel * std::round(to.y() / pixel);
+    }
+    if (path.empty() || path.back() != start + to) path.push_back(start + to);
+  }
+  for (size_t k = path.size() - 1; k-- > 1;) path.push_back(path[k]);
+  Puller pull(m, grabbed, point);
+  size_t frame = 0;
+  int iterations = 0;
+  for (auto _ : state) {
+    const SolveResult r = pull.pull_to(path[frame++ % path.size()]);
+    if (r.status != SolveStatus::Converged && r.status != SolveStatus::OutOfReach) {
+      state.SkipWithError(r.message.c_str());
+    }
+    iterations += r.iterations;
+  }
+  // Newton steps a frame, and the frames of the path (there and back).
+  state.counters["iterations"] = benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
+  state.counters["frames"] = static_cast<double>(path.size());
+}
+BENCHMARK(BM_Pull_CrankChain)->Arg(0)->Arg(110)->Unit(benchmark::kMicrosecond);
 
 void BM_DragStep_NearStretch(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
