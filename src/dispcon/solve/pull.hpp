@@ -19,10 +19,11 @@ struct PullOutcome {
 // Pulls from the group's current poses (they are left at the nearest poses found; where the hard
 // joints cannot be made to hold, at those given). `soft` has one entry per joint, all zero; it is
 // used as scratch for the pull joint's damping; `before` and `spare` hold poses aside.
-// `max_iterations` caps the Newton steps.
+// `max_iterations` caps the Newton steps. `follows`: the last pull of this joint reached its
+// target (a drag in reach, frame after frame): the first step is then damped less.
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
                        PolishWork& work, std::vector<double>& band, const SolveOptions& o,
                        std::vector<double>& soft, PoseBuffer& before, PoseBuffer& spare,
-                       std::vector<double>& joint_r);
+                       std::vector<double>& joint_r, bool follows = false);
 
 }  // namespace dispcon

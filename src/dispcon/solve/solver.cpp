@@ -226,6 +226,7 @@ struct Session::Impl {
   int threads = 1;                   // threads a solve uses
   std::vector<int> immovable;        // active joints whose two bodies cannot move
   std::vector<double> soft;          // a pull's damping per joint (pull.hpp)
+  int reached = -1;                  // the joint whose last pull reached its target, or -1
   std::atomic<bool> finite{true};    // no residual has become infinite or not a number
 };
 
@@ -320,7 +321,9 @@ PullOutcome Session::Impl::run_pull(int joint) {
     }
     found = true;
     // (`best` is the pull's spare: it is written below.)
-    out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, best, joint_r);
+    out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, best, joint_r,
+                     reached == joint);
+    reached = out.holds && out.distance <= o.tolerance ? joint : -1;
     p.measured = false;  // the pull moved the poses since the first measure
     p.iterations = p.polish = out.iterations;
     p.r = p.best_r = out.hard;

@@ -638,6 +638,76 @@ TEST(Reach, PullerAlongTheStretchedBoundary) {
   EXPECT_LT((arm.m.body(arm.hand).pose.x - Vec3(1, 2, 0)).norm(), 1e-9);
 }
 
+// A chain of parallelograms (the FreeCAD GUI test's 100-part drag, smaller): `cranks` unit cranks
+// pinned 1.5 apart along x, turned 60 degrees, neighbours joined by couplers of 1.5; revolutes
+// about z, one degree of freedom: a coupler translates on a unit circle.
+struct CrankChain {
+  Model m;
+  std::vector<BodyId> couplers;
+  explicit CrankChain(int cranks) {
+    const double turn = kPi / 3;
+    const Vec3 tip(std::cos(turn), std::sin(turn), 0);
+    auto revolute = [&](BodyId b1, BodyId b2, const Vec3& p1, const Vec3& p2) {
+      Joint j = pin(b1, b2, p1);
+      j.p2 = p2;
+      j.angle = AngleSpec{Vec3::UnitZ(), Vec3::UnitZ(), 0, 0};
+      m.add_joint(j);
+    };
+    std::vector<BodyId> cs;
+    for (int k = 0; k < cranks; ++k) {
+      Body b;
+      b.name = "crank" + std::to_string(k);
+      b.pose = Pose::from(Vec3(1.5 * k, 0, 0), Vec3(0, 0, turn));
+      b.center = Vec3(0.5, 0, 0);
+      cs.push_back(m.add_body(b));
+      revolute(Model::kWorld, cs.back(), Vec3(1.5 * k, 0, 0), Vec3::Zero());
+    }
+    for (int k = 0; k + 1 < cranks; ++k) {
+      Body b;
+      b.name = "coupler" + std::to_string(k);
+      b.pose = Pose::from(Vec3(1.5 * k, 0, 0.1) + tip, Vec3::Zero());
+      b.center = Vec3(0.75, 0, 0);
+      couplers.push_back(m.add_body(b));
+      revolute(cs[static_cast<size_t>(k)], couplers.back(), Vec3(1, 0, 0.1), Vec3::Zero());
+      revolute(cs[static_cast<size_t>(k) + 1], couplers.back(), Vec3(1, 0, 0.1), Vec3(1.5, 0, 0));
+    }
+  }
+};
+
+// A Puller's point moved in reach: a coupler's middle along its circle, 1.5 degrees a move (the
+// GUI test's drag). Each move meets the point. A pull that follows one which met its point damps
+// its first step less (pull.cpp's kFollowDamping): it takes fewer Newton steps than a new Puller
+// pulling from the same poses to the same point, and ends at the same pose.
+TEST(Reach, PullerInReachFollowsInFewerSteps) {
+  CrankChain chain(25);
+  ASSERT_TRUE(assemble(chain.m).converged);
+  const BodyId grabbed = chain.couplers[12];
+  const Vec3 point(0.75, 0, 0), start = chain.m.body(grabbed).pose.apply(point);
+  Puller pull(chain.m, grabbed, point);
+  int fewer = 0;
+  for (int k = 0; k <= 10; ++k) {
+    const double a = kPi / 3 + 1.5 * kPi / 180 * k;
+    const Vec3 to = start + Vec3(std::cos(a) - 0.5, std::sin(a) - std::sin(kPi / 3), 0);
+    Model fresh = chain.m;
+    const SolveResult r = pull.pull_to(to);
+    ASSERT_TRUE(r.converged) << k << ": " << r.message;
+    EXPECT_LT((chain.m.body(grabbed).pose.apply(point) - to).norm(), 1e-9) << k;
+    expect_joints_hold(chain.m, 1e-9);
+    const SolveResult first = Puller(fresh, grabbed, point).pull_to(to);
+    ASSERT_TRUE(first.converged) << k << ": " << first.message;
+    if (k == 0) {
+      EXPECT_EQ(r.iterations, first.iterations);  // nothing to follow yet
+    } else {
+      EXPECT_LE(r.iterations, first.iterations) << k;
+      fewer += r.iterations < first.iterations;
+    }
+    for (size_t b = 0; b < r.poses.size(); ++b) {
+      EXPECT_LT((r.poses[b].x - first.poses[b].x).norm(), 1e-8) << k << ", body " << b;
+    }
+  }
+  EXPECT_GE(fewer, 5);
+}
+
 // The limited arm's hand held at (5, 2, 0), beyond what its links stretch to (3.5): the arm
 // stretched toward it breaks the elbow's limit (0.5 rad at least), so the hand is pulled, to the
 // nearest pose: the elbow at its limit, the hand r(0.5) from the shoulder toward the target.
