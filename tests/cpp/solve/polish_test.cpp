@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "dispcon/model/joint_kinds.hpp"
 #include "dispcon/solve/solver.hpp"
 
 namespace dispcon {
@@ -104,15 +105,9 @@ std::vector<BodyId> add_fourbar(Model& m, double z, bool reversed, const std::st
   const BodyId crank = body("crank", Vec3::Zero(), 0.7, true);
   const BodyId coupler = body("coupler", Vec3(0.7648, 0.6442, 0), 0.757, false);
   const BodyId rocker = body("rocker", Vec3(3, 0, 0), 1.951, false);
-  auto revolute = [&](BodyId b1, BodyId b2, Vec3 p1, Vec3 p2) {
-    Joint j;
-    j.body1 = b1;
-    j.body2 = b2;
-    j.has_hinge = true;
-    j.p1 = p1;
-    j.p2 = p2;
-    j.angle = AngleSpec{Vec3::UnitZ(), Vec3::UnitZ(), 0, 0};
-    return j;
+  // The joint kinds' table's revolute about z (the anchors' default axis).
+  auto revolute = [](BodyId b1, BodyId b2, Vec3 p1, Vec3 p2) {
+    return dispcon::revolute(b1, Anchor{p1}, b2, Anchor{p2});
   };
   std::vector<Joint> joints = {revolute(crank, coupler, Vec3(1, 0, 0), Vec3::Zero()),
                                revolute(coupler, rocker, Vec3(3, 0, 0), Vec3(2.5, 0, 0)),
