@@ -556,9 +556,10 @@ BlockLdlt::Kernel BlockLdlt::best_kernel() {
 #endif
 }
 
-void BlockLdlt::set_wide(bool on) {
-  const Kernel best = best_kernel();
-  kernel_ = on || best != Kernel::kWide ? best : Kernel::kAvx2;
+bool BlockLdlt::set_kernel(Kernel k) {
+  if (static_cast<int>(k) > static_cast<int>(best_kernel())) return false;
+  kernel_ = k;
+  return true;
 }
 
 bool BlockLdlt::factorize() {

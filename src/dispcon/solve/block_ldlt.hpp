@@ -60,11 +60,15 @@ class BlockLdlt {
   void clear_values();
   double* values_of(int b) { return z_.data() + kSize * pos_[static_cast<size_t>(b)]; }
   void solve();
-  // Whether factorize() and solve() take a block's column of six in one vector of eight
-  // (AVX-512) rather than four and two: on by default where the processor has it. Both do the
-  // same operations in the same order, so they give the same bits; tests compare them.
-  bool wide() const { return kernel_ == Kernel::kWide; }
-  void set_wide(bool on);
+  // The kernels' build factorize() and solve() run: x86-64's baseline, AVX2 (x86-64-v3), or
+  // AVX-512 (v4, the wide one: a block's column of six in one vector of eight rather than four
+  // and two). The widest the processor has is the default. They do the same operations in the
+  // same order; tests compare them.
+  enum class Kernel { kBase, kAvx2, kWide };
+  static Kernel best_kernel();
+  Kernel kernel() const { return kernel_; }
+  // Takes `k` if the processor has it (and returns true); otherwise changes nothing.
+  bool set_kernel(Kernel k);
 
  private:
   int slot_of(int a, int b) const;
@@ -86,9 +90,6 @@ class BlockLdlt {
   // for the other as a post-order's parent and child do.
   std::vector<int> row_start_, row_block_, row_column_;
   std::vector<int> forward_, back_;
-  // The kernels' build: x86-64's baseline, AVX2 (x86-64-v3) or AVX-512 (v4, the wide one).
-  enum class Kernel { kBase, kAvx2, kWide };
-  static Kernel best_kernel();
   Kernel kernel_ = best_kernel();
   std::vector<double> w_;  // a column's blocks times Lk^-T (before scaling by dk^-1)
   std::vector<double> z_;  // the solve's right-hand side in elimination order

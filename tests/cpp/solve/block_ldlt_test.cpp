@@ -131,9 +131,10 @@ TEST(BlockLdlt, RefactorsWithNewValuesOnTheSamePattern) {
   }
 }
 
-TEST(BlockLdlt, WideKernelsGiveTheSameBits) {
-  BlockLdlt probe;
-  if (!probe.wide()) GTEST_SKIP() << "this processor has no AVX-512";
+// Every kernel the processor has (the baseline always, then AVX2 and AVX-512) against the
+// baseline's, the one a processor without AVX2 runs.
+TEST(BlockLdlt, KernelsGiveTheSameBits) {
+  using Kernel = BlockLdlt::Kernel;
   std::mt19937 rng(13);
   const int side = 5;
   std::vector<std::pair<int, int>> joints;
@@ -147,18 +148,32 @@ TEST(BlockLdlt, WideKernelsGiveTheSameBits) {
   const Problem p = saddle(side * side, joints, rows, 1e-9, rng);
   std::uniform_real_distribution<double> u(-1, 1);
   const Eigen::VectorXd b = Eigen::VectorXd::NullaryExpr(p.dense.rows(), [&] { return u(rng); });
-  std::vector<double> x[2];
-  for (int wide = 0; wide < 2; ++wide) {
+  std::vector<double> base;
+  {
     BlockLdlt f;
-    f.set_wide(wide == 1);
-    ASSERT_EQ(f.wide(), wide == 1);
-    solve_difference(f, p, b, &x[wide]);
+    ASSERT_TRUE(f.set_kernel(Kernel::kBase));
+    ASSERT_EQ(f.kernel(), Kernel::kBase);
+    solve_difference(f, p, b, &base);  // (accuracy: the tests above; here, equality)
   }
-  ASSERT_EQ(x[0].size(), x[1].size());
-  for (size_t i = 0; i < x[0].size(); ++i) {
-    EXPECT_EQ(std::memcmp(&x[0][i], &x[1][i], sizeof(double)), 0)
-        << "unknown " << i << ": " << x[0][i] << " against " << x[1][i];
+  int compared = 0;
+  for (Kernel k : {Kernel::kAvx2, Kernel::kWide}) {
+    BlockLdlt f;
+    if (!f.set_kernel(k)) {
+      EXPECT_EQ(f.kernel(), BlockLdlt::best_kernel()) << "a refused kernel changed the choice";
+      continue;
+    }
+    ASSERT_EQ(f.kernel(), k);
+    std::vector<double> x;
+    solve_difference(f, p, b, &x);
+    ASSERT_EQ(x.size(), base.size());
+    for (size_t i = 0; i < x.size(); ++i) {
+      EXPECT_EQ(std::memcmp(&x[i], &base[i], sizeof(double)), 0)
+          << "kernel " << static_cast<int>(k) << ", unknown " << i << ": " << x[i]
+          << " against the baseline's " << base[i];
+    }
+    ++compared;
   }
+  if (compared == 0) GTEST_SKIP() << "this processor has no AVX2: the baseline alone was checked";
 }
 
 TEST(BlockLdlt, RefusesAZeroPivot) {
