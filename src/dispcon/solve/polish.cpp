@@ -64,7 +64,8 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
     if (!d.allFinite()) return false;
     largest = std::max(largest, d.head<3>().norm());
   }
-  const double scale = largest > max_rotation ? max_rotation / largest : 1.0;
+  cut_short_ = largest > max_rotation;
+  const double scale = step_scale_ = cut_short_ ? max_rotation / largest : 1.0;
   for (int v = 0; v < nv_; ++v) {
     const Vec6& d = w_->dq_[static_cast<size_t>(v)];
     s.bodies[static_cast<size_t>(group_->bodies[static_cast<size_t>(v)])].displace(

@@ -73,6 +73,10 @@ class Polisher {
             double max_rotation, bool reuse, bool measured,
             const std::vector<double>* soft = nullptr);
   bool reused() const { return reused_; }
+  // The factor the last step() scaled its dq by so that no body turns more than max_rotation
+  // (the seed's 2.3), and whether it did (a step cut short; false for a whole step).
+  double step_scale() const { return step_scale_; }
+  bool cut_short() const { return cut_short_; }
   // Each joint's residual at the current poses into `joint_r` and the largest, as max_residual()
   // gives them; when a chord step may follow (a factorisation to reuse), the same pass over the
   // joints' geometry also keeps the rows' residuals, so that step need not measure again.
@@ -169,6 +173,8 @@ class Polisher {
   bool kkt_ = false;                // the sparse system is the saddle-point form
   bool factored_ = false;           // ... and its factorisation can serve a chord step
   bool reused_ = false;             // the last step was a chord step
+  double step_scale_ = 1.0;         // see step_scale()
+  bool cut_short_ = false;          // see cut_short()
   bool measured_ = false;           // measure() kept the rows' residuals in chord_
   // A chord step's right-hand side (the rows' residuals) and the bodies each row joins, which
   // must be the analysed ones (chord_). Per group, not in PolishWork: measured at the start of a

@@ -177,9 +177,13 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   std::vector<Vec6> dq;
   // A pose on the way is corrected only as far as its step's gain asks; before the pull is judged
   // stationary at one, it is corrected to well within the tolerance (the distances compared
-  // there are then of valid poses) and the pull goes on from it: true when it was.
+  // there are then of valid poses) and the pull goes on from it: true when it was; false when
+  // the pose already was (or cannot be) corrected so: the pull is stationary there.
   auto tighten = [&] {
-    if (now.hard <= o.tolerance || !correct(1e-3 * o.tolerance)) return false;
+    if (now.hard <= o.tolerance || !correct(1e-3 * o.tolerance)) {
+      out.stationary = true;
+      return false;
+    }
     h = rows.read(s, pulled, band_soft, true);
     return true;
   };
@@ -228,7 +232,6 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
         load_poses(s, group, before);
         now = kept;
         if (tighten()) continue;
-        out.stationary = true;
         break;
       }
       continue;
@@ -244,13 +247,10 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       load_poses(s, group, before);
       now = kept;
       if (tighten()) continue;
-      out.stationary = true;
       break;
     }
     // The step as made (Polisher::step scales it so no body turns more than the seed allows).
-    double largest = 0;
-    for (const Vec6& d : dq) largest = std::max(largest, d.head<3>().norm());
-    const double longest = largest > o.max_rotation_step ? o.max_rotation_step / largest : 1.0;
+    const double longest = polisher.step_scale();
     // Along the curve: the step's end corrected first; then, while the parabola through
     // (0, h0, slope) and the last point tried promises much more than that point gave, its
     // least point (no farther than the step as made, or twice a whole step).
@@ -314,13 +314,11 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
         continue;
       }
       if (tighten()) continue;
-      out.stationary = true;
       break;
     }
     if (best_t == 0) {
       if (!undo_and_damp()) {
         if (tighten()) continue;
-        out.stationary = true;
         break;
       }
       continue;
@@ -342,7 +340,6 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     // Stationary: a kept step that gains less than the tolerance.
     if (kept.distance - now.distance < o.tolerance) {
       if (tighten()) continue;
-      out.stationary = true;
       break;
     }
   }

@@ -126,11 +126,7 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
     // than a hundredfold asks for a new one.
     p.chord = !chord || next < 0.01 * p.r;
     if (stuck == Session::Stuck::StopWhenSlow) {
-      double largest = 0;
-      for (size_t v = 0; v < group.bodies.size(); ++v) {
-        largest = std::max(largest, work.dq_[v].head<3>().norm());
-      }
-      const bool slow = !chord && next > kSlowStep * p.r && largest <= o.max_rotation_step;
+      const bool slow = !chord && next > kSlowStep * p.r && !p.polisher.cut_short();
       p.slow = slow ? p.slow + 1 : 0;
       p.slowed = p.stalled = p.slow >= kSlowSteps;
     }
