@@ -35,10 +35,10 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   } else if (!factor(s, lambda)) {
     return false;
   }
-  if (!reused_ && (m <= kDenseRows || !kkt_)) {
+  if (!reused_ && (dense() || !kkt_)) {
     // dq = M^-1 J^T y, each body's terms summed in the order of its rows
     for (Vec6& d : w_->dq_) d.setZero();
-    if (m <= kDenseRows) {  // with the M^-1 J^T that couplings() kept
+    if (dense()) {  // with the M^-1 J^T that couplings() kept
       for (int v = 0; v < nv_; ++v) {
         Vec6& d = w_->dq_[static_cast<size_t>(v)];
         for (int p = w_->var_start_[static_cast<size_t>(v)];
@@ -277,7 +277,7 @@ void Polisher::list_rows_by_body() {
   // A dense system's lists serve again while its rows join the same unknowns: the group's next
   // step, or the next group of the same shape (the 400 four-bars list theirs once).
   const auto& rows = w_->rows_;
-  const bool small = rows.size() <= static_cast<size_t>(kDenseRows);
+  const bool small = dense();
   if (small && w_->listed_nv_ == nv_ && w_->listed_.size() == 2 * rows.size()) {
     size_t a = 0;
     while (a < rows.size() && rows[a].v1 == w_->listed_[2 * a] &&

@@ -125,7 +125,7 @@ class Polisher {
   template <bool Values = true, typename F>
   void couplings(F&& f) {
     list_rows_by_body();
-    const bool keep = w_->rows_.size() <= static_cast<size_t>(kDenseRows);
+    const bool keep = dense();
     if (keep) w_->u_.resize(static_cast<size_t>(w_->var_start_.back()));
     for (int v = 0; v < nv_; ++v) {
       const int begin = w_->var_start_[static_cast<size_t>(v)];
@@ -164,6 +164,8 @@ class Polisher {
   void analyze_rows();
 
   static constexpr int kDenseRows = 120;
+  // The gathered system is a small one, factorised dense (polish_dense.cpp).
+  bool dense() const { return w_->rows_.size() <= static_cast<size_t>(kDenseRows); }
   static constexpr int kBlockOrdering = 20000;  // unknowns from which AMD orders blocks
   const Group* group_;
   int nv_ = 0;

@@ -9,8 +9,7 @@
 namespace dispcon {
 
 bool Polisher::factor(const SolverState& s, double lambda) {
-  return static_cast<int>(w_->rows_.size()) <= kDenseRows ? factor_dense(lambda)
-                                                          : factor_sparse(s, lambda);
+  return dense() ? factor_dense(lambda) : factor_sparse(s, lambda);
 }
 
 bool Polisher::factor_dense(double lambda) {
