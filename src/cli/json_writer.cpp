@@ -56,6 +56,171 @@ bool plain(std::string_view s) {
   return true;
 }
 
+// Doubles as nlohmann::detail::to_chars writes them, digit for digit: its Grisu2 (the same
+// products, boundaries and digit loop, so the same digits, which are not always the shortest),
+// with less work a number than its own code (9,200 numbers in the 400 four-bars' document, about
+// 580 instructions each there): the normalisations by a count of leading zeros instead of a shift
+// a bit at a time, the products of 64-bit significands as one 128-bit product (rounded as
+// nlohmann rounds them: the top 64 bits of the product plus 2^63), the integral part's digits
+// without a division each when its loop cannot stop early, and the layout written from the digits
+// without moving them. cli.JsonNumbers compares it with nlohmann on millions of doubles of every
+// magnitude and bit pattern.
+namespace grisu {
+
+namespace dtoa = nlohmann::detail::dtoa_impl;
+
+// (x * y + 2^63) div 2^64: nlohmann's diyfp::mul (its four partial products sum to the same).
+inline std::uint64_t mul(std::uint64_t x, std::uint64_t y) {
+  const unsigned __int128 p = static_cast<unsigned __int128>(x) * y;
+  return static_cast<std::uint64_t>((p + (static_cast<unsigned __int128>(1) << 63)) >> 64);
+}
+
+// Two decimal digits of 0..99 at a time.
+constexpr char kPairs[] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+// The k digits of n (10^(k-1) <= n < 10^k), two at a time from the end.
+inline void write_digits(char* out, std::uint32_t n, int k) {
+  char* p = out + k;
+  while (n >= 100) {
+    const std::uint32_t r = n % 100;
+    n /= 100;
+    p -= 2;
+    std::memcpy(p, kPairs + 2 * r, 2);
+  }
+  if (n >= 10) {
+    p -= 2;
+    std::memcpy(p, kPairs + 2 * n, 2);
+  } else {
+    *--p = static_cast<char>('0' + n);
+  }
+}
+
+// grisu2_round: the last digit moved toward w while that stays within the bounds and nearer.
+inline void round(char* buf, int len, std::uint64_t dist, std::uint64_t delta, std::uint64_t rest,
+                  std::uint64_t ten_k) {
+  while (rest < dist && delta - rest >= ten_k &&
+         (rest + ten_k < dist || dist - rest > rest + ten_k - dist)) {
+    buf[len - 1]--;
+    rest += ten_k;
+  }
+}
+
+// The digits of v > 0 (finite) into buf, their count in len and v = buf * 10^exponent.
+inline void digits(double v, char* buf, int& len, int& exponent) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  const std::uint64_t E = bits >> 52, F = bits & ((std::uint64_t{1} << 52) - 1);
+  // v = f 2^e, and the bounds m- and m+ half-way to its neighbours (compute_boundaries).
+  const std::uint64_t f = E == 0 ? F : F + (std::uint64_t{1} << 52);
+  const int e = E == 0 ? -1074 : static_cast<int>(E) - 1075;
+  const bool lower_closer = F == 0 && E > 1;
+  const std::uint64_t plus = 2 * f + 1;
+  const int shift_plus = __builtin_clzll(plus);
+  const int e_plus = e - 1 - shift_plus;  // every value below shares this exponent
+  const std::uint64_t m_plus = plus << shift_plus;
+  const std::uint64_t m_minus =
+      lower_closer ? (4 * f - 1) << (e - 2 - e_plus) : (2 * f - 1) << (e - 1 - e_plus);
+  const std::uint64_t w0 = f << __builtin_clzll(f);
+  // Scaled by the cached power c ~ 10^-k into the exponent range [-60, -32] (grisu2).
+  const dtoa::cached_power c = dtoa::get_cached_power_for_binary_exponent(e_plus);
+  const std::uint64_t w = mul(w0, c.f);
+  const std::uint64_t M_minus = mul(m_minus, c.f) + 1;
+  const std::uint64_t M_plus = mul(m_plus, c.f) - 1;
+  exponent = -c.k;
+  // grisu2_digit_gen.
+  const int s = -(e_plus + c.e + 64);
+  const std::uint64_t one = std::uint64_t{1} << s;
+  std::uint64_t delta = M_plus - M_minus;
+  std::uint64_t dist = M_plus - w;
+  std::uint32_t p1 = static_cast<std::uint32_t>(M_plus >> s);
+  std::uint64_t p2 = M_plus & (one - 1);
+  std::uint32_t pow10 = 0;
+  const int k = dtoa::find_largest_pow10(p1, pow10);
+  len = 0;
+  if (p2 > delta) {
+    // The integral part's loop stops only where its rest, (p1 mod 10^n) 2^s + p2, is within
+    // delta: never, when p2 is not. All k digits then, without a division each.
+    write_digits(buf, p1, k);
+    len = k;
+  } else {
+    for (int n = k; n > 0;) {
+      const std::uint32_t d = p1 / pow10;
+      p1 %= pow10;
+      buf[len++] = static_cast<char>('0' + d);
+      --n;
+      const std::uint64_t rest = (std::uint64_t{p1} << s) + p2;
+      if (rest <= delta) {
+        exponent += n;
+        round(buf, len, dist, delta, rest, std::uint64_t{pow10} << s);
+        return;
+      }
+      pow10 /= 10;
+    }
+  }
+  int m = 0;
+  for (;;) {
+    p2 *= 10;
+    buf[len++] = static_cast<char>('0' + (p2 >> s));
+    p2 &= one - 1;
+    ++m;
+    delta *= 10;
+    dist *= 10;
+    if (p2 <= delta) break;
+  }
+  exponent -= m;
+  round(buf, len, dist, delta, p2, one);
+}
+
+// v as nlohmann::detail::to_chars writes it (v finite), at `out`, with 40 bytes of room there;
+// returns the end. format_buffer's layouts, written from the digits where they are: fixed point
+// from 1e-4 up to 1e15, else d.ddde+XX.
+char* write(char* out, double v) {
+  if (std::signbit(v)) {
+    v = -v;
+    *out++ = '-';
+  }
+  if (v == 0) {
+    std::memcpy(out, "0.0", 3);
+    return out + 3;
+  }
+  char d[40];  // the digits (at most 17), and room to copy them in blocks of 16 or 17
+  int k = 0, exponent = 0;
+  digits(v, d, k, exponent);
+  const int n = k + exponent;  // the decimal point's place after the first digit
+  if (k <= n && n <= 15) {     // digits, zeros, ".0"
+    std::memcpy(out, d, 17);
+    std::memset(out + k, '0', static_cast<size_t>(n - k));
+    std::memcpy(out + n, ".0", 2);
+    return out + n + 2;
+  }
+  if (0 < n && n <= 15) {  // digits with the point among them
+    std::memcpy(out, d, 16);
+    out[n] = '.';
+    std::memcpy(out + n + 1, d + n, 16);
+    return out + k + 1;
+  }
+  if (-4 < n && n <= 0) {  // 0.000digits
+    std::memcpy(out, "0.0000", 6);
+    std::memcpy(out + 2 - n, d, 17);
+    return out + 2 - n + k;
+  }
+  out[0] = d[0];
+  if (k == 1) {
+    ++out;
+  } else {
+    out[1] = '.';
+    std::memcpy(out + 2, d + 1, 16);
+    out += 1 + k;
+  }
+  *out++ = 'e';
+  return dtoa::append_exponent(out, n - 1);
+}
+
+}  // namespace grisu
+
 }  // namespace
 
 void JsonWriter::flush() {
@@ -153,7 +318,8 @@ void JsonWriter::value(double v) {
   }
   char* const buf = room(64);  // written in place: the longest double takes 25 bytes
   char* end = buf;
-  if (v == std::trunc(v) && std::abs(v) < 1e15) {
+  const double a = std::abs(v);
+  if (a < 1e15 && static_cast<double>(static_cast<long long>(a)) == a) {
     // A whole number (a planar model's zeros and ones: half its rotations) as nlohmann writes
     // it, its digits and ".0" (-0.0 too), without its conversion: cli.JsonNumbers compares
     // them on millions of values.
@@ -162,10 +328,10 @@ void JsonWriter::value(double v) {
     *end++ = '.';
     *end++ = '0';
   } else {
-    // nlohmann's own conversion (Grisu2): its digits are not always the shortest (std::to_chars
-    // writes 1.542053954523393 where it writes 1.5420539545233929), and the documents must not
-    // change by a digit.
-    end = nlohmann::detail::to_chars(buf, buf + 64, v);
+    // nlohmann's conversion (Grisu2, above): its digits are not always the shortest
+    // (std::to_chars writes 1.542053954523393 where it writes 1.5420539545233929), and the
+    // documents must not change by a digit.
+    end = grisu::write(buf, v);
   }
   size_ += static_cast<size_t>(end - buf);
 }

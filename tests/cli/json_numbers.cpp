@@ -1,13 +1,15 @@
 // JsonWriter's doubles against nlohmann's dump, digit for digit: the whole numbers it writes
 // itself (every integer in [-2e6, 2e6], powers of ten and their neighbours up to 1e15, millions
-// of random ones), and random doubles of every magnitude, which go through nlohmann's own
-// conversion. Then its strings and keys, byte for byte as nlohmann's dump(2) escapes and lays
-// them out: every length up to 40 with a byte that must be escaped (each control character, the
-// quote, the backslash) at every place, among plain ASCII and multi-byte UTF-8 (the writer tests
-// eight bytes at a time, with overlapping words at the ends). Exit 1 and the first differences
-// when any differs.
+// of random ones), and random doubles of every magnitude and bit pattern, which the writer
+// converts with its own copy of nlohmann's Grisu2. Then its strings and keys, byte for byte as
+// nlohmann's dump(2) escapes and lays them out: every length up to 40 with a byte that must be
+// escaped (each control character, the quote, the backslash) at every place, among plain ASCII and
+// multi-byte UTF-8 (the writer tests eight bytes at a time, with overlapping words at the ends).
+// Exit 1 and the first differences when any differs.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
@@ -38,6 +40,30 @@ int main() {
     const double magnitude = std::ldexp(static_cast<double>(random() >> 11), -int(random() % 64));
     test((random() & 1 ? -1 : 1) * std::trunc(magnitude));
     test((random() & 1 ? -1 : 1) * magnitude);
+  }
+  // Every bit pattern alike (every exponent, subnormals too: the writer's own Grisu2 takes the
+  // branches nlohmann's takes), and the values a solve writes: cosines, sines and their products,
+  // near 1 and near 0.
+  for (int i = 0; i < 3000000; ++i) {
+    const std::uint64_t bits = random();
+    double v;
+    std::memcpy(&v, &bits, sizeof v);
+    if (std::isfinite(v)) test(v);
+    const double angle = std::ldexp(static_cast<double>(random() >> 11), -53) * 7 - 3.5;
+    test(std::cos(angle));
+    test(std::sin(angle) * std::cos(3 * angle));
+    test(std::ldexp(std::sin(angle), -int(random() % 40)));
+  }
+  for (std::uint64_t bits = 0; bits < 100000; ++bits) {  // the smallest subnormals
+    double v;
+    std::memcpy(&v, &bits, sizeof v);
+    test(v);
+  }
+  for (int e = -1074; e <= 1023; ++e) {  // powers of two, where the lower bound is closer
+    for (const double d : {-1.0, 0.0, 1.0}) {
+      const double v = std::ldexp(1.0, e);
+      test(v + d * std::ldexp(1.0, e - 52));
+    }
   }
   std::printf("%ld doubles, %ld differ from nlohmann's\n", tested, differ);
 
