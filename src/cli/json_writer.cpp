@@ -248,8 +248,18 @@ void JsonWriter::item() {
     return;
   }
   if (items_.empty()) return;  // the document itself
-  if (items_.back()++ > 0) put(',');
-  new_line();
+  const size_t comma = items_.back()++ > 0 ? 1 : 0;
+  const size_t indent = 2 * items_.size();
+  if (indent + 1 >= kShortLine) {
+    if (comma) put(',');
+    return long_line(indent);
+  }
+  // The comma (written, and kept only when there is one), the new line and the indent in one
+  // room and one copy of fixed size (new_line()'s).
+  char* const out = room(kShortLine + 1);
+  *out = ',';
+  std::memcpy(out + comma, kShortLineText, kShortLine);
+  size_ += comma + indent + 1;
 }
 
 // A new line and an indent of 30 spaces or more (new_line() in the header writes the shorter).

@@ -7,6 +7,39 @@
 
 namespace dispcon::dcl {
 
+void Declarations::reserve(size_t names) {
+  entries_.reserve(names);
+  size_t size = 8;
+  while (size < 2 * names) size *= 2;
+  if (size <= slots_.size()) return;
+  slots_.assign(size, 0);
+  const size_t mask = size - 1;
+  for (size_t k = 0; k < entries_.size(); ++k) {
+    size_t i = hash(entries_[k].first) & mask;
+    while (slots_[i]) i = (i + 1) & mask;
+    slots_[i] = static_cast<uint32_t>(k + 1);
+  }
+}
+
+// FNV-1a, its high bits folded down: the slots are picked by the low ones.
+uint64_t Declarations::hash(std::string_view name) {
+  uint64_t h = 0xcbf29ce484222325;
+  for (const char c : name) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3;
+  return h ^ (h >> 32);
+}
+
+std::pair<Declared*, bool> Declarations::try_emplace(std::string_view name, const Declared& d) {
+  uint32_t* slot = lookup(name);
+  if (*slot) return {&entries_[*slot - 1].second, false};
+  if (2 * (entries_.size() + 1) > slots_.size()) {
+    reserve(2 * entries_.size() + 1);
+    slot = lookup(name);
+  }
+  entries_.emplace_back(name, d);
+  *slot = static_cast<uint32_t>(entries_.size());
+  return {&entries_.back().second, true};
+}
+
 void LaterList::add(Place at, bool error, std::string message) {
   if ((error ? errors++ : warnings++) < kErrorCap)
     listed.push_back({at, error, std::move(message)});
@@ -32,17 +65,17 @@ void Parser::replay(const LaterList& later) {
 
 void Parser::add_object(ObjectBlock& ob) {
   if (ob.name.empty() || ob.name == "world") return;
-  const auto [it, first] = declared_.try_emplace(ob.name, Declared{ob.at, std::nullopt});
+  const auto [declared, first] = declared_.try_emplace(ob.name, Declared{ob.at, std::nullopt});
   if (!first) {
     objects_later_.add(ob.at, true,
                        "duplicate object '" + std::string(ob.name) + "' (first declared at line " +
-                           std::to_string(it->second.at.line) + ")");
+                           std::to_string(declared->at.line) + ")");
     return;
   }
   if (!ob.ok) return;
   ob.body.name = std::string(ob.name);
   try {
-    it->second.body = model_.add_body(std::move(ob.body));
+    declared->body = model_.add_body(std::move(ob.body));
   } catch (const ValueError& e) {
     objects_later_.add(place(ob.seen, e.field(), ob.at), true, e.what());
   } catch (const std::invalid_argument& e) {
@@ -52,8 +85,8 @@ void Parser::add_object(ObjectBlock& ob) {
 
 std::optional<BodyId> Parser::body_of(std::string_view name) const {
   if (name == "world") return Model::kWorld;
-  const auto it = declared_.find(name);
-  return it != declared_.end() ? it->second.body : std::nullopt;
+  const Declared* declared = declared_.find(name);
+  return declared ? declared->body : std::nullopt;
 }
 
 void Parser::add_constraint(ConstraintBlock& cb, LaterList* later) {
@@ -64,8 +97,8 @@ void Parser::add_constraint(ConstraintBlock& cb, LaterList* later) {
       out = Model::kWorld;
       return;
     }
-    const auto it = declared_.find(name);
-    if (it == declared_.end()) {
+    const Declared* declared = declared_.find(name);
+    if (!declared) {
       std::string why = "no 'object " + std::string(name) + "' block declares it";
       for (const std::string& r : rigid_) {
         if (name.size() > r.size() && name.compare(0, r.size(), r) == 0 && name[r.size()] == '.')
@@ -76,8 +109,8 @@ void Parser::add_constraint(ConstraintBlock& cb, LaterList* later) {
       ok = false;
       return;
     }
-    if (it->second.body) {
-      out = *it->second.body;
+    if (declared->body) {
+      out = *declared->body;
     } else {
       ok = false;  // its object block had an error, reported there
     }

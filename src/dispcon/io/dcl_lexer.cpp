@@ -179,12 +179,7 @@ void DclLexer::next(Token& t) {
       string(t);
     } else {
       // Reported and left out: the statement around it reads on as if it were not there.
-      const unsigned char b = static_cast<unsigned char>(c);
-      if (b < 0x20 || b >= 0x7f) {
-        error("byte " + describe_byte(b) + " is not text");
-      } else {
-        error(std::string("unexpected character '") + c + "'");
-      }
+      stray(c);
       ++p_;
       continue;
     }
@@ -195,6 +190,19 @@ void DclLexer::next(Token& t) {
   t.value = 0;
   t.line = line_;
   t.column = column();
+}
+
+void DclLexer::stray(char c) {
+  const unsigned char b = static_cast<unsigned char>(c);
+  if (b < 0x20 || b >= 0x7f) {
+    error("byte " + describe_byte(b) + " is not text");
+  } else {
+    error(std::string("unexpected character '") + c + "'");
+  }
+}
+
+void DclLexer::malformed(const Token& t) {
+  errors_.add({t.line, t.column, "malformed number '" + std::string(t.text) + "'"});
 }
 
 // Moves past one byte, which may be a new line.
@@ -256,7 +264,7 @@ void DclLexer::number(Token& t) {
     t.kind = Token::Number;
   } else {
     t.kind = Token::Bad;
-    errors_.add({t.line, t.column, "malformed number '" + std::string(t.text) + "'"});
+    malformed(t);
   }
   p_ = q;
 }

@@ -63,6 +63,11 @@ class DclLexer {
   int column() const { return static_cast<int>(p_ - line_start_) + 1; }
   void step();
   void error(std::string message);
+  // The messages of a byte that starts no token and of a malformed number, out of line: the
+  // strings they build would otherwise give next() and number() a large frame to set up at every
+  // token.
+  [[gnu::cold, gnu::noinline]] void stray(char c);
+  [[gnu::cold, gnu::noinline]] void malformed(const Token& t);
   // A comment at p_ ("//" or "/*") skipped; false when it is never closed (the text ends).
   bool comment();
   void number(Token& t);

@@ -13,11 +13,11 @@
 // little memory beside the model it builds.
 #pragma once
 
+#include <cstdint>
 #include <forward_list>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 #include <vector>
 
 #include "dispcon/io/dcl_lexer.hpp"
@@ -81,7 +81,39 @@ struct Declared {
   Place at;
   std::optional<BodyId> body;
 };
-using Declarations = std::unordered_map<std::string_view, Declared>;
+// The table of them: the names in the order declared, and an open-addressed index into them (a
+// power of two of slots, at most half full, probed one after another). A lookup hashes the name
+// and compares a slot or two: std::unordered_map's chains cost a cache miss a node and a division
+// a node visited (its buckets are a prime in number), and a node allocated a name.
+class Declarations {
+ public:
+  void reserve(size_t names);
+  Declared* find(std::string_view name) {
+    const uint32_t* slot = lookup(name);
+    return *slot ? &entries_[*slot - 1].second : nullptr;
+  }
+  const Declared* find(std::string_view name) const {
+    return const_cast<Declarations*>(this)->find(name);
+  }
+  // The name's entry, made from `d` when it is new (then true).
+  std::pair<Declared*, bool> try_emplace(std::string_view name, const Declared& d);
+  Declared& operator[](std::string_view name) { return *try_emplace(name, Declared{}).first; }
+
+ private:
+  static uint64_t hash(std::string_view name);
+  // The slot holding the name's entry (its index + 1), or the empty slot (0) where it would go.
+  uint32_t* lookup(std::string_view name) {
+    if (slots_.empty()) reserve(8);
+    const size_t mask = slots_.size() - 1;
+    for (size_t i = hash(name) & mask;; i = (i + 1) & mask) {
+      uint32_t& slot = slots_[i];
+      if (!slot || entries_[slot - 1].first == name) return &slot;
+    }
+  }
+
+  std::vector<std::pair<std::string_view, Declared>> entries_;
+  std::vector<uint32_t> slots_;
+};
 
 // A diagnostic of the model's (a value it refuses, a bound it clamps, a duplicate object) met
 // while a block was added as it ended: kept to be listed where the model's diagnostics have always
