@@ -98,6 +98,27 @@ inline void write_digits(char* out, std::uint32_t n, int k) {
   }
 }
 
+constexpr std::uint64_t kPow10[] = {1,
+                                    10,
+                                    100,
+                                    1000,
+                                    10000,
+                                    100000,
+                                    1000000,
+                                    10000000,
+                                    100000000,
+                                    1000000000,
+                                    10000000000,
+                                    100000000000,
+                                    1000000000000,
+                                    10000000000000,
+                                    100000000000000,
+                                    1000000000000000,
+                                    10000000000000000,
+                                    100000000000000000,
+                                    1000000000000000000,
+                                    10000000000000000000u};
+
 // grisu2_round: the last digit moved toward w while that stays within the bounds and nearer.
 inline void round(char* buf, int len, std::uint64_t dist, std::uint64_t delta, std::uint64_t rest,
                   std::uint64_t ten_k) {
@@ -160,7 +181,23 @@ inline void digits(double v, char* buf, int& len, int& exponent) {
       pow10 /= 10;
     }
   }
-  int m = 0;
+  if (delta < one) {
+    // The loop below with less in it: it stops by the time delta 10^m reaches 2^s (p2 is below
+    // that), after at most 19 digits, so dist 10^m (dist <= delta) is taken once at the end.
+    char* const first = buf + len;
+    char* p = first;
+    do {
+      p2 *= 10;
+      *p++ = static_cast<char>('0' + (p2 >> s));
+      p2 &= one - 1;
+      delta *= 10;
+    } while (p2 > delta);
+    const int m = static_cast<int>(p - first);
+    len += m;
+    exponent -= m;
+    return round(buf, len, dist * kPow10[m], delta, p2, one);
+  }
+  int m = 0;  // where delta 10^m may wrap (subnormals), nlohmann's loop as it is
   for (;;) {
     p2 *= 10;
     buf[len++] = static_cast<char>('0' + (p2 >> s));
