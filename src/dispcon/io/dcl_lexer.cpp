@@ -165,6 +165,13 @@ void DclLexer::next(Token& t) {
       t.kind = Token::Semicolon;
       t.text = std::string_view(p_, 1);
       ++p_;
+    } else if (is_digit(c) && !(p + 1 < end_ && is(p[1], kNumber))) {
+      // A lone digit ("0", "1": 18,800 of the 22,800 numbers of the 400 four-bars), read here
+      // as number() reads it: the call and its walks cost more than the rest of the token.
+      t.kind = Token::Number;
+      t.text = std::string_view(p, 1);
+      t.value = c - '0';
+      p_ = p + 1;
     } else if (is_alpha(c)) {
       const char* q = p_ + 1;
       while (q < end_ && is(*q, kName)) ++q;

@@ -208,7 +208,9 @@ class Parser {
                          std::string_view arg = {}) const {
     for (size_t i = seen.end; i-- > seen.begin;) {
       const Mark& m = statements_[i];
-      if (m.keyword == keyword && m.arg == arg) return &m.at;
+      // The argument first: a statement's own mark has none, so a keyword's search passes its
+      // arguments' marks by their lengths alone.
+      if (m.arg == arg && m.keyword == keyword) return &m.at;
     }
     return nullptr;
   }

@@ -233,5 +233,36 @@ TEST(DclLexer, NumbersAsFromChars) {
   EXPECT_FALSE(parse_number("1.2.3", v));
 }
 
+// A lone digit is read by the lexer's own short path; after a sign it goes the number's whole
+// way. Every digit before every byte, both ways: the same tokens (the sign aside), the same
+// values to the bit and the same errors.
+TEST(DclLexer, LoneDigitsAsNumbers) {
+  for (char digit = '0'; digit <= '9'; ++digit) {
+    for (int b = 0; b < 256; ++b) {
+      const std::string tail = std::string(1, static_cast<char>(b)) + " 1;";
+      LexErrors short_errors, long_errors;
+      const std::string short_text = digit + tail, long_text = "+" + short_text;
+      const Tokens short_way = lex_dcl(short_text, short_errors);  // tokens view the text
+      const Tokens long_way = lex_dcl(long_text, long_errors);
+      ASSERT_EQ(short_way.size(), long_way.size()) << digit << " " << b;
+      for (size_t i = 0; i < short_way.size(); ++i) {
+        const Token &s = short_way[i], &l = long_way[i];
+        EXPECT_EQ(s.kind, l.kind) << digit << " " << b << " token " << i;
+        EXPECT_EQ(std::memcmp(&s.value, &l.value, sizeof s.value), 0) << digit << " " << b;
+        EXPECT_EQ(i == 0 ? "+" + std::string(s.text) : std::string(s.text), std::string(l.text))
+            << digit << " " << b;
+      }
+      ASSERT_EQ(short_errors.listed.size(), long_errors.listed.size()) << digit << " " << b;
+      for (size_t i = 0; i < short_errors.listed.size(); ++i) {
+        std::string message = long_errors.listed[i].message;  // a malformed number's, signed
+        const std::string signed_number = "malformed number '+";
+        if (message.compare(0, signed_number.size(), signed_number) == 0)
+          message.erase(signed_number.size() - 1, 1);
+        EXPECT_EQ(short_errors.listed[i].message, message) << digit << " " << b;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dispcon
