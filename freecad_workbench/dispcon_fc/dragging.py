@@ -16,6 +16,7 @@ view (or the button again) leaves it. One drag mode at a time in a session, as F
 modal tools: `_active` is that one."""
 import FreeCAD as App
 import FreeCADGui as Gui
+import numpy as np  # (here: an import in a function goes through PySide's import hook each time)
 
 from .objects import placed_parts, preferences
 from .operations import PointDrag
@@ -45,32 +46,156 @@ def _transform_of(part):
     return t
 
 
+def _carried(root):
+    """The nodes that draw a part as it is shown now, for a Moving copy: its view's root's
+    children after its transform (the first, _transform_of), the display-mode switch replaced by the child it shows; and
+    that switch. None when the root is not so made (then its transform is set instead)."""
+    from pivy import coin
+
+    nodes, switch = [], None
+    for k in range(root.getNumChildren()):
+        child = root.getChild(k)
+        if k == 0:
+            continue  # the transform (_transform_of): the copy places the part instead
+        if isinstance(child, coin.SoSwitch):
+            shown = child.whichChild.getValue()
+            if switch is not None or not 0 <= shown < child.getNumChildren():
+                return None
+            switch = child
+            nodes.append(child.getChild(shown))
+        else:
+            nodes.append(child)
+    return (nodes, switch) if switch is not None else None
+
+
+def _quaternion_product(a, b):
+    """Row by row, the quaternions (w, x, y, z) a b: the turn b, then a."""
+    wa, va, wb, vb = a[:, :1], a[:, 1:], b[:, :1], b[:, 1:]
+    return np.hstack([wa * wb - np.sum(va * vb, axis=1, keepdims=True),
+                      wa * vb + wb * va + np.cross(va, vb)])
+
+
+def _turned(q, v):
+    """Row by row, the vectors v turned by the quaternions q (w, x, y, z)."""
+    w, u = q[:, :1], q[:, 1:]
+    t = 2 * np.cross(u, v)
+    return v + w * t + np.cross(u, t)
+
+
+_Z = np.array([0.0, 0.0, 1.0])
+
+
+class Moving:
+    """What draws the moving parts during a drag, in one Coin3D node: each part's drawing (the
+    nodes under its view's root: its coordinates and the display mode it shows) under one
+    SoMultipleCopy, whose copy k draws part k (a switch that picks its child by the copy's
+    index), placed by matrix k. The matrices come from two engines fed with every part's
+    position and rotation (axis and angle) as three arrays: a frame is three calls, whatever
+    the number of parts, and one change notified up the scene graph. The parts' own drawing is
+    switched off meanwhile (their display-mode switches show nothing), and `end()` switches it
+    back on and takes the copy away.
+
+    Setting each part's own transform cost two pivy calls and a notification up the scene
+    graph per part: 0.55-0.75 ms a frame for a hundred parts, of which the notifications
+    about 0.35 ms (docs/performance.md)."""
+
+    def __init__(self, view, parts):
+        """`parts`: (row in poses(), placement in its body's frame or None, the view's root,
+        its transform, the nodes that draw it, its display-mode switch), one per part."""
+        from pivy import coin
+
+        self.rows = np.array([row for row, *_ in parts], dtype=np.intp)
+        locals_ = [local for _, local, *_ in parts]
+        if any(local is not None for local in locals_):
+            # Each part's placement in its body's frame: position, quaternion (w, x, y, z).
+            ident = (App.Vector(), App.Rotation())
+            pls = [(pl.Base, pl.Rotation) if pl is not None else ident for pl in locals_]
+            self.local_x = np.array([[b.x, b.y, b.z] for b, _ in pls])
+            self.local_q = np.array([[r.Q[3], r.Q[0], r.Q[1], r.Q[2]] for _, r in pls])
+        else:
+            self.local_x = self.local_q = None
+        self.root = coin.SoSeparator()
+        self.root.renderCaching = coin.SoSeparator.OFF  # it changes every frame
+        copies = coin.SoMultipleCopy()
+        pick = coin.SoSwitch()
+        pick.whichChild = coin.SO_SWITCH_INHERIT  # copy k draws child k
+        for _, _, _, _, nodes, _ in parts:
+            group = coin.SoGroup()
+            for node in nodes:
+                group.addChild(node)
+            pick.addChild(group)
+        copies.addChild(pick)
+        self.root.addChild(copies)
+        self.turn = coin.SoComposeRotation()
+        self.place = coin.SoComposeMatrix()
+        self.place.rotation.connectFrom(self.turn.rotation)
+        copies.matrix.connectFrom(self.place.matrix)
+        # The fields found once (pivy looks a field up by name at every access: 30 us).
+        self.translations, self.axes, self.angles = self.place.translation, self.turn.axis, self.turn.angle
+        self.count = len(parts)
+        self.switches = [(switch, switch.whichChild.getValue()) for *_, switch in parts]
+        self.scene = view.getSceneGraph()
+        # Drawn first where the parts' own transforms have them (x, y, z, w, qx, qy, qz).
+        at = [t.translation.getValue().getValue() + t.rotation.getValue().getValue() for *_, t, _, _ in parts]
+        self.update_from(np.array([(p[0], p[1], p[2], p[6], p[3], p[4], p[5]) for p in at]), rows=False)
+        self.scene.addChild(self.root)
+        for switch, _ in self.switches:
+            switch.whichChild = coin.SO_SWITCH_NONE
+
+    def update_from(self, poses, rows=True):
+        """Draws the parts at `poses` (Model.poses(): a row per body, x, y, z, w, qx, qy, qz;
+        with rows False, a row per part). Few numpy operations: each runs cold after a
+        redraw, several times slower than in a loop."""
+        p = poses[self.rows] if rows else poses
+        x, q = p[:, :3], p[:, 3:]
+        if rows and self.local_x is not None:
+            x = x + _turned(q, self.local_x)
+            q = _quaternion_product(q, self.local_q)
+        v = q[:, 1:]
+        sin = np.sqrt(np.einsum("ij,ij->i", v, v))
+        angle = 2 * np.arctan2(sin, q[:, 0])  # in [0, 2 pi]: the quaternion's sign kept
+        still = sin == 0  # no turn: any axis
+        axis = (v + still[:, None] * _Z) / (sin + still)[:, None]
+        n = self.count
+        self.translations.setValues(0, n, x.tolist())
+        self.axes.setValues(0, n, axis.tolist())
+        self.angles.setValues(0, n, angle.tolist())
+
+    def end(self):
+        """The parts drawn by their own views again."""
+        if self.root is None:
+            return
+        for switch, shown in self.switches:
+            switch.whichChild = shown
+        self.scene.removeChild(self.root)
+        self.root.getChild(0).matrix.disconnect()
+        self.root.removeAllChildren()
+        self.root = None
+
+
 class Shown:
-    """What a drag moves on screen: the Coin3D transforms of the objects that can move (parts,
-    and the parts of sub-assemblies: every object the adapter has a body frame for), set from
-    the engine's poses (`update()`, each frame), or back from the Placements (`restore()`, after
-    a cancelled drag). The document is not touched; a part whose view has no transform that
-    mirrors its Placement gets its Placement written, outside any undo step, and put back before
-    the drag's one undo step writes them all (`put_back()`), so that undo returns it where it
-    was.
+    """What a drag moves on screen: the objects that can move (parts, and the parts of
+    sub-assemblies: every object the adapter has a body frame for), drawn at the engine's poses
+    (`update()`, each frame) while the document is not touched; `end()` (the drag released:
+    the Placements then place them) and `restore()` (a cancelled drag) draw them by their own
+    views again. A part whose view is made as FreeCAD makes a part's (a transform that mirrors
+    its Placement, a display-mode switch) is drawn by one Moving copy for all; one whose view
+    is made otherwise but has such a transform gets that transform set each frame (its
+    translation's notification off, its rotation's on: one notification per part); one with
+    neither gets its Placement written, outside any undo step, and put back before the drag's
+    one undo step writes them all (`put_back()`), so that undo returns it where it was.
 
     The joints' markers are hidden during a drag (Lighter) and stay where they are: the
-    Placements written at release (or put back after Esc) place them, as at rest. Carrying
-    them on their parts' transforms gave each transform several parents, and each
-    notification walked up every one of them (0.76 -> 0.36-0.44 ms a frame for the rotations of
-    a hundred parts without them).
+    Placements written at release (or put back after Esc) place them, as at rest."""
 
-    A frame sets each transform's translation with its field's notification off and its
-    rotation with it on: one notification per part (each walks up the scene graph, invalidating
-    caches) instead of two. `end()` turns them back on."""
-
-    def __init__(self, adapter):
+    def __init__(self, adapter, view):
         model = adapter.model
         self.adapter = adapter
         doc = adapter.asm.Document
         rows = {n: k for k, n in enumerate(model.body_names())}  # poses() has a row per body
         moving = {adapter.names[p.Name] for p in adapter.parts if not getattr(p, "Grounded", False)}
-        # Each object's transform: (row of its body, its placement in the body's frame or None,
+        carried = []  # drawn by the Moving copy: (row, local, root, transform, nodes, switch)
+        # Set one by one: (row of its body, its placement in the body's frame or None,
         # translation, rotation, object); the fields found once (pivy looks a field up by name
         # at every access).
         self.transforms = []
@@ -80,10 +205,14 @@ class Shown:
             if body not in moving or obj is None:
                 continue
             t = _transform_of(obj)
-            if t is not None:
+            drawing = _carried(obj.ViewObject.RootNode) if t is not None else None
+            if drawing is not None:
+                carried.append((rows[body], local, obj.ViewObject.RootNode, t) + drawing)
+            elif t is not None:
                 self.transforms.append((rows[body], local, t.translation, t.rotation, obj))
             elif hasattr(obj, "Shape") or obj.TypeId == "App::Link":  # drawn some other way
                 self.written.append((obj, obj.Placement))
+        self.moving = Moving(view, carried) if carried else None
         for _, _, translation, _, _ in self.transforms:
             translation.enableNotify(False)
 
@@ -93,16 +222,20 @@ class Shown:
         return pl if local is None else pl.multiply(local)
 
     def update(self):
-        poses = self.adapter.model.poses().tolist()  # every body in one call
-        for k, local, translation, rotation, _ in self.transforms:
-            p = poses[k]
-            if local is None:  # a body's own part: straight from the engine
-                translation.setValue(p[0], p[1], p[2])
-                rotation.setValue(p[4], p[5], p[6], p[3])  # x, y, z, w; notifies for both
-            else:
-                pl = self._pose(p, local)
-                translation.setValue(pl.Base.x, pl.Base.y, pl.Base.z)
-                rotation.setValue(*pl.Rotation.Q)
+        poses = self.adapter.model.poses()  # every body in one call
+        if self.moving is not None:
+            self.moving.update_from(poses)
+        if self.transforms:
+            rows = poses.tolist()
+            for k, local, translation, rotation, _ in self.transforms:
+                p = rows[k]
+                if local is None:  # a body's own part: straight from the engine
+                    translation.setValue(p[0], p[1], p[2])
+                    rotation.setValue(p[4], p[5], p[6], p[3])  # x, y, z, w; notifies for both
+                else:
+                    pl = self._pose(p, local)
+                    translation.setValue(pl.Base.x, pl.Base.y, pl.Base.z)
+                    rotation.setValue(*pl.Rotation.Q)
         for p, _ in self.written:
             p.Placement = self.adapter.placement_of(p)
 
@@ -111,7 +244,9 @@ class Shown:
             p.Placement = start
 
     def end(self):
-        """The drag is over: the transforms notify again."""
+        """The drag is over: the parts drawn by their own views, the transforms notify again."""
+        if self.moving is not None:
+            self.moving.end()
         for _, _, translation, _, _ in self.transforms:
             translation.enableNotify(True)
             translation.touch()
@@ -293,11 +428,13 @@ class DragMode:
 
         t0 = time.perf_counter()
         drag, shown, self.drag, self.shown = self.drag, self.shown, None, None
-        shown.end()
         shown.put_back()
         try:
             drag.finish()
         finally:
+            # After the Placements are written: the parts' own views then draw them where the
+            # drag left them, never for a frame where it began.
+            shown.end()
             self._full_view()
         self.release_seconds += time.perf_counter() - t0
 
@@ -331,9 +468,10 @@ class DragMode:
             except ValueError as e:  # a rigid sub-assembly that is grounded: nothing to drag
                 App.Console.PrintMessage("Dispcon: %s\n" % e)
                 return
-            self.shown = Shown(self.drag.adapter)
+            # The view made lighter first: the parts' drawings then moved are the lighter ones.
             self.lighter = Lighter(self.view, self.drag.adapter,
                                    simplified=preferences()["LighterDrag"])
+            self.shown = Shown(self.drag.adapter, self.view)
             self.part = part
             self.normal = self.view.getViewDirection()
             event_cb.setHandled()

@@ -86,10 +86,13 @@ def drawn(view, marker):
     return App.Vector(*at.getValue()), App.Vector(*axis.getValue())
 
 
-def shown_modes(asm):
-    """Each part's display mode as drawn: the child its view's mode switch shows, named by what
-    it holds ("Flat Lines": faces and edges, "Shaded": faces only, "Wireframe": edges only,
-    "Other")."""
+def drawings(view, asm):
+    """Where and how each part is drawn, as the scene graph has it: {name: [(Placement, mode),
+    ...]}, one entry per drawing, by its own view (its root's transform and the child its
+    display-mode switch shows) or by a copy of an SoMultipleCopy in the scene (copy k drawing
+    the k-th child of a switch that picks its child by the copy's index, which holds a node of
+    the part's view, placed by matrix k). The mode is named by what the drawing holds ("Flat
+    Lines": faces and edges, "Shaded": faces only, "Wireframe": edges only, "Other")."""
     from pivy import coin
 
     def holds(node, kind):
@@ -98,16 +101,53 @@ def shown_modes(asm):
         search.apply(node)
         return search.getPath() is not None
 
-    out = {}
+    def mode(node):
+        faces, edges = holds(node, "SoBrepFaceSet"), holds(node, "SoBrepEdgeSet")
+        return "Flat Lines" if faces and edges else "Shaded" if faces else "Wireframe" if edges else "Other"
+
+    def placed(rows):  # Coin's matrix (a point is a row, times it) as a Placement
+        return App.Placement(App.Matrix(*[rows[j][i] for i in range(4) for j in range(4)]))
+
+    out, owner = {}, {}  # owner: a node of a part's view (by address) -> the part's name
     for p in da.parts(asm):
         root = p.ViewObject.RootNode
-        for k in range(root.getNumChildren()):
-            switch = root.getChild(k)
-            if isinstance(switch, coin.SoSwitch) and switch.whichChild.getValue() >= 0:
-                child = switch.getChild(switch.whichChild.getValue())
-                faces, edges = holds(child, "SoBrepFaceSet"), holds(child, "SoBrepEdgeSet")
-                out[p.Name] = "Flat Lines" if faces and edges else "Shaded" if faces else \
-                    "Wireframe" if edges else "Other"
+        out[p.Name] = []
+        for k in range(1, root.getNumChildren()):
+            child = root.getChild(k)
+            owner[int(child.this)] = p.Name
+            if isinstance(child, coin.SoSwitch):
+                for i in range(child.getNumChildren()):
+                    owner[int(child.getChild(i).this)] = p.Name
+                if child.whichChild.getValue() >= 0:
+                    t = root.getChild(0)
+                    out[p.Name].append((App.Placement(App.Vector(*t.translation.getValue().getValue()),
+                                                      App.Rotation(*t.rotation.getValue().getValue())),
+                                        mode(child.getChild(child.whichChild.getValue()))))
+    search = coin.SoSearchAction()
+    search.setType(coin.SoMultipleCopy.getClassTypeId())
+    search.setInterest(coin.SoSearchAction.ALL)
+    search.apply(view.getViewer().getSoRenderManager().getSceneGraph())
+    for n in range(search.getPaths().getLength()):
+        copies = search.getPaths()[n].getTail()
+        for c in range(copies.getNumChildren()):
+            pick = copies.getChild(c)
+            if not (isinstance(pick, coin.SoSwitch) and pick.whichChild.getValue() == coin.SO_SWITCH_INHERIT):
+                continue
+            for k in range(min(pick.getNumChildren(), copies.matrix.getNum())):
+                group = pick.getChild(k)
+                names = {owner.get(int(group.getChild(i).this)) for i in range(group.getNumChildren())} - {None}
+                for name in names:
+                    out[name].append((placed(copies.matrix[k].getValue()), mode(group)))
+    return out
+
+
+def shown_modes(view, asm):
+    """Each part's display mode as drawn ("Flat Lines", "Shaded", "Wireframe", "Other"; see
+    drawings()), each part drawn once."""
+    out = {}
+    for name, drawn_as in drawings(view, asm).items():
+        assert len(drawn_as) == 1, "%s is drawn %d times" % (name, len(drawn_as))
+        out[name] = drawn_as[0][1]
     return out
 
 
@@ -128,17 +168,42 @@ def save_near(view, point, path, height=8.0):
         camera.height.setValue(size)
 
 
+def part_at(view, asm, x, y):
+    """The name of the part drawn nearest under pixel (x, y), by its own view or by a copy
+    (drawings()), or None: the picked point's path holds a node of the part's view."""
+    from pivy import coin
+
+    owner = {}
+    for p in da.parts(asm):
+        root = p.ViewObject.RootNode
+        for k in range(1, root.getNumChildren()):
+            child = root.getChild(k)
+            owner[int(child.this)] = p.Name
+            for i in range(child.getNumChildren() if isinstance(child, coin.SoSwitch) else 0):
+                owner[int(child.getChild(i).this)] = p.Name
+    manager = view.getViewer().getSoRenderManager()
+    pick = coin.SoRayPickAction(manager.getViewportRegion())
+    pick.setPoint(coin.SbVec2s(x, y))
+    pick.setRadius(2)
+    pick.apply(manager.getSceneGraph())
+    point = pick.getPickedPoint()
+    path = point.getPath() if point is not None else None
+    names = [owner.get(int(path.getNode(i).this)) for i in range(path.getLength())] if path else []
+    return next((n for n in names if n), None)
+
+
 def other_part_on_screen(view, asm, part):
-    """A pixel where another part than `part` is under the cursor: the middle of a grounded
-    part's top face, or of any other part's."""
-    others = sorted((p for p in da.parts(asm) if p is not part), key=lambda p: not p.Grounded)
-    for p in others:
-        bb = p.Shape.BoundBox
-        for fx in (0.5, 0.3, 0.7, 0.1, 0.9):
-            at = App.Vector(bb.XMin + fx * bb.XLength, bb.Center.y, bb.ZMax)
-            x, y = (int(c) for c in view.getPointOnScreen(at))
-            info = view.getObjectInfo((x, y))
-            if info and info["Object"] == p.Name:
+    """A pixel where another part than `part` is drawn nearest under the cursor: one of its
+    vertices where it is drawn (during a drag the moving parts are drawn by a copy, where the
+    engine has them, and FreeCAD's pick does not name them: part_at)."""
+    drawn = drawings(view, asm)
+    others = sorted((p for p in da.parts(asm) if p is not part),
+                    key=lambda p: (p.Placement.Base - part.Placement.Base).Length)
+    for p in others[:10]:
+        to_drawn = drawn[p.Name][0][0].multiply(p.Placement.inverse())
+        for v in p.Shape.Vertexes:
+            x, y = (int(round(c)) for c in view.getPointOnScreen(to_drawn.multVec(v.Point)))
+            if part_at(view, asm, x, y) == p.Name:
                 return x, y
     raise AssertionError("no other part on the screen")
 
@@ -215,7 +280,7 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
 
     viewer = view.getViewer()
     modes = [viewer.getSceneGraph().getField(f) for f in ("highlightMode", "selectionMode")]
-    full = dict(modes=[m.getValue() for m in modes], cube=viewer.isEnabledNaviCube(), parts=shown_modes(asm))
+    full = dict(modes=[m.getValue() for m in modes], cube=viewer.isEnabledNaviCube(), parts=shown_modes(view, asm))
     assert full["cube"] and "Flat Lines" in full["parts"].values(), "not the view a drag makes lighter: %s" % full
 
     def markers_in_place(after):
@@ -228,7 +293,7 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
             pl = j.Reference1[0].Placement
             assert (at - pl.multVec(j.Point1)).Length < 1e-5 and (axis - pl.Rotation.multVec(j.Axis1)).Length < 1e-5, \
                 "%s's marker is not in place after %s" % (j.Label, after)
-        now = dict(modes=[m.getValue() for m in modes], cube=viewer.isEnabledNaviCube(), parts=shown_modes(asm))
+        now = dict(modes=[m.getValue() for m in modes], cube=viewer.isEnabledNaviCube(), parts=shown_modes(view, asm))
         assert now == full, "the view is not put back after %s: %s, before the drag %s" % (after, now, full)
 
     if check:
@@ -242,7 +307,7 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
             for k in range(1, 6):
                 gw.mouse(view, "move", *cursor(k))
             assert viewer.isEnabledNaviCube(), "the navigation cube went with the simplified view unticked"
-            assert shown_modes(asm) == full["parts"], "the parts were drawn lighter with the simplified view unticked"
+            assert shown_modes(view, asm) == full["parts"], "the parts were drawn lighter with the simplified view unticked"
             assert [m.get() for m in modes] == ["OFF", "SEL_OFF"], "selection on during a full-view drag"
             gw.mouse(view, "esc", 0, 0)
         finally:
@@ -280,20 +345,20 @@ def drag_timed(doc, asm, part, local_grab, path, check=False, top=False):
     drag = mode.drag
     if check:
         # During the drag the document is unchanged; what is drawn is the engine's poses.
+        drawn_now = drawings(view, asm)
         for p in moving:
             assert same_placement(p.Placement, start[p.Name], 0), "%s was written during the drag" % p.Label
-            t = p.ViewObject.RootNode.getChild(0)
-            shown = App.Placement(App.Vector(*t.translation.getValue().getValue()),
-                                  App.Rotation(*t.rotation.getValue().getValue()))
+            assert len(drawn_now[p.Name]) == 1, "%s is drawn %d times" % (p.Label, len(drawn_now[p.Name]))
             # (Coin3D holds single precision: 4e-6 apart at 40 units)
-            assert same_placement(shown, drag.adapter.placement_of(p), 1e-5), "%s is not drawn where solved" % p.Label
+            assert same_placement(drawn_now[p.Name][0][0], drag.adapter.placement_of(p), 1e-5), \
+                "%s is not drawn where solved" % p.Label
         # The view is lighter: no navigation cube, no markers (they stay where they were, and
         # the Placements place them at release), the parts' edges without their faces, no
         # preselection nor selection.
         assert not viewer.isEnabledNaviCube(), "the navigation cube is drawn during the drag"
         hidden = [j.Label for j in da.joints(asm) if viewproviders.joint_view(j).marker.is_visible()]
         assert not hidden, "markers drawn during the drag: %s" % hidden[:3]
-        solid = [n for n, m in shown_modes(asm).items() if m != "Wireframe"]
+        solid = [n for n, m in shown_modes(view, asm).items() if m != "Wireframe"]
         assert not solid, "parts drawn with their faces during the drag: %s" % solid[:3]
         assert [m.get() for m in modes] == ["OFF", "SEL_OFF"], \
             "preselection or selection on during the drag: %s" % [m.get() for m in modes]
