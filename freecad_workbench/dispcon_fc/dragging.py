@@ -135,6 +135,7 @@ class Moving:
         self.count = len(parts)
         self.switches = [(switch, switch.whichChild.getValue()) for *_, switch in parts]
         self.scene = view.getSceneGraph()
+        self.scene.ref()  # held while the copy is in it (the view may close first)
         # Drawn first where the parts' own transforms have them (x, y, z, w, qx, qy, qz).
         at = [t.translation.getValue().getValue() + t.rotation.getValue().getValue() for *_, t, _, _ in parts]
         self.update_from(np.array([(p[0], p[1], p[2], p[6], p[3], p[4], p[5]) for p in at]), rows=False)
@@ -168,6 +169,7 @@ class Moving:
         for switch, shown in self.switches:
             switch.whichChild = shown
         self.scene.removeChild(self.root)
+        self.scene.unref()
         self.root.getChild(0).matrix.disconnect()
         self.root.removeAllChildren()
         self.root = None

@@ -392,6 +392,33 @@ class TestMarkers(Documents):
         self.assertLess(math.dist(at, (centre.x, centre.y, centre.z)), 1e-6, "the preview is not at the edge's centre")
         panel.reject()
 
+    def test_the_marker_to_come_goes_with_its_document(self):
+        # The document closed while the panel shows the marker to come: the panel takes it out
+        # of the view's scene graph, which it holds until then, and has no transaction left to
+        # abort (its Cancel took the marker out of the graph FreeCAD had freed with the view,
+        # a ref/unref of a freed node, then raised on the closed document).
+        from dispcon_fc.panels import joint as jp
+
+        asm, base, arm, e1, e2 = self.arm()
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Dispcon_JointRevolute")
+        panel = jp.current()
+        Gui.Selection.setPreselection(arm, e2[1])
+        settle()
+        self.assertIsNotNone(panel.preview, "no marker to come")
+        graph, root = panel.preview_graph, panel.preview.root
+        held = graph.getRefCount()
+        self.assertGreaterEqual(held, 2, "the panel does not hold the scene graph it drew into")
+        self.assertEqual(root.getRefCount(), 2, "the marker to come is not in one scene graph")
+        App.closeDocument(asm.Document.Name)
+        self.doc = App.newDocument("WorkbenchTestAgain")  # (tearDown closes self.doc)
+        settle()
+        panel.reject()  # Cancel, or any selection event: the panel finds its document gone
+        settle()
+        self.assertTrue(panel.closed, "the panel did not notice its document closed")
+        self.assertIsNone(panel.preview, "the marker to come stayed in a closed document's view")
+        self.assertEqual(root.getRefCount(), 1, "the marker to come is still in a scene graph")
+
     def test_preselection_shows_the_marker_to_come(self):
         from pivy import coin
         from dispcon_fc.panels import joint as jp

@@ -267,6 +267,7 @@ class JointPanel:
         except ReferenceError:
             pass
         self.closed = True
+        self._hide_preview()
         Gui.Selection.removeObserver(self)
         return True
 
@@ -307,6 +308,9 @@ class JointPanel:
                 return
             self.preview = markers.Marker(self.type_box.currentText(), "dispcon_preview")
             self.preview_graph = view.getSceneGraph()
+            # Held while the preview is in it: the view and its scene graph can go first (with
+            # their document), and taking the preview out of a freed node corrupts the heap.
+            self.preview_graph.ref()
             self.preview_graph.addChild(self.preview.root)
         self.preview.set_type(self.type_box.currentText())
         self.preview.place(f.point, f.axis)
@@ -318,7 +322,9 @@ class JointPanel:
 
     def _hide_preview(self):
         if self.preview is not None:
-            self.preview_graph.removeChild(self.preview.root)
+            graph, self.preview_graph = self.preview_graph, None
+            graph.removeChild(self.preview.root)
+            graph.unref()  # freed here when its view has gone meanwhile
             self.preview = None
 
     # -- changes and the preview --------------------------------------------------------------
@@ -467,7 +473,7 @@ class JointPanel:
         return True
 
     def _close(self, commit):
-        if self.closed:
+        if self.closed or self._gone():  # its document closed: nothing to commit or abort
             return
         self.closed = True
         self._hide_preview()
