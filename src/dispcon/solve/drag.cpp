@@ -1,6 +1,8 @@
 // Dragging: one body held at a target (or along a path of targets) while the rest follows.
 #include <algorithm>
 #include <cstdint>
+#include <functional>
+#include <initializer_list>
 #include <optional>
 #include <sstream>
 
@@ -32,6 +34,17 @@ double largest_residual(const std::vector<ConstraintReport>& constraints) {
   double r = 0;
   for (const ConstraintReport& c : constraints) r = std::max(r, c.residual);
   return r;
+}
+
+// Adds the iterations each of `spent` took (in all, seed and polish) to `r`'s: a drag step
+// reports every solve and pull it made.
+void add_spent(SolveResult& r,
+               std::initializer_list<std::reference_wrapper<const SolveResult>> spent) {
+  for (const SolveResult& s : spent) {
+    r.iterations += s.iterations;
+    r.seed_iterations += s.seed_iterations;
+    r.polish_iterations += s.polish_iterations;
+  }
 }
 
 // The path a reach bound names, as its messages say it: "the N joints from joint J (line L)".
@@ -202,15 +215,13 @@ SolveResult Dragger::move_to(const Pose& target) {
       near = puller().pull_to(at.x, false);
       spent = pull(at, std::move(r), near, true);
       if (spent.status == SolveStatus::OutOfReach) return spent;
-      near->iterations = near->polish_iterations = 0;  // counted in `spent`
+      near->iterations = near->seed_iterations = near->polish_iterations = 0;  // in `spent`
     }
     // Reachable after all (or not told): the held solve without that rule.
     poses_ = model_.poses();
     poses_[static_cast<size_t>(body_.value)] = at;
     r = patient(poses_);
-    r.iterations += spent.iterations;
-    r.polish_iterations += spent.polish_iterations;
-    r.seed_iterations += spent.seed_iterations;
+    add_spent(r, {spent});
     if (r.converged) {
       model_.set_poses(poses_);
       return r;
@@ -222,14 +233,10 @@ SolveResult Dragger::move_to(const Pose& target) {
     SolveResult s = patient(poses_);
     if (s.converged) {
       model_.set_poses(poses_);
-      s.iterations += r.iterations;
-      s.polish_iterations += r.polish_iterations;
-      s.seed_iterations += r.seed_iterations;
+      add_spent(s, {r});
       return s;
     }
-    r.iterations += s.iterations;
-    r.polish_iterations += s.polish_iterations;
-    r.seed_iterations += s.seed_iterations;
+    add_spent(r, {s});
   }
   return pull(at, std::move(r), std::move(near));
 }
@@ -243,7 +250,6 @@ SolveResult Dragger::move_to(const Pose& target) {
 SolveResult Dragger::pull(const Pose& target, SolveResult held, std::optional<SolveResult> pulled,
                           bool told_only) {
   SolveResult near = pulled ? std::move(*pulled) : puller().pull_to(target.x, false);
-  const int tried = held.iterations + near.iterations;
   if (near.status != SolveStatus::OutOfReach) {
     const bool reached = near.status == SolveStatus::Converged;
     // The origin got there: the rotation is pulled toward the target's with the origin held
@@ -254,9 +260,7 @@ SolveResult Dragger::pull(const Pose& target, SolveResult held, std::optional<So
     if (reached) {
       turned = turn(target, near.poses);
       if (turned.status == SolveStatus::OutOfReach) {
-        turned.iterations += tried;
-        turned.polish_iterations += held.polish_iterations + near.polish_iterations;
-        turned.seed_iterations = held.seed_iterations;
+        add_spent(turned, {held, near});
         SolveResult r = nearest(target, std::move(turned));
         // What holding the body at its target leaves open there, largest first (a lock names
         // its couplings).
@@ -269,9 +273,7 @@ SolveResult Dragger::pull(const Pose& target, SolveResult held, std::optional<So
     }
     if (told_only) {
       held.status = SolveStatus::Stalled;
-      held.iterations = tried + turned.iterations;
-      held.polish_iterations += near.polish_iterations + turned.polish_iterations;
-      held.seed_iterations += turned.seed_iterations;
+      add_spent(held, {near, turned});
       return held;
     }
     // The held solve that persists (seed iterations between Newton's, the stall rule): from the
@@ -288,15 +290,10 @@ SolveResult Dragger::pull(const Pose& target, SolveResult held, std::optional<So
       model_.set_poses(turned.poses);
       std::swap(r, turned);
     }
-    r.iterations += tried + turned.iterations;
-    r.polish_iterations +=
-        held.polish_iterations + near.polish_iterations + turned.polish_iterations;
-    r.seed_iterations += held.seed_iterations + turned.seed_iterations;
+    add_spent(r, {held, near, turned});
     return r;
   }
-  near.iterations = tried;
-  near.seed_iterations = held.seed_iterations;
-  near.polish_iterations += held.polish_iterations;
+  add_spent(near, {held});
   return nearest(target, std::move(near));
 }
 
@@ -365,8 +362,7 @@ SolveResult Dragger::out_of_reach(const Pose& target) {
   if (near.status == SolveStatus::OutOfReach) return nearest(target, std::move(near));
   const ReachBound::Gap gap = reach_->gap(target, options_.tolerance);
   SolveResult r;
-  r.iterations = near.iterations;
-  r.polish_iterations = near.polish_iterations;
+  add_spent(r, {near});
   r.status = SolveStatus::OutOfReach;
   r.converged = false;
   r.poses = model_.poses();
