@@ -44,6 +44,15 @@ constexpr double kFirstDamping = 1e-4;
 // made the steps out of reach dearer (the planar arm out of its plane 20 -> 29 steps).
 constexpr double kFollowDamping = 1e-6;
 constexpr double kMinDamping = 1e-10;
+// The least damping of a turn's soft rows (a joint of rotation parts alone: Dragger::turn's).
+// The hard rows, regularised by 1e-12, yield to the soft ones by about that over the damping
+// times the soft residual, which for a turn is the angle it cannot make (radians, of order 1):
+// at 1e-10 a hundredth of it, 0.02 rad on the robot arm's hand turned 2.5 rad against its
+// wrist's cone, where 0.004 rad was left to gain along the bound; the curve search measured the
+// yield that the corrections undo as gain, and the secant, taking the yield for the damping's
+// share, lowered the damping further (the turn alone: 70 steps; 50 with the corrections' floor
+// below, 21 with this too). A point's pull (every Puller's) keeps kMinDamping.
+constexpr double kMinTurnDamping = 1e-6;
 constexpr double kMaxDamping = 1e4;
 // Newton steps allowed to bring the hard joints back (from a valid pose: two or three suffice).
 constexpr int kCorrections = 6;
@@ -157,8 +166,14 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
         return false;
       const Measure next = measure(s, group, joint, joint_r);
       if (!std::isfinite(next.hard)) return false;
+      // Within the tolerance, a step that does not halve what the hard joints leave has met
+      // their floor: they cannot all hold exactly (the robot arm's hand held at its origin, which
+      // it reaches with its elbow 4e-12 past its limit, leaves 2.4e-12 at every joint), and the
+      // kCorrections steps would change nothing.
+      const bool floor = next.hard <= o.tolerance && !(next.hard < 0.5 * now.hard);
       if (next.hard >= now.hard) lambda *= 100;
       now = next;
+      if (floor) break;
     }
     return now.hard <= std::max(within, o.tolerance);
   };
@@ -187,6 +202,10 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     h = rows.read(s, pulled, band_soft, true);
     return true;
   };
+  const Joint& soft_joint = *pulled.joint;
+  const double least = soft_joint.has_hinge || soft_joint.guide || soft_joint.coupling
+                           ? kMinDamping
+                           : kMinTurnDamping;
   double mu = follows ? kFollowDamping : kFirstDamping;
   bool calibrated = false;  // mu was set by the secant: the step's model has the curvature found
   bool moved = false;       // a step was kept
@@ -303,13 +322,13 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     if (flat == 2) {
       load_poses(s, group, before);
       now = kept;
-      if (!moved && mu > kMinDamping) {
+      if (!moved && mu > least) {
         // Or the pull began where h is stationary without being least (a loop's dead point
         // seen from a target it moves toward either way; a pull that got nearer ends at a
         // least point): the step undamped goes as far as the seed allows, and gets off it if
         // it can.
         rows.read(s, pulled, band_soft, true);
-        mu = kMinDamping;
+        mu = least;
         calibrated = false;
         continue;
       }
@@ -331,10 +350,10 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     // (the tension the model leaves out), as a multiple of this step's damping.
     if (curvature > 0 && damped > 0) {
       const double wanted = std::max(curvature - gauss_newton, 1e-4 * damped);
-      mu = std::clamp(mu * wanted / damped, kMinDamping, kMaxDamping);
+      mu = std::clamp(mu * wanted / damped, least, kMaxDamping);
       calibrated = true;
     } else {
-      mu = std::max(kMinDamping, mu / 10);
+      mu = std::max(least, mu / 10);
       calibrated = false;
     }
     // Stationary: a kept step that gains less than the tolerance.

@@ -6,6 +6,8 @@
 #include <cstdio>
 
 #include "dispcon/io/dcl_reader.hpp"
+#include "dispcon/parts/angle.hpp"
+#include "dispcon/parts/twist.hpp"
 #include "dispcon/solve/solver.hpp"
 
 namespace dispcon {
@@ -800,7 +802,9 @@ TEST(Reach, PlanarArmDraggedOutOfItsPlaneAndReachIsStretchedInIt) {
 struct WristArm {
   Model m;
   BodyId forearm, hand;
-  WristArm() {
+  // `ball`: the wrist a ball joint instead, the robot arm's (samples/robot-arm.dcl): the hand's
+  // x axis within a cone of 0.5 rad about the forearm's, its twist about it within +-1 rad.
+  explicit WristArm(bool ball = false) {
     const BodyId upper = add_bar(m, "upper", Vec3::Zero(), 0.3, 2);
     const Vec3 elbow = 2 * Vec3(std::cos(0.3), std::sin(0.3), 0);
     forearm = add_bar(m, "forearm", elbow, 1.5, 1.5);
@@ -809,6 +813,10 @@ struct WristArm {
     m.add_joint(revolute(upper, forearm, Vec3(2, 0, 0)));
     Joint wrist = revolute(forearm, hand, Vec3(1.5, 0, 0));
     wrist.twist = TwistSpec{Vec3::UnitX(), Vec3::UnitX(), -1, 1};
+    if (ball) {
+      wrist.angle = AngleSpec{Vec3::UnitX(), Vec3::UnitX(), 0, 0.5};
+      wrist.twist = TwistSpec{Vec3::UnitY(), Vec3::UnitY(), -1, 1};
+    }
     m.add_joint(wrist);
   }
 };
@@ -852,6 +860,87 @@ TEST(Reach, WristTurnedWithinItsLimitIsMade) {
   EXPECT_EQ(r.angle_left, 0);
   EXPECT_LT(arm.m.body(arm.hand).pose.q.angularDistance(target.q), 1e-9);
   expect_joints_hold(arm.m, 1e-9);
+}
+
+// A ball wrist's cone and twist (WristArm(true)'s, the robot arm's) at poses.
+double cone_of(const Pose& forearm, const Pose& hand) {
+  return angle_between(forearm.q * Vec3::UnitX(), hand.q * Vec3::UnitX());
+}
+double twist_of(const Pose& forearm, const Pose& hand) {
+  return twist_angle(forearm.q * Vec3::UnitX(), hand.q * Vec3::UnitX(), forearm.q * Vec3::UnitY(),
+                     hand.q * Vec3::UnitY());
+}
+
+// WristArm's planar arm with its ball wrist, the hand along the forearm, held where it is and
+// turned by `turn` about `axis` (world): past the cone or the twist the nearest pose has the wrist
+// at that limit, its origin at the target's, and angle_left what the limit leaves of the turn.
+void expect_ball_wrist_turn_stops(const Vec3& axis, double turn, double cone, double twist,
+                                  double left) {
+  WristArm arm(true);
+  ASSERT_TRUE(assemble(arm.m).converged);
+  const std::vector<Pose> before = arm.m.poses();
+  const Pose start = arm.m.body(arm.hand).pose;
+  const Pose target{(Quat(Eigen::AngleAxisd(turn, axis)) * start.q).normalized(), start.x};
+  Dragger drag(arm.m, arm.hand);
+  const SolveResult r = drag.move_to(target);
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_LE(r.iterations, 25);  // 18 past the cone, 12 past the twist
+  EXPECT_LE(r.distance_left, 1e-9);
+  EXPECT_NEAR(r.angle_left, left, 1e-9);
+  expect_joints_hold(arm.m, 1e-9, &r.poses);
+  const Pose& hand = r.poses[static_cast<size_t>(arm.hand.value)];
+  const Pose& forearm = r.poses[static_cast<size_t>(arm.forearm.value)];
+  EXPECT_LT((hand.x - start.x).norm(), 1e-9);
+  EXPECT_NEAR(r.angle_left, hand.q.angularDistance(target.q), 1e-12);
+  EXPECT_NEAR(cone_of(forearm, hand), cone, 1e-9);
+  EXPECT_NEAR(twist_of(forearm, hand), twist, 1e-9);
+  EXPECT_TRUE(r.constraints[2].at_limit);
+  expect_unchanged(arm.m, before);
+}
+
+TEST(Reach, BallWristTurnedPastItsConeStopsAtTheCone) {
+  // About the arm's plane's normal: the hand's axis swings in the plane to the cone's edge.
+  expect_ball_wrist_turn_stops(Vec3::UnitZ(), 2.5, 0.5, 0, 2);
+}
+
+TEST(Reach, BallWristTurnedPastItsTwistStopsAtTheTwist) {
+  // About the forearm's axis (at 1.5 rad in the plane): the twist stops at its limit.
+  expect_ball_wrist_turn_stops(Vec3(std::cos(1.5), std::sin(1.5), 0), 1.5, 0, 1, 0.5);
+}
+
+// The robot arm sample's hand held where it is and turned 2.5 rad about z, against its wrist's
+// cone (0.5 rad) and twist (+-1 rad); its arm (base, shoulder, elbow at its limit) holds the wrist
+// where it is. The swing stops at the cone's edge; the arm's plane is tilted by the base's turn
+// (0.018 rad about y), so no closed form gives the angle left, but the nearest pose is at least
+// as near as the hand swung in the forearm's plane to the cone's edge (an allowed pose). Before:
+// 466 iterations and no pose (the turn's pull crawled along the cone and the held solve ran to
+// its stall rule).
+TEST(Reach, RobotArmHandTurnedAgainstItsConeAndTwistStopsAtTheCone) {
+  Model m;
+  ASSERT_NO_FATAL_FAILURE(load_robot_arm(m));
+  const BodyId hand = *m.find("hand");
+  const BodyId forearm = *m.find("forearm");
+  const std::vector<Pose> before = m.poses();
+  const Pose start = m.body(hand).pose;
+  const Pose target{(Quat(Eigen::AngleAxisd(2.5, Vec3::UnitZ())) * start.q).normalized(), start.x};
+  Dragger drag(m, hand);
+  const SolveResult r = drag.move_to(target);
+  ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+  EXPECT_LE(r.iterations, 40);  // 31: the held step's 10, the origin's pull 1, the turn 20
+  EXPECT_LE(r.distance_left, 1e-9);
+  expect_joints_hold(m, 1e-9, &r.poses);
+  const Pose& h = r.poses[static_cast<size_t>(hand.value)];
+  const Pose& f = r.poses[static_cast<size_t>(forearm.value)];
+  EXPECT_LT((h.x - start.x).norm(), 1e-9);
+  EXPECT_NEAR(cone_of(f, h), 0.5, 1e-9);
+  EXPECT_LE(std::abs(twist_of(f, h)), 1);
+  EXPECT_TRUE(r.constraints[3].at_limit);
+  EXPECT_NEAR(r.angle_left, h.q.angularDistance(target.q), 1e-12);
+  const Quat swung = f.q * Quat(Eigen::AngleAxisd(0.5, Vec3::UnitZ()));
+  EXPECT_NEAR(cone_of(f, Pose{swung, h.x}), 0.5, 1e-12);
+  EXPECT_LE(r.angle_left, swung.angularDistance(target.q) + 1e-9);
+  EXPECT_GT(r.angle_left, 2.0);  // the cone takes at most 0.5 + 0.023 (where the hand began)
+  expect_unchanged(m, before);
 }
 
 // A door on a revolute at its origin (twist within +-1 rad), the only body: turned to 1.5 rad it
