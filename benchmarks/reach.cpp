@@ -26,6 +26,10 @@
 //   BM_DragStep_OutOfPlane      a planar 2-link arm's hand held at (3, 2.5, 1): out of its plane
 //                               and beyond its reach in it; pulled to the arm stretched in the
 //                               plane
+//   BM_DragStep_TurnPastLimit   that arm's hand on a wrist whose twist is kept within +-1 rad,
+//                               turned 1.5 rad: out of reach by its rotation, 0.5 rad left
+//   BM_DragStep_TurnAgainstCone the robot arm's hand turned 2.5 rad about z against its wrist's
+//                               cone and twist: the swing stopped at the cone's edge
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -288,5 +292,18 @@ void BM_DragStep_TurnPastLimit(benchmark::State& state) {
   out_of_reach_step(state, m, hand, at);
 }
 BENCHMARK(BM_DragStep_TurnPastLimit)->Unit(benchmark::kMicrosecond);
+
+// The robot arm's hand held where it is and turned 2.5 rad about z, against its wrist's cone
+// (0.5 rad) and twist (+-1 rad): out of reach by its rotation, the swing stopped at the cone's
+// edge (466 iterations and no pose before the seventh round of issue 14).
+void BM_DragStep_TurnAgainstCone(benchmark::State& state) {
+  Model m = bench::sample("robot-arm.dcl");
+  assemble(m);
+  const BodyId hand = *m.find("hand");
+  Pose at = m.body(hand).pose;
+  at.q = (Quat(Eigen::AngleAxisd(2.5, Vec3::UnitZ())) * at.q).normalized();
+  out_of_reach_step(state, m, hand, at);
+}
+BENCHMARK(BM_DragStep_TurnAgainstCone)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
