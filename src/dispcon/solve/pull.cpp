@@ -16,7 +16,10 @@
 //   corrected end measure that curvature along the step, a parabola puts the nearest point of
 //   the curve (tried too when it lies far from the end), and the damping of the next step is
 //   set so that its model has the curvature found (a secant on the tension): the next step is
-//   then about Newton's, and the pull converges superlinearly instead of linearly.
+//   then about Newton's, and the pull converges superlinearly instead of linearly. Where the
+//   tension is negative (the valid poses bend toward the target: inside a crank's circle) no
+//   damping gives that curvature; the damping is kept and the next step is stretched to the
+//   parabola's least point instead.
 // A step is kept when it ends nearer on valid poses, else undone (mu grows). The pull stops when
 // the target is reached, when a kept step gains less than the tolerance, or when the next step
 // promises to gain less than a thousandth of it: a point where the gradient of the distance is
@@ -60,6 +63,10 @@ constexpr int kCorrections = 6;
 // nearest point must lie for another (a fraction of that point's t).
 constexpr int kCurvePoints = 3;
 constexpr double kCloseEnough = 0.25;
+// A tension below -kBends of the Gauss-Newton curvature is met by stretching the step (at most
+// kMaxStretch times its model's length) rather than by lowering the damping.
+constexpr double kBends = 1e-3;
+constexpr double kMaxStretch = 2;
 
 using Vec6 = PolishWork::Vec6;
 
@@ -207,6 +214,13 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
                            ? kMinDamping
                            : kMinTurnDamping;
   double mu = follows ? kFollowDamping : kFirstDamping;
+  // Where the valid poses bend toward the target (the tension negative: a target inside a
+  // crank's circle), no damping gives the step the curvature found, which is less than the
+  // Gauss-Newton model's: the step is stretched instead, to the least point of the parabola the
+  // last step measured (1D Newton along the step: a one-degree-of-freedom group converges
+  // superlinearly, where the damping's floor left the distance/reach share of the error a step).
+  double stretch = 1;
+  double gained = 0;        // the last kept step's gain (0: none yet)
   bool calibrated = false;  // mu was set by the secant: the step's model has the curvature found
   bool moved = false;       // a step was kept
   while (now.distance > o.tolerance && out.iterations < o.max_iterations) {
@@ -270,14 +284,15 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     }
     // The step as made (Polisher::step scales it so no body turns more than the seed allows).
     const double longest = polisher.step_scale();
-    // Along the curve: the step's end corrected first; then, while the parabola through
-    // (0, h0, slope) and the last point tried promises much more than that point gave, its
-    // least point (no farther than the step as made, or twice a whole step).
-    double t = longest, best_t = 0, best_h = h0, curvature = 0;
+    // Along the curve: the step's end (stretched, see above) corrected first; then, while the
+    // parabola through (0, h0, slope) and the last point tried promises much more than that point
+    // gave, its least point (no farther than the step as made, or twice a whole step).
+    const bool stretched = longest >= 1 && stretch > 1;
+    double t = stretched ? stretch : longest, best_t = 0, best_h = h0, curvature = 0;
     Measure best = kept;
     int flat = 0;
     for (int k = 0; k < kCurvePoints && out.iterations < o.max_iterations; ++k) {
-      if (k > 0) {
+      if (t != longest) {  // (the step as made is where the polisher left the group)
         move_along(s, group, before, dq, t);
         now = measure(s, group, joint, joint_r);
       }
@@ -348,7 +363,14 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     h = rows.read(s, pulled, band_soft, true);
     // The next step's damping: the curvature found along this one less the Gauss-Newton share
     // (the tension the model leaves out), as a multiple of this step's damping.
-    if (curvature > 0 && damped > 0) {
+    stretch = 1;
+    if (curvature > 0 && damped > 0 && curvature - gauss_newton < -kBends * gauss_newton &&
+        longest >= 1) {
+      // The damping kept, the next step stretched as this one's curve asked (its model is least
+      // at t = 1, the curve at -slope / curvature).
+      stretch = std::min(-slope / curvature, kMaxStretch);
+      calibrated = true;
+    } else if (curvature > 0 && damped > 0) {
       const double wanted = std::max(curvature - gauss_newton, 1e-4 * damped);
       mu = std::clamp(mu * wanted / damped, least, kMaxDamping);
       calibrated = true;
@@ -357,8 +379,23 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       calibrated = false;
     }
     // Stationary: a kept step that gains less than the tolerance.
-    if (kept.distance - now.distance < o.tolerance) {
+    const double gain = kept.distance - now.distance;
+    if (gain < o.tolerance) {
       if (tighten()) continue;
+      break;
+    }
+    // Or, after two stretched steps (Newton along each: where the group moves one way only, a
+    // crank's circle, the gains fall faster than linearly, each at most its share of the last
+    // times itself), one whose gain says the next would gain less than a tenth of the tolerance,
+    // on a target out of reach (the distance left much larger than the gains; in reach it falls
+    // as fast as they do). Not after damped steps: where the tension couples modes of different
+    // stiffness (the planar arm held out of its plane) a fast mode's gains fall so while a slow
+    // one's go on linearly.
+    const bool superlinear = stretched && gained > 0 && gain < 0.1 * gained &&
+                             gain * gain < 0.1 * o.tolerance * gained && now.distance > 100 * gain;
+    gained = stretched ? gain : 0;
+    if (superlinear) {
+      out.stationary = true;
       break;
     }
   }
