@@ -291,6 +291,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     double t = stretched ? stretch : longest, best_t = 0, best_h = h0, curvature = 0;
     Measure best = kept;
     int flat = 0;
+    double tp = 0, hp = 0;  // the last valid point tried before t, and h there
     for (int k = 0; k < kCurvePoints && out.iterations < o.max_iterations; ++k) {
       if (t != longest) {  // (the step as made is where the polisher left the group)
         move_along(s, group, before, dq, t);
@@ -304,11 +305,27 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       const double gain =
           std::max(1e-3 * o.tolerance, 1e-2 * -slope * t / std::max(kept.distance, o.tolerance));
       const double within = longest < 1 ? gain : std::min(o.tolerance, gain);
-      bool valid = correct(within) && std::isfinite(now.distance);
+      // A whole step's first point is first corrected as loosely as a cut-short step's; then,
+      // where the valid poses bend toward the target (the next step is stretched and closes in
+      // fast), only until what is left moves h by a hundredth of what the parabola says the next
+      // step can gain (one correction after a crank's tenth of a radian instead of two), else
+      // to `within`.
+      const bool lax = longest >= 1 && k == 0;
+      bool valid = correct(lax ? gain : within) && std::isfinite(now.distance);
       // Near the target what the corrections leave is of the order of the distance: to well
       // within the tolerance there, as at the end.
       if (valid && now.distance < 10 * o.tolerance) valid = correct(1e-3 * o.tolerance);
-      const double ht = valid ? rows.read(s, pulled, band_soft, false) : HUGE_VAL;
+      double ht = valid ? rows.read(s, pulled, band_soft, false) : HUGE_VAL;
+      if (lax && valid && now.hard > within) {
+        const double c = 2 * (ht - h0 - slope * t) / (t * t);
+        const bool bends = c > 0 && ht < h0 && c - gauss_newton < -kBends * gauss_newton;
+        const double left = bends ? ht - (h0 - 0.5 * slope * slope / c) : 0;
+        const double allowed = std::min(gain, 1e-2 * left / std::max(now.distance, o.tolerance));
+        if (now.hard > allowed) {
+          valid = correct(std::max(within, allowed)) && std::isfinite(now.distance);
+          ht = valid ? rows.read(s, pulled, band_soft, false) : HUGE_VAL;
+        }
+      }
       if (ht < best_h) {
         best_t = t, best_h = ht, best = now;
         save_poses(s, group, spare);
@@ -323,15 +340,26 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
         next = 0.1 * t;
       } else if (valid) {
         curvature = 2 * (ht - h0 - slope * t) / (t * t);
-        const double least = curvature > 0 ? -slope / curvature : HUGE_VAL;
+        // Where an earlier point overshot (h above h0 there), the parabola through the three
+        // values instead: near a loop's dead point h is far from the first order's parabola (a
+        // crank's tenth of a radian past it, the slope's parabola put the least 3.5 times too far
+        // and a third point was tried; the three values put it within the 25% kept).
+        double s1 = slope;
+        if (tp > 0 && hp > h0 && std::abs(tp - t) > 1e-3 * t) {
+          const double d1 = (ht - h0) / t, d2 = (hp - h0) / tp;
+          const double c3 = 2 * (d2 - d1) / (tp - t);
+          if (c3 > 0 && d1 - 0.5 * c3 * t < 0) curvature = c3, s1 = d1 - 0.5 * c3 * t;
+        }
+        const double least = curvature > 0 ? -s1 / curvature : HUGE_VAL;
         // The parabola's least value, and what the point tried gave of it.
-        const double lowest = curvature > 0 ? h0 + 0.5 * slope * least : -HUGE_VAL;
+        const double lowest = curvature > 0 ? h0 + 0.5 * s1 * least : -HUGE_VAL;
         if (ht < h0 && ht - lowest <= kCloseEnough * (h0 - lowest)) break;
         if (ht < h0 && least > t && t >= longest) break;  // the rest in the next step
         next = std::min(least, longest < 1 ? longest : 2.0);
       }
       next = std::max(next, 1e-3 * t);
       if (std::abs(next - t) <= 1e-3 * t) break;
+      if (valid) tp = t, hp = ht;
       t = next;
     }
     if (flat == 2) {

@@ -340,8 +340,9 @@ TEST(Reach, FourBarPastItsDeadPointStopsThere) {
   ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
   EXPECT_FALSE(r.converged);
   // A long step: the held step's Newton steps (5: two whole steps that leave most of the misfit
-  // end them) before it pulls, and the pull's (23).
-  EXPECT_LE(r.iterations, 30);
+  // end them) before it pulls, and the pull's (21; 23 before its curve search fitted the three
+  // values once a point overshot).
+  EXPECT_LE(r.iterations, 27);
   EXPECT_NEAR(r.distance_left, (FourBar::target() - FourBar::dead_point()).norm(), 1e-9);
   expect_joints_hold(f.m, 1e-9, &r.poses);
   // B is at the dead point (where it moves only to second order: the pose to the root of the
