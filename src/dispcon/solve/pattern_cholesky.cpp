@@ -1,111 +1,168 @@
 #include "dispcon/solve/pattern_cholesky.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <cstdint>
 
 namespace dispcon {
 
 namespace {
 
-// A set of rows 0 ... 64 kWords - 1, visited in increasing order. One word where it will do:
-// the second word's loops cost more than the arithmetic in a system of 15 rows.
-template <int kWords>
-struct Rows {
-  std::uint64_t w[kWords];  // not cleared here: only a system's own m rows are (see below)
+// Sets of rows 0 ... 64 W - 1, each W words at `w`, visited in increasing order. One word where
+// it will do: the second word's loops cost more than the arithmetic in a system of 15 rows.
+template <int W>
+void add(std::uint64_t* w, int i) {
+  w[i >> 6] |= std::uint64_t{1} << (i & 63);
+}
+template <int W>
+int first(const std::uint64_t* w) {  // the smallest row (the set must not be empty)
+  for (int h = 0;; ++h) {
+    if (w[h]) return 64 * h + __builtin_ctzll(w[h]);
+  }
+}
+template <int W>
+bool empty(const std::uint64_t* w) {
+  std::uint64_t any = 0;
+  for (int h = 0; h < W; ++h) any |= w[h];
+  return any == 0;
+}
+// Adds the rows of `r` past row p (a child column's rows, to its parent p).
+template <int W>
+void add_below(std::uint64_t* w, const std::uint64_t* r, int p) {
+  for (int h = 0; h < W; ++h) {
+    const int below = p - 64 * h;  // bits of word h up to row p are dropped
+    const std::uint64_t keep = below < 0     ? ~std::uint64_t{0}
+                               : below >= 63 ? 0
+                                             : ~std::uint64_t{0} << (below + 1);
+    w[h] |= r[h] & keep;
+  }
+}
+// f(i) for each row i >= from, in increasing order.
+template <int W, typename F>
+void each_from(const std::uint64_t* w, int from, F&& f) {
+  for (int h = from >> 6; h < W; ++h) {
+    std::uint64_t bits = w[h];
+    if (h == from >> 6) bits &= ~std::uint64_t{0} << (from & 63);
+    for (; bits; bits &= bits - 1) f(64 * h + __builtin_ctzll(bits));
+  }
+}
+template <int W, typename F>
+void each(const std::uint64_t* w, F&& f) {
+  each_from<W>(w, 0, f);
+}
 
-  void add(int i) { w[i >> 6] |= std::uint64_t{1} << (i & 63); }
-  int first() const {  // the smallest row (the set must not be empty)
-    for (int h = 0;; ++h) {
-      if (w[h]) return 64 * h + __builtin_ctzll(w[h]);
-    }
-  }
-  bool empty() const {
-    std::uint64_t any = 0;
-    for (std::uint64_t x : w) any |= x;
-    return any == 0;
-  }
-  // Adds the rows of `r` past row p (a child column's rows, to its parent p).
-  void add_below(const Rows& r, int p) {
-    for (int h = 0; h < kWords; ++h) {
-      const int below = p - 64 * h;  // bits of word h up to row p are dropped
-      const std::uint64_t keep = below < 0     ? ~std::uint64_t{0}
-                                 : below >= 63 ? 0
-                                               : ~std::uint64_t{0} << (below + 1);
-      w[h] |= r.w[h] & keep;
-    }
-  }
-  // f(i) for each row i >= from, in increasing order.
-  template <typename F>
-  void each_from(int from, F&& f) const {
-    for (int h = from >> 6; h < kWords; ++h) {
-      std::uint64_t bits = w[h];
-      if (h == from >> 6) bits &= ~std::uint64_t{0} << (from & 63);
-      for (; bits; bits &= bits - 1) f(64 * h + __builtin_ctzll(bits));
-    }
-  }
-  template <typename F>
-  void each(F&& f) const {
-    each_from(0, f);
-  }
-};
-
-template <int kWords>
-bool solve_on_pattern(double* a, int m, double* y) {
-  using Set = Rows<kWords>;
-  // col[k]: the rows below the diagonal where column k of L may be non-zero: A's non-zero
-  // places (a value that is not a number counts) and the fill, which column k passes to its
-  // parent in the elimination tree (the first row below its diagonal). row[j]: the columns
-  // k < j where row j of L may be non-zero, the columns that update column j.
-  Set col[64 * kWords], row[64 * kWords];
-  for (int k = 0; k < m; ++k) col[k] = row[k] = Set{};
+// The non-zero places of A below its diagonal (a value that is not a number counts), column by
+// column, into `found` (W words a column). (A branchless test a place, and SSE2's two places a
+// comparison, each took more instructions in the 400 four-bars than this branch.)
+template <int W>
+void find_places(const double* a, int m, std::uint64_t* found) {
+  std::fill_n(found, static_cast<long>(m) * W, 0);
   for (int k = 0; k < m; ++k) {
     const double* ck = a + static_cast<long>(k) * m;
+    std::uint64_t* fk = found + static_cast<long>(k) * W;
     for (int i = k + 1; i < m; ++i) {
-      if (ck[i] != 0) col[k].add(i);
+      if (ck[i] != 0) add<W>(fk, i);
     }
   }
-  for (int k = 0; k < m; ++k) {
-    if (col[k].empty()) continue;
-    const int parent = col[k].first();
-    col[parent].add_below(col[k], parent);
-    col[k].each([&](int i) { row[i].add(k); });
-  }
+}
+
+template <int W>
+bool factor_on(double* a, int m, const std::uint64_t* col, const std::uint64_t* row) {
   // The dense column algorithm (left-looking, columns in order, each updated by the columns
   // before it in order) on the pattern.
   for (int j = 0; j < m; ++j) {
     double* cj = a + static_cast<long>(j) * m;
-    row[j].each([&](int k) {
+    each<W>(row + static_cast<long>(j) * W, [&](int k) {
       const double* ck = a + static_cast<long>(k) * m;
       const double f = ck[j];
       if (f == 0) return;
-      col[k].each_from(j, [&](int i) { cj[i] -= f * ck[i]; });
+      each_from<W>(col + static_cast<long>(k) * W, j, [&](int i) { cj[i] -= f * ck[i]; });
     });
     if (!(cj[j] > 0)) return false;
     const double d = std::sqrt(cj[j]);
     cj[j] = d;
     const double inv = 1 / d;
-    col[j].each([&](int i) { cj[i] *= inv; });
-  }
-  for (int j = 0; j < m; ++j) {  // L z = b
-    const double* cj = a + static_cast<long>(j) * m;
-    y[j] /= cj[j];
-    const double yj = y[j];
-    col[j].each([&](int i) { y[i] -= yj * cj[i]; });
-  }
-  for (int j = m - 1; j >= 0; --j) {  // L^T y = z
-    const double* cj = a + static_cast<long>(j) * m;
-    double sum = y[j];
-    col[j].each([&](int i) { sum -= cj[i] * y[i]; });
-    y[j] = sum / cj[j];
+    each<W>(col + static_cast<long>(j) * W, [&](int i) { cj[i] *= inv; });
   }
   return true;
 }
 
+template <int W>
+void solve_on(const double* a, int m, const std::uint64_t* col, double* y) {
+  for (int j = 0; j < m; ++j) {  // L z = b
+    const double* cj = a + static_cast<long>(j) * m;
+    y[j] /= cj[j];
+    const double yj = y[j];
+    each<W>(col + static_cast<long>(j) * W, [&](int i) { y[i] -= yj * cj[i]; });
+  }
+  for (int j = m - 1; j >= 0; --j) {  // L^T y = z
+    const double* cj = a + static_cast<long>(j) * m;
+    double sum = y[j];
+    each<W>(col + static_cast<long>(j) * W, [&](int i) { sum -= cj[i] * y[i]; });
+    y[j] = sum / cj[j];
+  }
+}
+
+// col: the places of L below its diagonal, from A's (`given`) and the fill, which column k
+// passes to its parent in the elimination tree (the first row below its diagonal); row: the
+// columns k < j where row j of L may be non-zero.
+template <int W>
+void analyze(int m, const std::uint64_t* given, std::uint64_t* col, std::uint64_t* row) {
+  std::copy_n(given, static_cast<long>(m) * W, col);
+  std::fill_n(row, static_cast<long>(m) * W, 0);
+  for (int k = 0; k < m; ++k) {
+    const std::uint64_t* ck = col + static_cast<long>(k) * W;
+    if (empty<W>(ck)) continue;
+    const int parent = first<W>(ck);
+    add_below<W>(col + static_cast<long>(parent) * W, ck, parent);
+    each<W>(ck, [&](int i) { add<W>(row + static_cast<long>(i) * W, k); });
+  }
+}
+
+int words(int m) {
+  return m <= 64 ? 1 : 2;
+}
+
 }  // namespace
 
-bool pattern_cholesky_solve(double* a, int m, double* y) {
+bool PatternCholesky::factor(double* a, int m) {
   static_assert(kPatternRows == 128, "one or two words a column");
-  return m <= 64 ? solve_on_pattern<1>(a, m, y) : solve_on_pattern<2>(a, m, y);
+  const int w = words(m);
+  const size_t size = static_cast<size_t>(m) * static_cast<size_t>(w);
+  if (found_.size() < size) found_.resize(size), given_.resize(size);
+  if (w == 1) {
+    find_places<1>(a, m, found_.data());
+  } else {
+    find_places<2>(a, m, found_.data());
+  }
+  if (m != m_ ||
+      !std::equal(found_.begin(), found_.begin() + static_cast<long>(size), given_.begin())) {
+    std::swap(found_, given_);
+    col_.resize(size);
+    row_.resize(size);
+    if (w == 1) {
+      analyze<1>(m, given_.data(), col_.data(), row_.data());
+    } else {
+      analyze<2>(m, given_.data(), col_.data(), row_.data());
+    }
+    m_ = m;
+  }
+  return w == 1 ? factor_on<1>(a, m, col_.data(), row_.data())
+                : factor_on<2>(a, m, col_.data(), row_.data());
+}
+
+void PatternCholesky::solve(const double* a, double* y) const {
+  if (words(m_) == 1) {
+    solve_on<1>(a, m_, col_.data(), y);
+  } else {
+    solve_on<2>(a, m_, col_.data(), y);
+  }
+}
+
+bool pattern_cholesky_solve(double* a, int m, double* y) {
+  PatternCholesky chol;
+  if (!chol.factor(a, m)) return false;
+  chol.solve(a, y);
+  return true;
 }
 
 }  // namespace dispcon

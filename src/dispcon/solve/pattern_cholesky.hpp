@@ -12,14 +12,38 @@
 // pattern stays +0 there, and subtracting a product with +0 leaves a value as it was).
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 namespace dispcon {
 
-// The most rows pattern_cholesky_solve() takes (two 64-bit words a column's pattern).
+// The most rows a PatternCholesky takes (two 64-bit words a column's pattern).
 constexpr int kPatternRows = 128;
 
-// Solves A y = b in place for a symmetric positive definite A of m <= kPatternRows rows given by
-// its lower triangle (column-major, m by m at `a`, overwritten by the factor L; the upper
-// triangle is not read); `y` holds b on entry. Returns false when a pivot is not positive.
+// The factorisation, with its pattern kept: the next system whose matrix has the same non-zero
+// places (the group's next Newton step, or the next group of the same shape: the 400 four-bars
+// have one pattern) skips finding the fill and the rows again, which cost a quarter of a
+// factorisation of 15 rows. The pattern is compared whole, so a matrix with a place more or
+// less is analysed anew: the values written are the same bits either way.
+class PatternCholesky {
+ public:
+  // Factors a symmetric positive definite A of m <= kPatternRows rows given by its lower
+  // triangle (column-major, m by m at `a`, overwritten by the factor L; the upper triangle is
+  // not read). Returns false when a pivot is not positive.
+  bool factor(double* a, int m);
+  // Solves L L^T y = b in place (`y` holds b on entry) with the factor the last factor() that
+  // succeeded left at `a`.
+  void solve(const double* a, double* y) const;
+
+ private:
+  int m_ = -1;  // rows of the pattern kept (-1: none)
+  // One or two words a column: given_ the matrix's non-zero places below the diagonal (a value
+  // that is not a number counts), col_ those of L (with the fill), row_ the columns k < j where
+  // row j of L may be non-zero (the columns that update column j).
+  std::vector<std::uint64_t> given_, found_, col_, row_;
+};
+
+// One system: factor() then solve().
 bool pattern_cholesky_solve(double* a, int m, double* y);
 
 }  // namespace dispcon

@@ -9,6 +9,7 @@
 #include "dispcon/solve/block_ldlt.hpp"
 #include "dispcon/solve/group.hpp"
 #include "dispcon/solve/huge_pages.hpp"
+#include "dispcon/solve/pattern_cholesky.hpp"
 #include "dispcon/solve/sparse_ldlt.hpp"
 
 namespace dispcon {
@@ -37,6 +38,7 @@ struct PolishWork {
   // would reallocate at every change of size.
   std::vector<double> y_;
   std::vector<double> dense_;
+  PatternCholesky chol_;  // dense_'s factorisation, its pattern kept for the next system
   Eigen::MatrixXd full_;  // the fallback LDLT's copy
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
   std::vector<std::pair<int, int>> block_pairs_, column_;  // the analysis's scratch

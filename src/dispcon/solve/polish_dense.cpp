@@ -3,7 +3,6 @@
 // pivoting LDLT when rounding defeats it.
 #include <algorithm>
 
-#include "dispcon/solve/pattern_cholesky.hpp"
 #include "dispcon/solve/polish.hpp"
 
 namespace dispcon {
@@ -33,8 +32,11 @@ bool Polisher::factor_dense(double lambda) {
   };
   if (!(assemble() > 0)) return false;
   y = -r;
-  static_assert(kDenseRows <= kPatternRows, "pattern_cholesky_solve() takes the dense systems");
-  if (pattern_cholesky_solve(A.data(), m, y.data())) return y.allFinite();
+  static_assert(kDenseRows <= kPatternRows, "PatternCholesky takes the dense systems");
+  if (w_->chol_.factor(A.data(), m)) {
+    w_->chol_.solve(A.data(), y.data());
+    return y.allFinite();
+  }
   assemble();
   w_->full_ = A.selfadjointView<Eigen::Lower>();
   w_->dense_ldlt_.compute(w_->full_);
