@@ -211,18 +211,10 @@ inline void digits(double v, char* buf, int& len, int& exponent) {
   round(buf, len, dist, delta, p2, one);
 }
 
-// v as nlohmann::detail::to_chars writes it (v finite), at `out`, with 40 bytes of room there;
+// v > 0 (finite) as nlohmann::detail::to_chars writes it, at `out`, with 40 bytes of room there;
 // returns the end. format_buffer's layouts, written from the digits where they are: fixed point
-// from 1e-4 up to 1e15, else d.ddde+XX.
+// from 1e-4 up to 1e15, else d.ddde+XX. (The sign, and zero, are JsonWriter::value's.)
 char* write(char* out, double v) {
-  if (std::signbit(v)) {
-    v = -v;
-    *out++ = '-';
-  }
-  if (v == 0) {
-    std::memcpy(out, "0.0", 3);
-    return out + 3;
-  }
   char d[40];  // the digits (at most 17), and room to copy them in blocks of 16 or 17
   int k = 0, exponent = 0;
   digits(v, d, k, exponent);
@@ -365,20 +357,20 @@ void JsonWriter::value(double v) {
   }
   char* const buf = room(64);  // written in place: the longest double takes 25 bytes
   char* end = buf;
+  if (std::signbit(v)) *end++ = '-';  // -0.0 too, as nlohmann writes it
   const double a = std::abs(v);
   if (a < 1e15 && static_cast<double>(static_cast<long long>(a)) == a) {
     // A whole number (a planar model's zeros and ones: half its rotations) as nlohmann writes
-    // it, its digits and ".0" (-0.0 too), without its conversion: cli.JsonNumbers compares
-    // them on millions of values.
-    if (std::signbit(v)) *end++ = '-';
-    end = std::to_chars(end, buf + 64, static_cast<long long>(std::abs(v))).ptr;
+    // it, its digits and ".0", without its conversion: cli.JsonNumbers compares them on
+    // millions of values.
+    end = std::to_chars(end, buf + 64, static_cast<long long>(a)).ptr;
     *end++ = '.';
     *end++ = '0';
   } else {
     // nlohmann's conversion (Grisu2, above): its digits are not always the shortest
     // (std::to_chars writes 1.542053954523393 where it writes 1.5420539545233929), and the
     // documents must not change by a digit.
-    end = grisu::write(buf, v);
+    end = grisu::write(end, a);
   }
   size_ += static_cast<size_t>(end - buf);
 }
