@@ -177,6 +177,27 @@ def main():
     panel.ok_button().click()
     gw.settle()
 
+    # 5b. Drive: the crank's joint to 40 degrees past where it is, then past its limit.
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(j1)
+    gw.settle()
+    Gui.runCommand("Dispcon_Drive")
+    gw.settle()
+    from dispcon_fc.panels import drive
+
+    panel = drive.current()
+    now = float(panel.target.property("rawValue"))
+    panel.target.setProperty("rawValue", now + 40.0)
+    gw.settle()
+    shot("wt-7b-drive")
+    panel.target.setProperty("rawValue", 170.0)
+    gw.settle()
+    shot("wt-7c-drive-outside-limits")
+    panel.target.setProperty("rawValue", now + 40.0)
+    gw.settle()
+    panel.ok_button().click()
+    gw.settle()
+
     # 6. Check.
     Gui.Selection.addSelection(asm)
     Gui.runCommand("Dispcon_Check")

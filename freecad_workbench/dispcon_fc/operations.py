@@ -4,13 +4,14 @@ half-way is rolled back, so a failed operation leaves the document as it was. A 
 preview) passes undo_step=False: the operation is then part of the panel's one undo step, which
 Cancel aborts."""
 import contextlib
+import math
 import os
 
 import FreeCAD as App
 
 from . import engine, geometry, objects, subassembly
 from .adapter import Adapter, Result, _vec
-from .objects import joints, placed_parts
+from .objects import joints, placed_parts, shape_of
 
 
 class Transaction:
@@ -474,12 +475,13 @@ class _Motion:
     has nothing to undo. Writing a hundred Placements costs FreeCAD far more than the solve
     (each change goes through the document, the undo record, the tree and the observers)."""
 
-    def _begin(self, asm, part, live=True):
+    def _begin(self, asm, part, live=True, undo_step=True):
         self.doc = asm.Document
         self.live = live
         self.name = "Drag %s" % part.Label
         self.unwritten = False
-        self.transaction = Transaction(self.doc, self.name) if live else None
+        # undo_step=False: part of the transaction a task panel holds open (the Drive panel).
+        self.transaction = Transaction(self.doc, self.name) if live and undo_step else None
 
     def _solved(self):
         """A step converged: its poses go to the document now, or at finish()."""
@@ -490,7 +492,8 @@ class _Motion:
 
     def finish(self):
         if self.live:
-            self.transaction.commit()
+            if self.transaction is not None:
+                self.transaction.commit()
         elif self.unwritten:
             with transaction(self.doc, self.name):
                 self.adapter.write_back()
@@ -500,7 +503,7 @@ class _Motion:
         self.doc.recompute()
 
     def cancel(self):
-        if self.live:
+        if self.live and self.transaction is not None:
             self.transaction.abort()
             self.doc.recompute()
         self.unwritten = False
@@ -511,7 +514,7 @@ class Drag(_Motion):
     `cancel()` to put everything back). The solver's state is built once; a move that cannot be
     made leaves everything where it was. The whole drag is one undo step."""
 
-    def __init__(self, asm, part):
+    def __init__(self, asm, part, undo_step=True):
         self.asm = _assembly(asm)
         self.adapter = Adapter(asm)
         self.part = part
@@ -519,7 +522,7 @@ class Drag(_Motion):
         _holding(asm, self.adapter)
         with self.adapter.engine_errors():
             self.dragger = self.adapter.model.dragger(self.name, tolerance=tolerance(asm))
-        self._begin(asm, part)
+        self._begin(asm, part, undo_step=undo_step)
         self.last = None
 
     def move(self, placement):
@@ -665,6 +668,92 @@ def drive(asm, joint, angles_deg, callback=None):
         raise
     d.finish()
     return reached
+
+
+# The joints a drive moves, and the unit of their value.
+DRIVE_UNITS = {"angle": "deg", "travel": "mm"}
+
+
+def drivable(joint):
+    """"angle" (a Revolute's or Cylindrical's turn), "travel" (a Slider's or PointOnLine's) or
+    None: what a drive sets of `joint`."""
+    from .studies import joint_kind
+
+    return joint_kind(joint)
+
+
+def drive_value(joint):
+    """The joint's value now, as its limits measure it: part 2's turn relative to part 1 in
+    degrees since the joint was made, or its travel along part 1's axis in mm."""
+    from .studies import joint_value
+
+    kind = drivable(joint)
+    if kind is None:
+        raise ValueError("%s is a %s: a drive sets a Revolute's or Cylindrical's turn, or a Slider's or "
+                         "PointOnLine's travel" % (joint.Label, joint.JointType))
+    driven_side(joint)  # a part deleted: said here, by label
+    v = joint_value(joint, joint.Reference1[0].Placement, joint.Reference2[0].Placement)
+    return math.degrees(v) if kind == "angle" else v
+
+
+def drive_limits(joint):
+    """The (min, max) the joint's own limits allow its drive value, or None when it has none."""
+    kind = drivable(joint)
+    if kind == "angle" and joint.HasRotationLimits:
+        return joint.RotationMin.Value, joint.RotationMax.Value
+    if kind == "travel" and joint.HasTravelLimits:
+        return joint.TravelMin.Value, joint.TravelMax.Value
+    return None
+
+
+def drive_to(asm, joint, value, undo_step=True, callback=None):
+    """Drives `joint` to `value` (drive_value's measure: degrees or mm): the joint's part that can
+    move turns about (or slides along) the joint's axis in small steps while the rest follows,
+    callback(value) after each, until the value or the first step that cannot be made (a lock, a
+    limit). One undo step (undo_step=False: part of the caller's open one). A value outside the
+    joint's limits is refused before anything moves; an error half-way puts every part back.
+    Returns (value reached, whether it is `value`)."""
+    _assembly(asm)
+    kind = drivable(joint)
+    start_value = drive_value(joint)
+    limits = drive_limits(joint)
+    unit = "°" if kind == "angle" else " mm"
+    if limits is not None and not limits[0] - 1e-9 <= value <= limits[1] + 1e-9:
+        raise ValueError("%s: %g%s is outside its limits %g%s .. %g%s"
+                         % (joint.Label, value, unit, limits[0], unit, limits[1], unit))
+    part, _, _ = driven_side(joint)
+    # Part 2 moves by the change, or part 1 by its opposite when part 2 is grounded.
+    sign = 1.0 if part == joint.Reference2[0] else -1.0
+    pl1 = joint.Reference1[0].Placement
+    axis_world = pl1.Rotation.multVec(joint.Axis1).normalize()
+    point = joint.Point2 if sign > 0 else joint.Point1
+    pivot = part.Placement.multVec(point)
+    start = part.Placement
+    delta = value - start_value
+    # Steps of 2 degrees, or 1/50 of the part's size: the linkage follows without a jump.
+    size = max(shape_of(part).BoundBox.DiagonalLength, 1e-6)
+    steps = max(1, int(math.ceil(abs(delta) / (2.0 if kind == "angle" else size / 50))))
+    put_back = subassembly.snapshot(asm)
+    reached = start_value
+    d = Drag(asm, part, undo_step=undo_step)
+    try:
+        for k in range(1, steps + 1):
+            v = start_value + delta * k / steps
+            if kind == "angle":
+                pl = _turned(start, pivot, axis_world, sign * (v - start_value))
+            else:
+                pl = App.Placement(start.Base + axis_world * (sign * (v - start_value)), start.Rotation)
+            if not d.move(pl).converged:
+                break
+            reached = v
+            if callback:
+                callback(v)
+    except BaseException:
+        d.cancel()
+        put_back()
+        raise
+    d.finish()
+    return reached, abs(reached - value) <= 1e-9 * max(1.0, abs(value))
 
 
 def check(asm):

@@ -804,6 +804,140 @@ class TestErrors(Documents):
         self.assertNotIn("Impossible", mw().statusBar().currentMessage())
 
 
+class TestDrivePanel(Documents):
+    """The Drive panel: a motor on a joint, with units, limits said in the panel, the linkage
+    following the value as it is typed, one undo step, Cancel putting every part back."""
+
+    def open(self, joint):
+        from dispcon_fc.panels import drive
+
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(joint)
+        settle()
+        self.assertTrue(Gui.isCommandActive("Dispcon_Drive"), "Drive is greyed out with %s selected" % joint.Label)
+        Gui.runCommand("Dispcon_Drive")
+        settle()
+        panel = drive.current()
+        self.assertIsNotNone(panel, "the Drive panel did not open")
+        return panel
+
+    def fourbar_solved(self):
+        from dispcon_fc import operations
+
+        asm, g, crank, coupler, rocker = self.fourbar()
+        self.assertTrue(operations.solve(asm).converged)
+        crank_joint = [j for j in operations.joints(asm) if {j.Reference1[0], j.Reference2[0]} == {g, crank}][0]
+        return asm, crank_joint, (crank, coupler, rocker)
+
+    def test_the_linkage_follows_the_value_and_cancel_puts_it_back(self):
+        from dispcon_fc import operations
+
+        asm, joint, moving = self.fourbar_solved()
+        start = [p.Placement for p in moving]
+        panel = self.open(joint)
+        self.assertIs(panel.joint(), joint)
+        self.assertIn("°", panel.target.text())
+        self.assertEqual(panel.limits.text(), "none")
+        now = operations.drive_value(joint)
+        self.assertAlmostEqual(raw_of(panel.target), now, places=1)
+        panel.target.setProperty("rawValue", now + 30.0)
+        settle()
+        # The box holds what a person can type (its decimals): the joint goes there exactly.
+        target = raw_of(panel.target)
+        self.assertAlmostEqual(target, now + 30.0, places=1)
+        self.assertAlmostEqual(operations.drive_value(joint), target, places=7)
+        self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
+        self.assertIn("%g" % target, panel.message.text())
+        self.assertTrue(panel.ok_button().isEnabled())
+        # The coupler and the rocker followed; the joints still hold.
+        self.assertFalse(same(moving[2].Placement, start[2], 1e-6), "the rocker did not follow")
+        self.assertTrue(operations.solve(asm, undo_step=False).converged)
+        self.assertIn("%.3f" % target, panel.now.text())
+        shot("panel-drive")
+        panel.reject()
+        settle()
+        self.assertFalse(Gui.Control.activeDialog(), "the panel stayed open")
+        for p, q in zip(moving, start):
+            self.assertTrue(same(p.Placement, q, 1e-9), "Cancel left %s moved" % p.Label)
+
+    def test_outside_the_limits_is_refused_in_the_panel_and_ok_is_one_undo_step(self):
+        from dispcon_fc import operations
+
+        asm, joint, moving = self.fourbar_solved()
+        now = operations.drive_value(joint)
+        operations.edit_joint(joint, rotation=(now - 20.0, now + 20.0))
+        self.assertTrue(operations.solve(asm).converged)
+        start = [p.Placement for p in moving]
+        panel = self.open(joint)
+        self.assertIn("%g" % (now + 20.0), panel.limits.text())
+        panel.target.setProperty("rawValue", now + 45.0)
+        settle()
+        self.assertIn("outside", panel.message.text())
+        self.assertIn(joint.Label, panel.message.text())
+        self.assertIn("cc0000", panel.message.styleSheet())
+        self.assertFalse(panel.ok_button().isEnabled(), "OK stays enabled outside the limits")
+        self.assertFalse(panel.accept())
+        self.assertTrue(Gui.Control.activeDialog(), "the panel closed outside the limits")
+        for p, q in zip(moving, start):
+            self.assertTrue(same(p.Placement, q, 1e-12), "a value outside the limits moved %s" % p.Label)
+        shot("panel-drive-outside-limits")
+        panel.target.setProperty("rawValue", now - 15.0)
+        settle()
+        self.assertTrue(panel.ok_button().isEnabled())
+        target = raw_of(panel.target)
+        self.assertAlmostEqual(operations.drive_value(joint), target, places=7)
+        panel.ok_button().click()
+        settle()
+        self.assertFalse(Gui.Control.activeDialog(), "the panel stayed open")
+        self.assertAlmostEqual(operations.drive_value(joint), target, places=7)
+        # The whole drive is one undo step.
+        self.doc.undo()
+        for p, q in zip(moving, start):
+            self.assertTrue(same(p.Placement, q, 1e-9), "one undo did not put %s back" % p.Label)
+
+    def test_a_slider_in_mm_and_a_lock_said_in_the_panel(self):
+        from dispcon_fc import operations
+        import parts
+
+        asm = operations.create_assembly(self.doc)
+        base = self.doc.addObject("Part::Feature", "Base")
+        base.Shape = parts.ground([(0, 0)])
+        operations.add_part(asm, base, grounded=True)
+        arm = self.doc.addObject("Part::Feature", "Arm")
+        arm.Shape = parts.link(1.5)
+        operations.add_part(asm, arm)
+        pin = (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0)))
+        slider = operations.add_joint(asm, "Slider", pin, (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))),
+                                      travel=(-0.5, 0.5))
+        self.assertTrue(operations.solve(asm).converged)
+        Gui.SendMsgToActiveView("ViewFit")
+        panel = self.open(slider)
+        self.assertIn("mm", panel.target.text())
+        panel.target.setProperty("rawValue", 0.4)
+        settle()
+        self.assertAlmostEqual(operations.drive_value(slider), 0.4, places=6)
+        self.assertTrue(panel.ok_button().isEnabled())
+        panel.target.setProperty("rawValue", 0.7)
+        settle()
+        self.assertIn("outside", panel.message.text())
+        self.assertAlmostEqual(operations.drive_value(slider), 0.4, places=6)
+        panel.reject()
+        settle()
+        self.assertAlmostEqual(operations.drive_value(slider), 0.0, places=6)
+        # A lock on the way: a second, conflicting Revolute at the pin stops the travel at once.
+        operations.add_joint(asm, "Revolute", pin, (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))))
+        panel = self.open(slider)
+        panel.target.setProperty("rawValue", 0.3)
+        settle()
+        self.assertIn("locks", panel.message.text())
+        self.assertAlmostEqual(operations.drive_value(slider), 0.0, places=6)
+        panel.reject()
+
+
+def raw_of(box):
+    return float(box.property("rawValue"))
+
+
 def answer_save_dialog(path, tries=100):
     """Types `path` into the save dialog about to open and presses Save, as a person would; again
     while that dialog stays open (under load it may not be ready for the first keystrokes)."""
@@ -1032,7 +1166,7 @@ def run_in_gui(classes, status_name):
 
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestCheckPanel, TestErrors, TestDragMode, TestCouplings)
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestCouplings)
                 if not only or only in cls.__name__], "status-workbench")
 
 

@@ -35,7 +35,11 @@ def freudenstein(t):
 
 
 def angle_of(obj):
-    x = obj.Placement.Rotation.multVec(App.Vector(1, 0, 0))
+    return angle_of_placement(obj.Placement)
+
+
+def angle_of_placement(pl):
+    x = pl.Rotation.multVec(App.Vector(1, 0, 0))
     return math.atan2(x.y, x.x)
 
 
@@ -584,6 +588,32 @@ class RobustOperations(unittest.TestCase):
         self.assertEqual(reached, 30)
         self.assertAlmostEqual(math.degrees(math.remainder(angle_of(arm) - start, 2 * math.pi)), 30, places=6)
         self.assertEqual(base.Placement, App.Placement())
+
+    def test_drive_to_sets_the_joint_value_whichever_part_is_grounded(self):
+        # The Drive panel's operation: the joint's value as its limits measure it, reached by
+        # turning the free part (here part 1, the grounded base picked second), one undo step.
+        self.doc.UndoMode = 1  # freecadcmd keeps no undo steps by default
+        asm, base, arm = arm_on_base(self.doc)
+        j = da.add_joint(asm, "Revolute", pin(arm, (0, 0, 0)), pin(base, (0, 0, 0)), rotation=(-50, 50))
+        self.assertTrue(da.solve(asm).converged)
+        start = arm.Placement
+        v0 = da.drive_value(j)
+        reached, arrived = da.drive_to(asm, j, v0 + 40.0)
+        self.assertTrue(arrived)
+        self.assertAlmostEqual(reached, v0 + 40.0, places=9)
+        self.assertAlmostEqual(da.drive_value(j), v0 + 40.0, places=7)
+        # Part 2 (the base) is grounded: the arm turned by the opposite of the joint's change.
+        self.assertAlmostEqual(math.degrees(math.remainder(angle_of(arm) - angle_of_placement(start), 2 * math.pi)),
+                               -40.0, places=6)
+        self.assertEqual(base.Placement, App.Placement())
+        self.doc.undo()
+        self.assertTrue(same(arm.Placement, start, 1e-9), "one undo did not put the drive back")
+        # Outside the limits: refused by label before anything moves.
+        with self.assertRaisesRegex(ValueError, "Revolute.*outside its limits"):
+            da.drive_to(asm, j, v0 + 60.0)
+        self.assertTrue(same(arm.Placement, start, 1e-12))
+        with self.assertRaisesRegex(ValueError, "a drive sets"):
+            da.drive_value(da.add_joint(asm, "Ball", pin(arm, (1.5, 0, 0)), pin(base, (0, 0, 0))))
 
     def test_a_mouse_event_where_the_last_pull_settled_solves_nothing(self):
         # Drag mode's mouse drag: an event at the point where the last pull settled (the cursor

@@ -30,7 +30,23 @@ def _has_revolute():
     return asm is not None and any(j.JointType in ("Revolute", "Cylindrical") for j in joints(asm))
 
 
+def _has_drivable():
+    asm = active_assembly()
+    return asm is not None and any(operations.drivable(j) for j in joints(asm))
+
+
+def _drive_panel():
+    """The Drive panel on the selected joint (or the assembly's first drivable one)."""
+    from ..panels import drive
+
+    asm = active_assembly()
+    selected = [o for o in Gui.Selection.getSelection() if o in joints(asm) and operations.drivable(o)]
+    return drive.open_panel(asm, selected[0] if selected else None)
+
+
 def _drive():
+    """A whole turn of the selected revolute (or the first), as an animation, stopping where it
+    locks: what scripts call (the command opens the Drive panel)."""
     asm = active_assembly()
     js = [o for o in Gui.Selection.getSelection() if o in joints(asm)] or \
          [j for j in joints(asm) if j.JointType == "Revolute"]
@@ -95,8 +111,10 @@ def commands():
         ("Dispcon_Drag", Command("Drag", "Drag mode (on/off): press on a part in the 3D view and move the mouse; "
                                  "the linkage follows. Esc leaves it.", _drag_mode, active=has_joints,
                                  checkable=True)),
-        ("Dispcon_Drive", Command("Drive", "Drive: select a revolute joint, then run this to turn it as an "
-                                  "animation until a limit or a lock stops it.", _drive, active=_has_revolute)),
+        ("Dispcon_Drive", Command("Drive", "Drive: a motor on a joint. Select a Revolute or Cylindrical "
+                                  "(its turn, deg) or a Slider or PointOnLine (its travel, mm), then type "
+                                  "where it goes in the panel; the linkage follows.", _drive_panel,
+                                  active=_has_drivable)),
         ("Dispcon_MotionStudy", Command("Motion study", "Motion study: select a revolute or slider joint, then run "
                                         "this to sweep it: lock-ups, interference along the motion, and an "
                                         "animated SVG with its plot and CSV.", _motion_study, active=_has_revolute)),

@@ -439,17 +439,7 @@ class JointPanel:
         self.message.setStyleSheet("color: #cc0000;" if error else "")
 
     def ok_button(self):
-        """The task view's OK button: the nearest one up from the form (a closed dialog's may
-        still be there, waiting for deletion)."""
-        w = self.form
-        while w is not None:
-            found = [box.button(QtWidgets.QDialogButtonBox.Ok)
-                     for box in w.findChildren(QtWidgets.QDialogButtonBox) if is_alive(box)]
-            found = [b for b in found if is_alive(b) and b.isVisibleTo(w)]
-            if found:
-                return found[-1]
-            w = w.parentWidget()
-        return None
+        return panels.ok_button(self.form)
 
     def _set_ok(self, enabled):
         button = self.ok_button()

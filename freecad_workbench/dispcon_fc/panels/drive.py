@@ -1,0 +1,231 @@
+"""The Drive panel: a motor on a joint. Choose a Revolute or Cylindrical (its turn, in degrees) or
+a Slider or PointOnLine (its travel, in mm), type where it goes, and the linkage follows at once.
+
+Like the joint panel, it holds one transaction open from the moment it opens: every drive it
+previews is inside it, so OK is one undo step and Cancel aborts it, which puts every part back.
+A value outside the joint's limits is said in the panel and disables OK, before anything moves;
+a drive that locks on the way stops there and says where."""
+import FreeCADGui as Gui
+
+from .. import operations, panels
+from ..objects import joints
+from ..qt import QtGui, QtWidgets, is_alive
+from ..resources import icon_path
+from .joint import markers_icon, quantity_box, raw
+
+UNIT_TEXT = {"deg": "°", "mm": " mm"}
+
+
+def drivable_joints(asm):
+    """The joints of `asm` a drive can move, in the assembly's order."""
+    return [j for j in joints(asm) if operations.drivable(j)]
+
+
+class DrivePanel:
+    """The task panel that drives one joint of `asm` (`joint`, else the first drivable one)."""
+
+    def __init__(self, asm, joint=None):
+        self.asm = asm
+        self.doc = asm.Document
+        self.joints = drivable_joints(asm)
+        if not self.joints:
+            raise ValueError("%s has no Revolute, Cylindrical, Slider or PointOnLine joint to drive" % asm.Label)
+        self.transaction = operations.Transaction(self.doc, "Drive")
+        self.closed = False
+        self.busy = False  # a drive is running (its frames process the GUI's events)
+        self.pending = False  # the value changed meanwhile: drive again once it ends
+        self.form = self._build()
+        start = joint if joint in self.joints else self.joints[0]
+        self.joint_box.setCurrentIndex(self.joints.index(start))
+        self._joint_changed(self.joints.index(start))
+
+    # -- the form ----------------------------------------------------------------------------
+    def _build(self):
+        w = QtWidgets.QWidget()
+        w.setObjectName("DispconDrivePanel")
+        w.setWindowTitle("Drive")
+        w.setWindowIcon(QtGui.QIcon(icon_path("Dispcon_Drive.svg")))
+        top = QtWidgets.QVBoxLayout(w)
+        form = QtWidgets.QFormLayout()
+        form.setRowWrapPolicy(QtWidgets.QFormLayout.WrapLongRows)
+        top.addLayout(form)
+        self.joint_box = QtWidgets.QComboBox()
+        self.joint_box.setObjectName("joint")
+        self.joint_box.setToolTip("The joint the motor sits on: a Revolute's or Cylindrical's turn, "
+                                  "a Slider's or PointOnLine's travel")
+        for j in self.joints:
+            self.joint_box.addItem(QtGui.QIcon(markers_icon(j.JointType)), "%s (%s)" % (j.Label, j.JointType))
+        form.addRow("Joint", self.joint_box)
+        self.now = QtWidgets.QLabel()
+        self.now.setObjectName("now")
+        form.addRow("Now", self.now)
+        self.limits = QtWidgets.QLabel()
+        self.limits.setObjectName("limits")
+        self.limits.setWordWrap(True)
+        form.addRow("Limits", self.limits)
+        self.target = quantity_box("deg", -1e6, 1e6)
+        self.target.setObjectName("target")
+        self.target.setToolTip("Where the joint goes, measured as its limits are (from where it was "
+                               "made); the parts follow as you type")
+        form.addRow("Drive to", self.target)
+        self.message = QtWidgets.QLabel()
+        self.message.setObjectName("message")
+        self.message.setWordWrap(True)
+        top.addWidget(self.message)
+        top.addStretch(1)
+        self.joint_box.currentIndexChanged.connect(self._joint_changed)
+        self.target.valueChanged.connect(self._changed)
+        return w
+
+    def joint(self):
+        return self.joints[self.joint_box.currentIndex()]
+
+    def unit(self):
+        return operations.DRIVE_UNITS[operations.drivable(self.joint())]
+
+    def _joint_changed(self, index):
+        """Another joint: the box takes its unit and its value now (the parts stay where the last
+        drive left them)."""
+        if self._gone():
+            return
+        j = self.joint()
+        unit = UNIT_TEXT[self.unit()]
+        self.form.setWindowIcon(QtGui.QIcon(markers_icon(j.JointType)))
+        try:
+            now = operations.drive_value(j)
+        except ValueError as e:
+            self._say(str(e), True)
+            self._set_ok(False)
+            return
+        limits = operations.drive_limits(j)
+        self.limits.setText("%g%s .. %g%s" % (limits[0], unit, limits[1], unit) if limits else "none")
+        self.busy = True  # the box's new unit and value are no drive
+        self.target.setProperty("unit", self.unit())
+        self.target.setProperty("rawValue", round(now, 9))
+        self.busy = False
+        self._show_now()
+        self._say("Type where %s goes; the parts follow." % j.Label)
+        self._set_ok(True)
+
+    def _show_now(self):
+        self.now.setText("%.3f%s" % (operations.drive_value(self.joint()), UNIT_TEXT[self.unit()]))
+
+    # -- validation and the preview -------------------------------------------------------------
+    def problem(self):
+        """What is wrong with the value asked for, in the panel's words, or None."""
+        j, value, unit = self.joint(), raw(self.target), UNIT_TEXT[self.unit()]
+        limits = operations.drive_limits(j)
+        if limits is not None and not limits[0] - 1e-9 <= value <= limits[1] + 1e-9:
+            return "%g%s is outside %s's limits, %g%s .. %g%s." % (value, unit, j.Label, limits[0], unit,
+                                                                  limits[1], unit)
+        return None
+
+    def _changed(self, *_):
+        if self._gone():
+            return
+        if self.busy:
+            self.pending = True
+            return
+        bad = self.problem()
+        if bad:
+            self._say(bad, True)
+            self._set_ok(False)
+            return
+        j, value, unit = self.joint(), raw(self.target), UNIT_TEXT[self.unit()]
+        self.busy = True
+        try:
+            reached, arrived = operations.drive_to(self.asm, j, value, undo_step=False,
+                                                   callback=lambda v: Gui.updateGui())
+        except ValueError as e:  # drive_to has put every part back
+            self._say(str(e), True)
+            self._set_ok(False)
+            return
+        finally:
+            self.busy = False
+        if self._gone():
+            return
+        self._show_now()
+        self._set_ok(True)
+        if arrived:
+            self._say("%s is at %g%s." % (j.Label, value, unit))
+        else:
+            self._say("%s locks at %.3f%s on the way to %g%s: the parts stay where it locks "
+                      "(OK keeps them so)." % (j.Label, reached, unit, value, unit), True)
+        if self.pending:
+            self.pending = False
+            self._changed()
+
+    def _say(self, text, error=False):
+        self.message.setText(text)
+        self.message.setStyleSheet("color: #cc0000;" if error else "")
+
+    def ok_button(self):
+        return panels.ok_button(self.form)
+
+    def _set_ok(self, enabled):
+        button = self.ok_button()
+        if button is not None:
+            button.setEnabled(enabled)
+
+    def _gone(self):
+        """True once its document or its form is gone (FreeCAD closes a task dialog without
+        asking it when the document closes)."""
+        try:
+            self.doc.Name
+            if is_alive(self.form):
+                return False
+        except ReferenceError:
+            pass
+        self.closed = True
+        return True
+
+    # -- the task dialog ----------------------------------------------------------------------
+    def getStandardButtons(self):
+        return int(QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel)
+
+    def accept(self):
+        bad = self.problem()
+        if bad:
+            self._say(bad, True)
+            return False
+        self._close(commit=True)
+        return True
+
+    def reject(self):
+        self._close(commit=False)
+        return True
+
+    def _close(self, commit):
+        if self.closed or self._gone():  # its document closed: nothing to commit or abort
+            return
+        self.closed = True
+        if commit:
+            self.transaction.commit()
+        else:
+            self.transaction.abort()
+        self.doc.recompute()
+        Gui.Control.closeDialog()
+
+
+def open_panel(asm, joint=None):
+    """Shows the Drive panel for `joint` (or the first drivable joint of `asm`); returns it."""
+    from . import joint as jp
+
+    previous = jp.current() or current()
+    if previous is not None:
+        previous.reject()
+    if Gui.Control.activeDialog():
+        Gui.Control.closeDialog()
+    panel = DrivePanel(asm, joint)
+    panels.show(panel)
+    panel._set_ok(panel.problem() is None)
+    return panel
+
+
+def current():
+    """The Drive panel open now, or None."""
+    panel = panels.last_panel
+    if isinstance(panel, DrivePanel) and not panel.closed and Gui.Control.activeDialog():
+        return panel
+    return None
+
