@@ -8,7 +8,7 @@ import re
 import FreeCAD as App
 
 from . import engine, geometry, subassembly
-from .objects import JOINT_TYPES, joints, parts, shape_of
+from .objects import COUPLINGS, JOINT_TYPES, LENGTH_PHASE, joints, parts, phase_value, set_phase, shape_of
 
 
 def _vec(v):
@@ -162,15 +162,26 @@ def distance_kwargs(j, p1, a1, p2, a2):
 
 def coupling_kwargs(row, j):
     """A coupling's value under the name its row of the engine's table gives it (coupling_args:
-    ratio, radius or pitch first) and a screw's hand. No phase: the engine holds the coupling at
-    the poses the parts have when the model is made (from their placements, at every solve and
-    drag), so a Phase is a turn of the part itself (operations.edit_joint)."""
+    ratio, radius or pitch first), a screw's hand, and its phase when it is known (PhaseKnown:
+    the engine's, in radians or mm; the engine checks it). Without one, the engine makes the
+    coupling at the poses the parts have, and record_phases keeps what it made."""
     takes = row["coupling_args"]
     values = {"ratio": j.Ratio, "radius": j.Radius.Value, "pitch": j.Pitch.Value}
     kw = {takes[0]: values[takes[0]]}
     if "left" in takes:
         kw["left"] = bool(j.LeftHanded)
+    if "phase" in takes and getattr(j, "PhaseKnown", False):
+        kw["phase"] = phase_to_engine(j, phase_value(j))
     return kw
+
+
+def phase_to_engine(j, value):
+    """A Phase of the joint (deg, or mm for a rack or a screw) in the engine's unit."""
+    return value if j.JointType in LENGTH_PHASE else math.radians(value)
+
+
+def phase_from_engine(j, value):
+    return value if j.JointType in LENGTH_PHASE else math.degrees(value)
 
 
 def joint_kwargs(dispcon, j, anchors=None):
@@ -288,10 +299,15 @@ class Adapter:
         self.joints = active
         with self.engine_errors():
             for j in self.joints:
-                (b1, l1), (b2, l2) = self.frames[j.Reference1[0].Name], self.frames[j.Reference2[0].Name]
-                kw = joint_kwargs(self.dispcon, j, self.anchors[j.Name, j.Document.Name])
-                kw = _in_body(_in_body(kw, "1", l1), "2", l2)
-                self.model.add_joint(b2, object1=b1, label=j.Label, **kw)
+                self.add_joint(j)
+
+    def add_joint(self, j, **changed):
+        """Adds joint `j` to the model (with the arguments in `changed` in place of its own:
+        what an edit would give the engine, which checks them); returns its index."""
+        (b1, l1), (b2, l2) = self.frames[j.Reference1[0].Name], self.frames[j.Reference2[0].Name]
+        kw = dict(joint_kwargs(self.dispcon, j, self.anchors[j.Name, j.Document.Name]), **changed)
+        kw = _in_body(_in_body(kw, "1", l1), "2", l2)
+        return self.model.add_joint(b2, object1=b1, label=j.Label, **kw)
 
     def add_body(self, owner, shape, physics, local=None):
         """A body for `owner` (a part, or a rigid sub-assembly with the compound of its parts
@@ -389,6 +405,23 @@ class Adapter:
                 continue
             p.Placement = self.placement_of(p)
         subassembly.write_back(self)
+        self.record_phases()
+
+    def record_phases(self):
+        """Stores each coupling's phase as the model holds it now in its joint (made at the poses
+        where it had none; followed through the turns as the parts moved), so the next model
+        holds the coupling where this one did: a gear turned by hand goes back into mesh at the
+        next Solve, and the ratio holds across sessions."""
+        for i, j in enumerate(self.joints):
+            if (isinstance(j, subassembly.InstanceJoint) or j.Document != self.asm.Document
+                    or j.JointType not in COUPLINGS):
+                continue
+            phase = self.model.joint(i).phase
+            if phase is None:
+                continue
+            value = phase_from_engine(j, phase)
+            if not getattr(j, "PhaseKnown", False) or abs(phase_value(j) - value) > 1e-12:
+                set_phase(j, value)
 
     def update_joints(self):
         """Stores the geometry the joints were solved with (read from the live shapes) in the

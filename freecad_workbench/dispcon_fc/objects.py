@@ -223,7 +223,53 @@ def joint_extras(obj):
     _add(obj, "App::PropertyDistance", "Radius", "Coupling", "RackPinion: the pinion's pitch radius (travel per radian)")
     _add(obj, "App::PropertyDistance", "Pitch", "Coupling", "Screw: travel per turn", 1.0)
     _add(obj, "App::PropertyBool", "LeftHanded", "Coupling", "Screw: a left-handed thread")
-    _add(obj, "App::PropertyAngle", "Phase", "Coupling", "part 2's turn added to where the coupling was made")
+    phase_property(obj)
+
+
+# A coupling's phase is the engine's: the constant of its equation (docs/format.md, "Couplings"),
+# an angle for Gears and Belt (ratio turn1 + turn2, or -ratio turn1 + turn2), a length for
+# RackPinion and Screw (the travel less radius, or pitch / 2 pi, times the turn).
+LENGTH_PHASE = ("RackPinion", "Screw")
+
+
+def phase_property(obj):
+    """Phase in the unit of the joint's type (deg, or mm for a rack or a screw), and PhaseKnown:
+    whether it is the engine's (False: the engine makes it at the poses the parts have, as for a
+    coupling just made or changed, or one saved by an earlier workbench, whose Phase was a turn of
+    its own part). A Phase of the other unit (the joint's type changed) goes, unknown."""
+    want = "App::PropertyDistance" if getattr(obj, "JointType", "") in LENGTH_PHASE else "App::PropertyAngle"
+    known = "PhaseKnown" in obj.PropertiesList
+    if "Phase" in obj.PropertiesList and obj.getTypeIdOfProperty("Phase") != want:
+        obj.removeProperty("Phase")
+        if known:
+            obj.PhaseKnown = False
+    _add(obj, want, "Phase", "Coupling", "the constant of the coupling's equation, as the engine holds it: "
+         "ratio x turn1 + turn2 (Gears; Belt: -ratio), or travel - radius x turn (RackPinion; Screw: "
+         "pitch / 2 pi); change it to turn part 2 against part 1")
+    # FreeCAD holds an angle property within +-360 deg, and a gear's phase goes round with the
+    # turns: the whole turns of part 2 are kept beside it (the engine's phase is Phase + 360 deg
+    # x PhaseTurns; a turn of part 2 is the same pose, so Phase alone says where its teeth are).
+    _add(obj, "App::PropertyInteger", "PhaseTurns", "Coupling",
+         "Gears, Belt: whole turns of part 2 in the phase (the engine's is Phase + 360 deg x PhaseTurns)")
+    _add(obj, "App::PropertyBool", "PhaseKnown", "Coupling", "Phase is the engine's (else made at the poses)")
+    obj.setEditorMode("PhaseKnown", 2)  # hidden: the workbench's bookkeeping
+
+
+def phase_value(joint):
+    """The coupling's phase as the engine has it, in the joint's unit (deg, or mm for a rack or a
+    screw): Phase with its whole turns."""
+    if getattr(joint, "JointType", "") in LENGTH_PHASE:
+        return joint.Phase.Value
+    return joint.Phase.Value + 360.0 * getattr(joint, "PhaseTurns", 0)
+
+
+def set_phase(joint, value):
+    """Stores the engine's phase `value` (deg, or mm) in the joint, its whole turns apart for an
+    angle; the phase is then known."""
+    turns = 0 if joint.JointType in LENGTH_PHASE else int(round(value / 360.0))
+    joint.Phase = value - 360.0 * turns
+    joint.PhaseTurns = turns
+    joint.PhaseKnown = True
 
 
 def part_properties(obj):

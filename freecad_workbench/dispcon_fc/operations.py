@@ -283,6 +283,12 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
         _place(j, joint_type, a, b)
         _set_limits(j, **limits)
         asm.addObject(j)
+        if joint_type in objects.COUPLINGS and limits.get("phase") is None:
+            _record_phases(asm)
+        elif limits.get("phase") is not None:
+            if joint_type not in objects.COUPLINGS:
+                raise ValueError("%s: only a coupling (%s) has a phase" % (j.Label, ", ".join(objects.COUPLINGS)))
+            Adapter(asm)  # the engine checks the phase given (its door); an error undoes the joint
     return j
 
 
@@ -360,27 +366,54 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None,
     if move is not None:
         j.Move = move
     objects.joint_extras(j)
-    if phase is not None and abs(phase - j.Phase.Value) > 1e-12:
-        _turn_for_phase(j, phase - j.Phase.Value)
+    # What the coupling's phase is measured with changed: the engine makes it again at the
+    # poses the parts have (record_phases keeps it), so the parts stay where they are.
+    remade = False
     for name, value in (("Reversed", reverse), ("Offset", offset), ("Distance", distance), ("Ratio", ratio),
-                        ("Radius", radius), ("Pitch", pitch), ("LeftHanded", left), ("Phase", phase)):
+                        ("Radius", radius), ("Pitch", pitch), ("LeftHanded", left)):
         if value is not None:
-            setattr(j, name, bool(value) if name in ("Reversed", "LeftHanded") else value)
+            value = bool(value) if name in ("Reversed", "LeftHanded") else value
+            old = getattr(j, name)
+            remade |= name in _PHASE_MEASURE and getattr(old, "Value", old) != value
+            setattr(j, name, value)
+    if phase is not None:
+        objects.set_phase(j, phase)
+    elif remade:
+        j.PhaseKnown = False
 
 
-def _turn_for_phase(j, degrees):
-    """A coupling's phase changed by `degrees`: its turning part (part 2; a rack's pinion, part
-    1) turns that much about its own axis, and the coupling holds from there (the engine holds a
-    coupling at the poses the parts have when the model is made)."""
-    if j.JointType not in objects.COUPLINGS:
-        raise ValueError("%s: only a coupling (%s) has a phase" % (j.Label, ", ".join(objects.COUPLINGS)))
-    pinion = j.JointType == "RackPinion"
-    ref, point, axis = (j.Reference1, j.Point1, j.Axis1) if pinion else (j.Reference2, j.Point2, j.Axis2)
-    part = ref[0]
-    if getattr(part, "Grounded", False):
-        raise ValueError("%s: %s is grounded, it cannot turn to change the phase" % (j.Label, part.Label))
-    pl = part.Placement
-    part.Placement = _turned(pl, pl.multVec(point), pl.Rotation.multVec(axis), degrees)
+# The values a coupling's phase is measured with (its equation's coefficients and axes).
+_PHASE_MEASURE = ("Reversed", "Ratio", "Radius", "Pitch", "LeftHanded")
+
+
+def _check_phase(joint, kind, phase):
+    """A coupling's new phase, checked by the engine (the model's door) before anything changes:
+    the joint added again with it to a model of its assembly as it stands (a joint changing its
+    type to a coupling meets the door at its first solve)."""
+    if kind not in objects.COUPLINGS:
+        raise ValueError("%s: only a coupling (%s) has a phase" % (joint.Label, ", ".join(objects.COUPLINGS)))
+    if joint.JointType != kind:
+        return
+    asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
+    if asm is None:
+        return
+    adapter = Adapter(asm)
+    if joint not in adapter.joints:  # skipped (a part deleted): its solve says so
+        return
+    from .adapter import phase_to_engine
+
+    with adapter.engine_errors():
+        adapter.add_joint(joint, phase=phase_to_engine(joint, phase))
+
+
+def _record_phases(asm):
+    """The phases of the couplings without one, as the engine makes them at the poses now (a
+    coupling just made: held where it was made). An assembly the engine cannot model yet keeps
+    them unknown: its first solve makes them."""
+    try:
+        Adapter(asm).record_phases()
+    except ValueError:
+        pass
 
 
 def set_limits(joint, **limits):
@@ -415,12 +448,17 @@ def edit_joint(joint, joint_type=None, undo_step=True, **limits):
         replace = (a, b)
     f1 = replace[0][2] if replace else geometry.Feature((0, 0, 0), (0, 0, 1), getattr(joint, "Feature1", ""))
     _check_distance(joint.Label, kind, f1, limits.get("distance"))
+    if limits.get("phase") is not None:
+        _check_phase(joint, kind, limits["phase"])
     with _step(joint.Document, "Edit joint", undo_step):
+        retyped = joint_type is not None and joint_type != joint.JointType
         if joint_type is not None:
             joint.JointType = joint_type
         if replace:
             _place(joint, joint_type, *replace)
         _set_limits(joint, **limits)
+        if (retyped or replace) and limits.get("phase") is None:
+            joint.PhaseKnown = False  # measured otherwise now: made again at the poses
     return joint
 
 

@@ -23,6 +23,8 @@ Model parsed(ParseResult r) {
 struct JointInfo {
   int index = 0, line = 0;
   std::string object1, object2, label, kind;
+  // A coupling's phase as the model holds it now (it follows the turns); None for other joints.
+  std::optional<double> phase;
 };
 
 // A live view of one body of a model: read only, changed through the model's checked setters.
@@ -215,6 +217,9 @@ ModelClass bind_model(pyb::module_& m) {
       .def_readonly("line", &JointInfo::line)
       .def_readonly("label", &JointInfo::label)
       .def_readonly("kind", &JointInfo::kind, "its row of joint_kinds(), or 'constraint'")
+      .def_readonly("phase", &JointInfo::phase,
+                    "a coupling's phase now (radians for gear and belt, length for rack and "
+                    "screw; it follows the turns as the model moves), None for other joints")
       .def(
           "__getitem__",
           [](const JointInfo& j, const std::string& key) -> pyb::object {
@@ -224,6 +229,7 @@ ModelClass bind_model(pyb::module_& m) {
             if (key == "object2") return pyb::str(j.object2);
             if (key == "label") return pyb::str(j.label);
             if (key == "kind") return pyb::str(j.kind);
+            if (key == "phase") return j.phase ? pyb::object(pyb::float_(*j.phase)) : pyb::none();
             throw pyb::key_error(key);
           },
           pyb::arg("key"))
@@ -403,12 +409,16 @@ ModelClass bind_model(pyb::module_& m) {
             if (i < 0 || i >= model.joint_count())
               throw std::invalid_argument("no joint " + std::to_string(i));
             const Joint& j = model.joint(JointId{i});
-            return JointInfo{
-                i,       j.line,      model.body(j.body1).name, model.body(j.body2).name,
-                j.label, kind_name(j)};
+            return JointInfo{i,
+                             j.line,
+                             model.body(j.body1).name,
+                             model.body(j.body2).name,
+                             j.label,
+                             kind_name(j),
+                             j.coupling ? j.coupling->phase : std::nullopt};
           },
           pyb::arg("index"),
-          "The joint's index, object1, object2, line (0 if built in code), label, kind.")
+          "The joint's index, object1, object2, line (0 if built in code), label, kind, phase.")
       .def("to_dcl", &write_dcl, "The model as .dcl text.")
       .def(
           "save",

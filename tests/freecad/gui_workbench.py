@@ -1112,6 +1112,63 @@ class TestCouplings(Documents):
                           and j.Reference2[0] == p["G3"] and j.Reference1[0] == p["G1"]])
 
     @unittest.skipUnless(engine_couples(), "this build's engine has no coupling rows")
+    def test_the_phase_in_the_panel_is_the_engines_and_turns_part_2(self):
+        from dispcon_fc import operations
+        from dispcon_fc.objects import phase_value
+
+        asm, p = self.gears()
+        self.assertTrue(operations.solve(asm).converged)
+        mesh = [j for j in asm.Group if getattr(j, "JointType", "") == "Gears"
+                and {j.Reference1[0], j.Reference2[0]} == {p["G1"], p["G2"]}][0]
+        self.assertTrue(mesh.PhaseKnown)
+        mesh.ViewObject.Proxy.doubleClicked(mesh.ViewObject)
+        settle()
+        from dispcon_fc.panels import joint as jp
+
+        panel = jp.current()
+        self.assertIsNotNone(panel, "the joint panel did not open")
+        self.assertIn("°", panel.phase.text())
+        self.assertAlmostEqual(raw_of(panel.phase), phase_value(mesh), places=1)
+
+        def mesh_value():
+            s1 = math.copysign(1, p["G1"].Placement.Rotation.multVec(mesh.Axis1).z)
+            s2 = math.copysign(1, p["G2"].Placement.Rotation.multVec(mesh.Axis2).z)
+            turn = [math.atan2(v.y, v.x) for v in (o.Placement.Rotation.multVec(App.Vector(1, 0, 0))
+                                                    for o in (p["G1"], p["G2"]))]
+            return mesh.Ratio * s1 * turn[0] + s2 * turn[1]
+
+        before, phase = mesh_value(), phase_value(mesh)
+        panel.phase.setProperty("rawValue", phase + 12.0)
+        settle()
+        target = raw_of(panel.phase)
+        self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
+        self.assertAlmostEqual(phase_value(mesh), target, places=9)
+        # The preview's solve turned the gears so that the equation's constant moved by as much.
+        self.assertAlmostEqual(math.remainder(mesh_value() - before, 2 * math.pi), math.radians(target - phase),
+                               places=7)
+        shot("panel-gears-phase")
+        panel.ok_button().click()
+        settle()
+        self.assertAlmostEqual(phase_value(mesh), target, places=9)
+        self.assertTrue(mesh.PhaseKnown)
+        # A screw's phase is a length.
+        self.assertTrue(operations.solve(asm).converged)
+        mesh.ViewObject.Proxy.doubleClicked(mesh.ViewObject)
+        settle()
+        panel = jp.current()
+        panel.type_box.setCurrentText("Screw")
+        settle()
+        # A length now (FreeCAD shows a small one in um).
+        self.assertRegex(panel.phase.text(), r"[µm]m$")
+        panel.reject()
+        settle()
+        # Cancel brings the gear mesh back as it was (the Screw made in its place goes).
+        kept = [j for j in asm.Group if getattr(j, "JointType", "") == "Gears"
+                and {j.Reference1[0], j.Reference2[0]} == {p["G1"], p["G2"]}]
+        self.assertEqual(len(kept), 1)
+        self.assertAlmostEqual(phase_value(kept[0]), target, places=9)
+
+    @unittest.skipUnless(engine_couples(), "this build's engine has no coupling rows")
     def test_gear_train_markers(self):
         from pivy import coin
         from dispcon_fc import operations
@@ -1121,6 +1178,9 @@ class TestCouplings(Documents):
         settle()
         sg = self.view().getSceneGraph()
         found = {}
+        # The glyphs sit inside FreeCAD's SoShapeScale, a node kit: searched only so (another
+        # test may have turned it on already; run alone, this one must).
+        coin.SoBaseKit.setSearchingChildren(True)
         for j in [o for o in asm.Group if hasattr(o, "JointType")]:
             search = coin.SoSearchAction()
             search.setName("dispcon_glyph_" + j.JointType)

@@ -224,6 +224,10 @@ class Turns:
             self.last[n] = a
 
 
+def same_placement(p, q, tol=1e-9):
+    return (p.Base - q.Base).Length <= tol and p.Rotation.multiply(q.Rotation.inverted()).Angle <= tol
+
+
 def joint_between(asm, a, b):
     for j in da.joints(asm):
         if {j.Reference1[0], j.Reference2[0]} == {a, b}:
@@ -323,14 +327,48 @@ class Samples(unittest.TestCase):
         left = self.vice_turn(True)
         self.assertAlmostEqual(0.2 * (left + right) / (2 * math.pi), 0.0, delta=2 * TOL)
 
-    def test_phase_turns_the_gear_and_the_ratio_holds(self):
+    def mesh_value(self, mesh, p):
+        """The engine's gear equation on the parts as they stand: ratio turn1 + turn2 about the
+        joint's axes (both about world z here, each signed by its axis), in radians."""
+        s1 = math.copysign(1, p["G1"].Placement.Rotation.multVec(mesh.Axis1).z)
+        s2 = math.copysign(1, p["G2"].Placement.Rotation.multVec(mesh.Axis2).z)
+        return mesh.Ratio * s1 * turn_about(p["G1"], "z") + s2 * turn_about(p["G2"], "z")
+
+    def test_phase_is_the_engines_and_holds_the_mesh(self):
+        # The Phase is the engine's constant, taken when the coupling was made and passed to the
+        # engine at every solve: a gear turned by hand goes back into mesh at the next Solve
+        # (before, the coupling was made again at whatever poses the parts had).
         asm, p = self.build("three-gears")
         mesh = joint_between(asm, p["G1"], p["G2"])
-        before = turn_about(p["G2"], "z")
-        da.edit_joint(mesh, phase=12.0)
-        turned = turn_about(p["G2"], "z") - before
-        self.assertAlmostEqual(abs(turned), math.radians(12), delta=TOL)
+        self.assertTrue(mesh.PhaseKnown)
+        self.assertEqual(mesh.getTypeIdOfProperty("Phase"), "App::PropertyAngle")
+        held = self.mesh_value(mesh, p)
+        g2 = p["G2"].Placement
+        p["G2"].Placement = App.Placement(g2.Base, App.Rotation(App.Vector(0, 0, 1), 30).multiply(g2.Rotation))
+        self.assertGreater(abs(math.remainder(self.mesh_value(mesh, p) - held, 2 * math.pi)), 0.5)
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        self.assertAlmostEqual(math.remainder(self.mesh_value(mesh, p) - held, 2 * math.pi), 0.0, delta=1e-8)
+        rack = next(j for j in da.joints(self.build_other("steering")) if j.JointType == "RackPinion")
+        self.assertEqual(rack.getTypeIdOfProperty("Phase"), "App::PropertyDistance")
+        self.assertTrue(rack.PhaseKnown)
+
+    def build_other(self, name):
+        """A second sample in a document of its own, closed with the test."""
+        doc = App.newDocument(name.replace("-", "_"))
+        self.addCleanup(App.closeDocument, doc.Name)
+        asm, _ = dict(couplings.SAMPLES)[name](doc)
         self.assertTrue(da.solve(asm).converged)
+        return asm
+
+    def test_a_new_phase_turns_part_2_against_part_1_and_the_ratio_holds(self):
+        asm, p = self.build("three-gears")
+        mesh = joint_between(asm, p["G1"], p["G2"])
+        before = self.mesh_value(mesh, p)
+        da.edit_joint(mesh, phase=da.phase_value(mesh) + 12.0)
+        self.assertTrue(da.solve(asm).converged)
+        self.assertAlmostEqual(math.remainder(self.mesh_value(mesh, p) - before, 2 * math.pi), math.radians(12),
+                               delta=1e-8)
         turns = Turns({n: p[n] for n in ("G1", "G2")})
         da.drive(asm, joint_between(asm, p["Plate"], p["G1"]), range(10, 100, 10), callback=turns.sample)
         self.assertAlmostEqual(turns.total["G2"], -0.5 * turns.total["G1"], delta=TOL)
@@ -345,10 +383,45 @@ class Samples(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "ratio -2 must be above 0"):
             da.edit_joint(mesh, ratio=-2)
         self.assertEqual((len(self.doc.Objects), mesh.Ratio), (before, 0.5))
+        # The phase is checked by the engine's door (the model's), before anything changes.
+        phase = da.phase_value(mesh)
+        for bad in (float("nan"), 1e300):
+            with self.assertRaisesRegex(ValueError, "phase"):
+                da.edit_joint(mesh, phase=bad)
+            self.assertEqual((da.phase_value(mesh), mesh.PhaseKnown), (phase, True))
         # A rack needs a straight edge or a planar face on the rack.
         with self.assertRaisesRegex(ValueError, "RackPinion joint needs a circular edge"):
             da.add_joint(asm, "RackPinion", couplings.circle(p["G1"], (0, 0, 0), 1.0),
                          couplings.circle(p["G3"], (0, 0, 0), 1.5))
+
+    def test_the_phase_round_trips_after_full_turns(self):
+        # Driven through more than a turn, the engine's phase moves on with the wrapped turns;
+        # saved and reopened, the gears are where they were and Solve moves nothing.
+        tmp = tempfile.mkdtemp()
+        try:
+            asm, p = self.build("three-gears")
+            mesh = joint_between(asm, p["G1"], p["G2"])
+            made = da.phase_value(mesh)
+            da.drive(asm, joint_between(asm, p["Plate"], p["G1"]), range(10, 371, 10))
+            phase = da.phase_value(mesh)
+            self.assertNotAlmostEqual(phase, made, delta=1.0)  # the wrapped turns moved it on
+            placements = {n: o.Placement for n, o in p.items()}
+            labels = {n: o.Label for n, o in p.items()}
+            path = os.path.join(tmp, "gears.FCStd")
+            self.doc.saveAs(path)
+            self.tearDown()
+            self.doc = App.openDocument(path)
+            asm = next(o for o in self.doc.Objects if da.is_assembly(o))
+            p = {n: self.doc.getObjectsByLabel(label)[0] for n, label in labels.items()}
+            mesh = joint_between(asm, p["G1"], p["G2"])
+            self.assertTrue(mesh.PhaseKnown)
+            self.assertAlmostEqual(da.phase_value(mesh), phase, delta=1e-12 * max(1.0, abs(phase)))
+            r = da.solve(asm)
+            self.assertTrue(r.converged, r.message)
+            for n, pl in placements.items():
+                self.assertTrue(same_placement(p[n].Placement, pl), "%s moved after reopening" % n)
+        finally:
+            shutil.rmtree(tmp)
 
     def test_save_and_reopen_keep_every_coupling(self):
         tmp = tempfile.mkdtemp()
@@ -356,13 +429,18 @@ class Samples(unittest.TestCase):
             for name in ("three-gears", "planetary", "steering", "vice"):
                 asm, _ = self.build(name)
                 path = os.path.join(tmp, name + ".FCStd")
-                keys = ("Label", "JointType", "Ratio", "Radius", "Pitch", "LeftHanded", "Phase", "Feature1", "Feature2")
+                keys = ("Label", "JointType", "Ratio", "Radius", "Pitch", "LeftHanded", "PhaseTurns", "PhaseKnown",
+                        "Feature1", "Feature2")
                 saved = [tuple(str(getattr(j, k)) for k in keys) for j in da.joints(asm)]
+                phases = [da.phase_value(j) for j in da.joints(asm)]
                 self.doc.saveAs(path)
                 self.tearDown()
                 self.doc = App.openDocument(path)
                 asm = next(o for o in self.doc.Objects if da.is_assembly(o))
                 self.assertEqual([tuple(str(getattr(j, k)) for k in keys) for j in da.joints(asm)], saved)
+                # FreeCAD writes a quantity with 16 significant digits: the phase to 1e-15 of itself.
+                for j, phase in zip(da.joints(asm), phases):
+                    self.assertAlmostEqual(da.phase_value(j), phase, delta=1e-12 * max(1.0, abs(phase)), msg=j.Label)
                 self.assertTrue(any(j.JointType in da.COUPLINGS for j in da.joints(asm)))
                 r = da.solve(asm)
                 self.assertTrue(r.converged, r.message)
@@ -400,8 +478,9 @@ class NothingLostWithoutTheWorkbench(unittest.TestCase):
             doc = App.newDocument("vice_kept")
             asm, p = couplings.vice(doc, pitch=0.25, left=True)
             screw = next(j for j in da.joints(asm) if j.JointType == "Screw")
-            da.edit_joint(screw, phase=15.0)
+            da.edit_joint(screw, phase=da.phase_value(screw) + 0.05)  # mm: the nut a quarter turn on
             self.assertTrue(da.solve(asm).converged)
+            phase = da.phase_value(screw)
             path = os.path.join(tmp, "vice.FCStd")
             doc.saveAs(path)
             values = th.settings_of(doc)
@@ -412,7 +491,8 @@ class NothingLostWithoutTheWorkbench(unittest.TestCase):
                 asm = next(o for o in doc.Objects if da.is_assembly(o))
                 self.assertEqual(th.settings_of(doc), values)
                 screw = next(j for j in da.joints(asm) if j.JointType == "Screw")
-                self.assertEqual((screw.Pitch.Value, screw.LeftHanded, screw.Phase.Value), (0.25, True, 15.0))
+                self.assertEqual((screw.Pitch.Value, screw.LeftHanded), (0.25, True))
+                self.assertAlmostEqual(da.phase_value(screw), phase, delta=1e-12)
                 self.assertEqual(list(screw.getEnumerationsOfProperty("JointType")), da.JOINT_TYPES)
                 self.assertTrue(da.solve(asm).converged)
                 self.assertEqual(da.check(asm)["dof"], 1)

@@ -533,6 +533,28 @@ class Vocabulary(unittest.TestCase):
         self.assertTrue(m.solve().converged)
         self.assertAlmostEqual(m.body("g2").rotation_vector[2], -math.pi / 4, delta=1e-9)
 
+    def test_a_couplings_phase_reads_back_as_the_model_holds_it(self):
+        # JointInfo.phase: the phase given, or the one the model made at its poses, as the .dcl
+        # writer records it; moved on with the turns; None for a joint that is no coupling.
+        m = dispcon.Model()
+        m.add_body("g1")
+        m.add_body("g2", position=(3, 0, 0), rotation=(0, 0, 0.4))
+        m.add_joint("g1", kind="revolute")
+        m.add_joint("g2", kind="revolute", point1=(3, 0, 0))
+        m.add_joint("g2", object1="g1", kind="gear", point2=(0, 0, 0), ratio=0.5)
+        m.add_joint("g2", object1="g1", kind="belt", point2=(0, 0, 0), ratio=0.5, phase=0.25)
+        self.assertIsNone(m.joint(0).phase)
+        self.assertIsNone(m.joint(1)["phase"])
+        self.assertEqual((m.joint(3).phase, m.joint(3)["phase"]), (0.25, 0.25))
+        made = m.joint(2).phase
+        self.assertIsInstance(made, float)
+        self.assertIn("phase %s;" % format(made, ".17g"), m.to_dcl())
+        # g2 taken a whole turn round: its wrapped turn drops 2 pi, which the phase takes up.
+        for k in range(1, 9):
+            m.set_pose("g2", position=(3, 0, 0), rotation=(0, 0, 0.4 + k * math.pi / 4))
+        self.assertAlmostEqual(abs(m.joint(2).phase - made), 2 * math.pi, delta=1e-9)
+        self.assertAlmostEqual(abs(m.joint(3).phase - 0.25), 2 * math.pi, delta=1e-9)
+
     def test_bad_coupling_arguments_raise_value_error_naming_them(self):
         m = dispcon.Model()
         m.add_body("a", position=(1, 0, 0))

@@ -13,7 +13,7 @@ import FreeCADGui as Gui
 from .. import engine, geometry, markers, operations, panels
 from ..guide import PICK
 from ..adapter import offered_types
-from ..objects import COUPLINGS
+from ..objects import COUPLINGS, LENGTH_PHASE, phase_value
 
 from ..qt import QtCore, QtGui, QtWidgets, is_alive
 
@@ -137,8 +137,14 @@ class JointPanel:
                                  "The nut's travel along the screw per turn")
         self.left = QtWidgets.QCheckBox("Left-handed thread")
         self.groups["pitch"].layout().addWidget(self.left)
-        self.phase = self._value(top, "phase", "Phase", quantity_box("deg", -360, 360),
-                                 "Part 2's turn added to the pose the coupling was made in")
+        # The engine's phase (an angle, or a length for a rack or a screw): taken when the
+        # coupling was made; a new one turns part 2 against part 1 at the preview's solve.
+        self.phase = self._value(top, "phase", "Phase", quantity_box("deg", -1e7, 1e7),
+                                 "The constant of the coupling's equation, as the engine holds it (ratio x "
+                                 "turn 1 + turn 2; a rack's or a screw's travel less its turns, in mm): "
+                                 "change it to turn part 2 against part 1")
+        self.phase_edited = False  # only a phase typed in the panel goes to the joint
+        self.phase.valueChanged.connect(self._phase_edited)
 
         self.message = QtWidgets.QLabel()
         self.message.setObjectName("message")
@@ -156,6 +162,13 @@ class JointPanel:
         for check in (self.has_rotation, self.has_travel, self.left):
             check.toggled.connect(self._changed)
         return w
+
+    def _phase_edited(self, *_):
+        if not self.loading:
+            self.phase_edited = True
+
+    def _phase_unit(self):
+        self.phase.setProperty("unit", "mm" if self.type_box.currentText() in LENGTH_PHASE else "deg")
 
     def _group(self, top, name, title):
         g = QtWidgets.QGroupBox(title) if title else QtWidgets.QWidget()
@@ -222,10 +235,13 @@ class JointPanel:
         j = self.joint
         props = j.PropertiesList
         was, self.loading = self.loading, True
-        for box, name in ((self.distance, "Distance"), (self.radius, "Radius"), (self.pitch, "Pitch"),
-                          (self.phase, "Phase")):
+        self._phase_unit()
+        for box, name in ((self.distance, "Distance"), (self.radius, "Radius"), (self.pitch, "Pitch")):
             if name in props:
                 box.setProperty("rawValue", getattr(j, name).Value)
+        if "Phase" in props:
+            self.phase.setProperty("rawValue", phase_value(j))
+        self.phase_edited = False
         if "Ratio" in props:
             self.ratio.setValue(j.Ratio)
         if "LeftHanded" in props:
@@ -240,6 +256,9 @@ class JointPanel:
     def _show_fields(self):
         kind = self.type_box.currentText()
         shown = FIELDS[kind]
+        was, self.loading = self.loading, True
+        self._phase_unit()
+        self.loading = was
         for name, g in self.groups.items():
             g.setVisible(name in shown)
         for box, check in ((self.rot_min, self.has_rotation), (self.rot_max, self.has_rotation),
@@ -392,7 +411,7 @@ class JointPanel:
             kw["radius"] = raw(self.radius)
         if "pitch" in shown:
             kw["pitch"], kw["left"] = raw(self.pitch), self.left.isChecked()
-        if "phase" in shown:
+        if "phase" in shown and self.phase_edited:
             kw["phase"] = raw(self.phase)
         return kw
 
@@ -428,6 +447,7 @@ class JointPanel:
             self._set_ok(False)
             return
         self._set_ok(True)
+        self._load_values()  # the phase the solve kept (made at the poses, or the one typed)
         if r.converged:
             self._say("%s holds (%s)." % (self.joint.Label, r.message))
         else:
