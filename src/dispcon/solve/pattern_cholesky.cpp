@@ -158,11 +158,4 @@ void PatternCholesky::solve(const double* a, double* y) const {
   }
 }
 
-bool pattern_cholesky_solve(double* a, int m, double* y) {
-  PatternCholesky chol;
-  if (!chol.factor(a, m)) return false;
-  chol.solve(a, y);
-  return true;
-}
-
 }  // namespace dispcon

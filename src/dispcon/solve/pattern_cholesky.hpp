@@ -43,7 +43,4 @@ class PatternCholesky {
   std::vector<std::uint64_t> given_, found_, col_, row_;
 };
 
-// One system: factor() then solve().
-bool pattern_cholesky_solve(double* a, int m, double* y);
-
 }  // namespace dispcon
