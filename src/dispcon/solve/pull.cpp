@@ -46,11 +46,17 @@ constexpr double kFirstDamping = 1e-4;
 // this; 1e-8 takes as many). Only after a target reached: as every pull's first damping, 1e-8
 // made the steps out of reach dearer (the planar arm out of its plane 20 -> 29 steps).
 constexpr double kFollowDamping = 1e-6;
-constexpr double kMinDamping = 1e-10;
+// The least damping of a point's pull: there the hard rows yield to the soft ones by at most a
+// ten-thousandth of the distance (kRegularised / kMinDamping). At 1e-10 (a hundredth) the
+// four-bar held past its dead point took two pull steps more (24 -> 26), its steps near the
+// dead point as long as the seed allows and overshooting.
+constexpr double kMinDamping = 1e-8;
+// The regularisation of the hard rows in a pull step.
+constexpr double kRegularised = 1e-12;
 // The least damping of a turn's soft rows (a joint of rotation parts alone: Dragger::turn's).
-// The hard rows, regularised by 1e-12, yield to the soft ones by about that over the damping
-// times the soft residual, which for a turn is the angle it cannot make (radians, of order 1):
-// at 1e-10 a hundredth of it, 0.02 rad on the robot arm's hand turned 2.5 rad against its
+// The hard rows, regularised by kRegularised, yield to the soft ones by about that over the
+// damping times the soft residual, which for a turn is the angle it cannot make (radians, of order
+// 1): at 1e-10 a hundredth of it, 0.02 rad on the robot arm's hand turned 2.5 rad against its
 // wrist's cone, where 0.004 rad was left to gain along the bound; the curve search measured the
 // yield that the corrections undo as gain, and the secant, taking the yield for the damping's
 // share, lowered the damping further (the turn alone: 70 steps; 50 with the corrections' floor
@@ -166,7 +172,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   // alike; to `within` where what is compared is larger.
   auto correct = [&](double within) {
     damping = kOut;
-    double lambda = 1e-12;
+    double lambda = kRegularised;
     for (int k = 0; k < kCorrections && now.hard > within; ++k) {
       ++out.iterations;
       if (!polisher.step(s, work, band, lambda, o.max_rotation_step, false, false, &soft))
@@ -230,7 +236,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     damping = mu;
     ++out.iterations;
     const bool stepped =
-        polisher.step(s, work, band, 1e-12, o.max_rotation_step, false, false, &soft);
+        polisher.step(s, work, band, kRegularised, o.max_rotation_step, false, false, &soft);
     if (stepped) now = measure(s, group, joint, joint_r);
     if (stepped && widen(s, group, joint, joint_r, o.tolerance, band)) {
       // A bound the step went past is met as a row from now on (the linkage slides along it
@@ -272,8 +278,14 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     // What the step promises, converted to distance (h = d^2 / 2): its model's least value when
     // the damping was set by the secant, else Gauss-Newton's along it (which the tension only
     // makes smaller where the linkage bends away from the target). A step that promises less
-    // than a tenth of the tolerance is not taken.
-    const double promise = calibrated         ? -0.5 * slope
+    // than a tenth of the tolerance is not taken. The model's slope counts the hard rows'
+    // yield (kRegularised against mu: they give way by that share of the soft residual, a slope
+    // of about -2 h0 kRegularised / mu), which the corrections undo: left out of the promise.
+    // Near the nearest pose outside a crank's circle it is most of the slope (2.2e-11 of
+    // 2.25e-11), and a step promising nothing else was made and its curve searched (2 Newton
+    // steps) before the pull stopped.
+    const double yield = 2 * h0 * kRegularised / mu;
+    const double promise = calibrated         ? -0.5 * (slope + yield)
                            : gauss_newton > 0 ? slope * slope / (2 * gauss_newton)
                                               : HUGE_VAL;
     if (promise < 0.1 * o.tolerance * std::max(kept.distance, o.tolerance)) {
