@@ -8,7 +8,9 @@ error (the joint a failed Solve or Check points at). The look is state of the vi
 here is a document property, so nothing of it is saved into the file.
 
 The glyphs are drawn over the parts (an SoAnnotation), so a joint inside a part stays visible, and
-at one size on the screen whatever the zoom."""
+at one size on the screen whatever the zoom. Markers drawn at one place (the coaxial revolutes of a
+planetary set's centre, two joints on one pin) are set apart on the screen, side by side across
+their axis (stacks()), so each stays readable and pickable."""
 import math
 
 import FreeCAD as App
@@ -236,6 +238,30 @@ def glyph(joint_type, size):
 # as FreeCAD's own draggers and axis crosses do, so they neither swamp a small part nor vanish
 # beside a large one.
 PIXELS = 14.0
+# The k-th marker of a stack at one place sits this many glyph units (PIXELS pixels each) from
+# the first, across the axis: a ring (radius 1) or a gear (1.15) beside the next with a gap.
+STACK_SPACING = 2.8
+
+
+def stacks(frames, tolerance):
+    """The markers drawn at one place: `frames` is [(key, point, axis)] in the assembly's order;
+    returns {key: (k, direction)} for each marker that is the k-th (k >= 1) of a stack whose first
+    marker is at the same point (within `tolerance`), with the world direction across the first
+    one's axis along which the stack is set apart. The first of each stack stays where it is."""
+    firsts, out = [], {}
+    for key, point, axis in frames:
+        for first in firsts:
+            if (point - first[0]).Length <= tolerance:
+                first[2] += 1
+                out[key] = (first[2], first[1])
+                break
+        else:
+            a = App.Vector(axis).normalize() if axis.Length > 1e-12 else App.Vector(0, 0, 1)
+            across = a.cross(App.Vector(0, 0, 1))
+            if across.Length < 1e-6:  # an axis along z: the stack goes along -x
+                across = a.cross(App.Vector(0, 1, 0))
+            firsts.append([point, across.normalize(), 0])
+    return out
 
 
 def _screen_scaled(child, pixels):
@@ -297,6 +323,8 @@ class Marker:
         # The glyph goes into `holder`, which the screen scale draws at `pixels` per unit.
         self.holder = coin.SoSeparator()
         self.holder.setName("dispcon_glyph_holder")
+        # The glyph's shift off its point in glyph units (a stacked marker's), before the glyph.
+        self.offset = coin.SoTranslation()
         self.scaled = _screen_scaled(self.holder, pixels)
         self.annotation.addChild(self.scaled)
         self.joint_type = None
@@ -307,6 +335,7 @@ class Marker:
         if joint_type == self.joint_type:
             return
         self.holder.removeAllChildren()
+        self.holder.addChild(self.offset)
         self.holder.addChild(glyph(joint_type, 1.0))
         self.joint_type = joint_type
 
@@ -320,6 +349,14 @@ class Marker:
         b = placement.Base
         self._translation.setValue(b.x, b.y, b.z)
         self._rotation.setValue(*placement.Rotation.Q)
+
+    def set_offset(self, local):
+        """Shifts the glyph off its point by `local`, a vector in the marker's own frame in glyph
+        units (PIXELS pixels each on the screen): a marker set apart from others at one place."""
+        self.offset.translation.setValue(local.x, local.y, local.z)
+
+    def offset_units(self):
+        return App.Vector(*self.offset.translation.getValue().getValue())
 
     def set_visible(self, on):
         """Draws the marker or not (nothing else changes: it still follows its placement)."""

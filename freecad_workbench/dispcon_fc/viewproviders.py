@@ -27,6 +27,41 @@ class _ViewProxy(Stateless):
 class ViewProviderAssembly(_ViewProxy):
     def attach(self, vobj):
         self.Object = vobj.Object
+        self.restack_pending = False
+
+    def restack_later(self):
+        """Sets apart the markers of this assembly's joints drawn at one place, once the GUI is
+        idle: each marker's follow() asks, and one pass over the joints serves them all (a solve
+        moves every part, and each part's joints follow)."""
+        if getattr(self, "restack_pending", False):
+            return
+        self.restack_pending = True
+        from .qt import QtCore
+
+        QtCore.QTimer.singleShot(0, self.restack)
+
+    def restack(self):
+        self.restack_pending = False
+        try:
+            group = list(self.Object.Group)
+        except Exception:  # the assembly (or its document) is gone meanwhile
+            return
+        frames, views = [], {}
+        for j in group:
+            view = _joint_view(j)
+            frame = markers.joint_frame(j) if view is not None else None
+            if frame is not None:
+                frames.append((j.Name, frame[0], frame[1]))
+                views[j.Name] = view
+        if not frames:
+            return
+        # One place: within a millionth of the spread of the joints' points (the same pin or
+        # axle picked twice gives the same point up to rounding).
+        xs, ys, zs = ([f[1][i] for f in frames] for i in range(3))
+        spread = max(max(xs) - min(xs), max(ys) - min(ys), max(zs) - min(zs), 1e-9)
+        stacked = markers.stacks(frames, 1e-6 * spread)
+        for name, view in views.items():
+            view.set_stack(*stacked.get(name, (0, None)))
 
     def getIcon(self):
         return icon("Assembly")
@@ -80,6 +115,7 @@ class ViewProviderJoint(_ViewProxy):
         self.error = False
         obj = vobj.Object
         self.marker = markers.Marker(obj.JointType, "dispcon_marker_" + obj.Name)
+        self.stack = (0, None)  # its place in a stack of markers at one point (markers.stacks)
         vobj.addDisplayMode(self.marker.root, "Marker")
         self.follow(obj)
 
@@ -107,11 +143,26 @@ class ViewProviderJoint(_ViewProxy):
         if prop in ("JointType", "Point1", "Axis1", "Point2", "Reference1", "Reference2", "Ratio"):
             self.follow(obj)
 
-    def follow(self, obj):
-        """Puts the marker at the joint's point and axis as the parts now stand."""
+    def follow(self, obj, restack=True):
+        """Puts the marker at the joint's point and axis as the parts now stand (set apart from
+        the others at the same place by its stack; the assembly restacks them once idle)."""
         placement = markers.joint_placement(obj)
         if placement is not None:
             self.marker.set_placement(placement)
+            k, across = getattr(self, "stack", (0, None))
+            local = placement.Rotation.inverted().multVec(across) * (k * markers.STACK_SPACING) if k else App.Vector()
+            self.marker.set_offset(local)
+        if restack:
+            view = _assembly_view(obj)
+            if view is not None:
+                view.restack_later()
+
+    def set_stack(self, k, across):
+        """The k-th marker (0: the first, not moved) of a stack at one place, set apart along the
+        world direction `across`."""
+        if (k, across) != getattr(self, "stack", (0, None)):
+            self.stack = (k, across)
+            self.follow(self.Object, restack=False)
 
     def set_error(self, on):
         self.error = bool(on)
@@ -185,6 +236,16 @@ def _assembly_parts(joint):
         if group and joint in group:
             return [o for o in group if not is_joint(o)]
     return [r[0] for r in (joint.Reference1, joint.Reference2) if r and r[0] is not None]
+
+
+def _assembly_view(joint):
+    """The view provider proxy of the assembly holding `joint`, or None."""
+    for parent in joint.InList:
+        if joint in getattr(parent, "Group", []):
+            vobj = getattr(parent, "ViewObject", None)
+            proxy = getattr(vobj, "Proxy", None) if vobj is not None else None
+            return proxy if isinstance(proxy, ViewProviderAssembly) else None
+    return None
 
 
 def _joint_view(obj):

@@ -359,6 +359,51 @@ class TestMarkers(Documents):
         for j in js[1:]:
             j.ViewObject.Visibility = True
 
+    def test_markers_at_one_place_are_set_apart(self):
+        # The planetary set: the carrier, the sun and the ring turn on one axle, so their three
+        # Revolutes' markers were drawn on top of each other (with the planets' meshes beside).
+        from dispcon_fc import markers, operations, viewproviders
+        import couplings
+
+        if not engine_couples():
+            self.skipTest("this build's engine has no coupling rows")
+
+        asm, p = couplings.planetary(self.doc)
+        self.assertTrue(operations.solve(asm).converged)
+        self.view().viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
+        settle()
+        joints = [o for o in asm.Group if hasattr(o, "JointType")]
+        axle = [j for j in joints if j.JointType == "Revolute" and p["Base"] in (j.Reference1[0], j.Reference2[0])]
+        self.assertEqual(len(axle), 3)
+
+        def shift(j):
+            """The glyph's shift off the joint's point, in glyph units, in world directions."""
+            view = viewproviders.joint_view(j)
+            return markers.joint_placement(j).Rotation.multVec(view.marker.offset_units())
+
+        shifts = [shift(j) for j in axle]
+        for a in range(3):
+            for b in range(a + 1, 3):
+                self.assertGreaterEqual((shifts[a] - shifts[b]).Length, markers.STACK_SPACING - 1e-5,
+                                        "%s and %s are drawn on top of each other" % (axle[a].Label, axle[b].Label))
+        # Each shift lies across the axle (side by side seen along it), and the first stays put
+        # (Coin holds the shift in single precision).
+        self.assertEqual(sorted(round(s.Length / markers.STACK_SPACING, 5) for s in shifts), [0, 1, 2])
+        for s in shifts:
+            self.assertLess(abs(s.z), 1e-5)
+        # Markers alone at their place are not moved.
+        alone = [j for j in joints if j not in axle]
+        self.assertTrue(alone)
+        for j in alone:
+            self.assertLess(shift(j).Length, 1e-9, j.Label)
+        # A part moved: the stack follows (the shifts are across the axle as the carrier turns).
+        operations.drive_to(asm, axle[0], operations.drive_value(axle[0]) + 30.0)
+        settle()
+        again = [shift(j) for j in axle]
+        self.assertEqual(sorted(round(s.Length / markers.STACK_SPACING, 5) for s in again), [0, 1, 2])
+        shot("planetary-markers")
+
     def test_hovering_over_an_edge_shows_the_marker_to_come(self):
         # The cursor moved over the arm's pin edge (a Coin3D mouse move through the viewer's
         # scene graph, as a real mouse's): FreeCAD preselects the edge under it and the panel
