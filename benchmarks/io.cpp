@@ -2,7 +2,7 @@
 // (the rough start of BM_FourBars_dispcon, 17 significant digits a number), read by load_dcl;
 // the JSON document of their assembly, written; and
 // `dispcon assemble FILE --json` run as a process, timed from posix_spawn to exit, its CPU time
-// (user and system, from wait4) reported beside.
+// (user and system, from wait4) reported beside, and the floor of any process spawned the same way.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -80,7 +81,6 @@ void BM_Json_FourBars(benchmark::State& state) {
 }
 BENCHMARK(BM_Json_FourBars)->Arg(400)->Unit(benchmark::kMillisecond);
 
-#ifdef DISPCON_BIN
 // The median of a sample (sorted in place).
 double median(std::vector<double>& v) {
   if (v.empty()) return 0;
@@ -89,16 +89,15 @@ double median(std::vector<double>& v) {
   return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
 }
 
-// The whole `dispcon assemble FILE --json` (its output to /dev/null), as a user waits for it: wall
-// time from posix_spawn to the exit reaped by wait4 (the benchmark's time), and the child's CPU
-// time (user and system, from wait4's rusage). The counters `cpu_ms` and `wall_ms` are the
-// medians of the runs, what a typical run costs: on the shared development VM a few runs of a
-// repetition take several milliseconds more, and the mean (`cpu_mean_ms`) follows them (2 ms
-// above the median in a repetition of 20 runs, docs/performance.md). `user_ms`, `sys_ms` and
-// `faults` are means. The parent's size does not change what the child costs: spawned
-// alternately from a process holding 800 MB and from a small one, the same CPU time.
-void BM_Command_AssembleJson_FourBars(benchmark::State& state) {
-  const std::string path = fourbars_file(static_cast<int>(state.range(0)));
+// A program run as a process, as a user waits for it (its output to /dev/null): wall time from
+// posix_spawn to the exit reaped by wait4 (the benchmark's time), and the child's CPU time (user
+// and system, from wait4's rusage). The counters `cpu_ms` and `wall_ms` are the medians of the
+// runs, what a typical run costs: on the shared development VM a few runs of a repetition take
+// several milliseconds more, and the mean (`cpu_mean_ms`) follows them (2 ms above the median in
+// a repetition of 20 runs, docs/performance.md). `user_ms`, `sys_ms` and `faults` are means. The
+// parent's size does not change what the child costs: spawned alternately from a process holding
+// 800 MB and from a small one, the same CPU time.
+void time_process(benchmark::State& state, const std::string& bin, std::vector<std::string> args) {
   std::vector<double> cpu, wall;
   double user = 0, sys = 0, faults = 0;
   // posix_spawn, not fork: a fork of this benchmark process (hundreds of MB mapped by the
@@ -107,13 +106,15 @@ void BM_Command_AssembleJson_FourBars(benchmark::State& state) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  std::string bin = DISPCON_BIN, sub = "assemble", flag = "--json", file = path;
-  char* argv[] = {bin.data(), sub.data(), file.data(), flag.data(), nullptr};
+  args.insert(args.begin(), bin);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
     pid_t pid = 0;
-    if (posix_spawn(&pid, DISPCON_BIN, &actions, nullptr, argv, environ) != 0) {
-      state.SkipWithError("dispcon could not be started");
+    if (posix_spawn(&pid, bin.c_str(), &actions, nullptr, argv.data(), environ) != 0) {
+      state.SkipWithError((bin + " could not be started").c_str());
       break;
     }
     int status = 0;
@@ -121,7 +122,10 @@ void BM_Command_AssembleJson_FourBars(benchmark::State& state) {
     wait4(pid, &status, 0, &usage);
     const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
     state.SetIterationTime(elapsed.count());
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) state.SkipWithError("dispcon failed");
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      state.SkipWithError((bin + " failed").c_str());
+      break;
+    }
     const double u = static_cast<double>(usage.ru_utime.tv_sec) + 1e-6 * usage.ru_utime.tv_usec;
     const double k = static_cast<double>(usage.ru_stime.tv_sec) + 1e-6 * usage.ru_stime.tv_usec;
     user += u;
@@ -139,10 +143,56 @@ void BM_Command_AssembleJson_FourBars(benchmark::State& state) {
   state.counters["sys_ms"] = 1e3 * sys / runs;
   state.counters["faults"] = faults / runs;
 }
+
+// What any process costs on this machine, spawned and timed as the command is below, so that the
+// command's figure and the floor under it come from one run: a program with no C library that
+// only exits (the kernel's exec and exit: on the development VM most of a millisecond more than
+// the same on bare hardware), and an empty program linked as the command is (glibc's start and
+// exit added; its `cpuid`s trap to the hypervisor there). benchmarks/floor/.
+void BM_Command_Floor(benchmark::State& state, const char* bin) {
+  time_process(state, bin, {});
+}
+#ifdef DISPCON_FLOOR_NO_LIBC
+BENCHMARK_CAPTURE(BM_Command_Floor, no_libc, DISPCON_FLOOR_NO_LIBC)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+#endif
+#ifdef DISPCON_FLOOR_STATIC_EMPTY
+BENCHMARK_CAPTURE(BM_Command_Floor, static_empty, DISPCON_FLOOR_STATIC_EMPTY)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+#endif
+
+#ifdef DISPCON_BIN
+// The whole `dispcon assemble FILE --json` of N four-bars. With one four-bar, what the command's
+// own start, reading, solving and writing cost beside the floor above.
+void BM_Command_AssembleJson_FourBars(benchmark::State& state) {
+  time_process(state, DISPCON_BIN,
+               {"assemble", fourbars_file(static_cast<int>(state.range(0))), "--json"});
+}
 BENCHMARK(BM_Command_AssembleJson_FourBars)
+    ->Arg(1)
     ->Arg(400)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
+
+// The same command of another build, named by DISPCON_BENCH_OTHER (registered only when set):
+// two builds compared in one run, their repetitions alternated with
+// --benchmark_enable_random_interleaving=true (the machine's load changes from minute to minute).
+void BM_Command_AssembleJson_FourBars_Other(benchmark::State& state, const std::string& other) {
+  time_process(state, other,
+               {"assemble", fourbars_file(static_cast<int>(state.range(0))), "--json"});
+}
+const bool other_registered = [] {
+  const char* other = std::getenv("DISPCON_BENCH_OTHER");
+  if (!other || !*other) return false;
+  benchmark::RegisterBenchmark("BM_Command_AssembleJson_FourBars_Other",
+                               BM_Command_AssembleJson_FourBars_Other, std::string(other))
+      ->Arg(400)
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
+  return true;
+}();
 #endif
 
 }  // namespace
