@@ -20,22 +20,37 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   // A chord step solves with the factorisation in hand: it needs the rows' residuals and the
   // bodies they join (measured with the joints' residuals when the poses have not changed
   // since), not the Jacobian nor M^-1 J^T.
-  if (reuse && factored_ && kkt_ && !soft) {
+  // A small group's, with its dense factor: still in the work while no other group has gathered
+  // since, and only where its rows leave no free motion.
+  const bool small =
+      reuse && !soft && small_factored_ && work.chord_of_ == this && small_without_free_motion();
+  if (small) {
+    reused_ = small_residuals(s, band);
+  } else if (reuse && factored_ && kkt_ && !soft) {
     if (!(measured && measured_)) gather_residuals(s, band, nullptr);
     reused_ =
         2 * static_cast<size_t>(chord_.rows) == analyzed_pattern_.size() &&
         std::equal(analyzed_pattern_.begin(), analyzed_pattern_.end(), chord_.pattern.begin());
   }
   measured_ = false;  // the poses move below
-  if (!reused_) gather(s, band, soft);
-  const int m = reused_ ? chord_.rows : static_cast<int>(w_->rows_.size());
+  if (!reused_) {
+    small_factored_ = false;
+    work.chord_of_ = nullptr;  // the dense factor and the row lists are rewritten below
+    gather(s, band, soft);
+  }
+  const int m = reused_ && !small ? chord_.rows : static_cast<int>(w_->rows_.size());
   if (m == 0 || nv_ == 0) return false;
-  if (reused_) {
+  if (reused_ && small) {
+    Eigen::Map<Eigen::VectorXd> y(w_->y_.data(), m);
+    y = -Eigen::Map<const Eigen::VectorXd>(w_->residual_.data(), m);
+    w_->chol_.solve(w_->dense_.data(), y.data());
+    if (!y.allFinite()) return false;
+  } else if (reused_) {
     if (!solve_blocks(chord_.residual)) return false;
   } else if (!factor(s, lambda)) {
     return false;
   }
-  if (!reused_ && (dense() || !kkt_)) {
+  if ((!reused_ || small) && (dense() || !kkt_)) {
     // dq = M^-1 J^T y, each body's terms summed in the order of its rows
     for (Vec6& d : w_->dq_) d.setZero();
     if (dense()) {  // with the M^-1 J^T that couplings() kept
@@ -154,6 +169,28 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band,
   rows_hint_ = w_->rows_.size();
 }
 
+// A small group's chord step: the rows' residuals at the current poses into the work's
+// residual_, in the order of the rows factored. False when a row joins other unknowns than the
+// factored one did, or the rows are others (a bound come into contact or left).
+bool Polisher::small_residuals(const SolverState& s, const std::vector<double>& band) {
+  const std::vector<int>& joints = group_->joints;
+  const size_t m = w_->rows_.size();
+  size_t a = 0;
+  bool same = true;
+  for_each_row(
+      s, joints.data(), joints.data() + joints.size(), band, false, nullptr,
+      [&](int, int v1, int v2, const PartRows& p, int k) {
+        if (a < m && w_->rows_[a].v1 == v1 && w_->rows_[a].v2 == v2) {
+          w_->residual_[a] = p.residual[k];
+        } else {
+          same = false;
+        }
+        ++a;
+      },
+      [] {});
+  return same && a == m;
+}
+
 // The rows' residuals alone, and the bodies each row joins (the pattern); with `joint_r`, the
 // joints' residuals too (the largest returned).
 double Polisher::gather_residuals(const SolverState& s, const std::vector<double>& band,
@@ -171,6 +208,7 @@ double Polisher::measure(const SolverState& s, const std::vector<double>& band,
                          std::vector<double>& joint_r, bool since_kept) {
   const bool kept = since_kept && kept_;
   kept_ = false;
+  if (since_kept) small_factored_ = false;  // a small group's chord steps stay within a solve
   measured_ = factored_ && kkt_;
   if (!measured_) return max_residual(s, group_->joints, joint_r);
   if (kept) return measure_moved(s, band, joint_r);

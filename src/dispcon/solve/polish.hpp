@@ -48,6 +48,9 @@ struct PolishWork {
   std::vector<int> joint_rows_;  // the rows of the k-th joint with rows: joint_rows_[k] ...
   std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows)
   std::vector<double> soft_;  // each row's own damping (a pull's rows), empty when none
+  // The polisher whose small group's factorisation dense_, u_ and the row lists hold for a chord
+  // step (none: nullptr).
+  const void* chord_of_ = nullptr;
 };
 
 // Newton polish. The step is dq = M^-1 J^T y with (J M^-1 J^T + lambda I) y = -r: the
@@ -75,6 +78,14 @@ class Polisher {
             double max_rotation, bool reuse, bool measured,
             const std::vector<double>* soft = nullptr);
   bool reused() const { return reused_; }
+  // Whether a small group (a dense system) may take chord steps too: only where its rows leave
+  // no free motion (see no_free_motion()), and only within one solve. Off unless set (a drag's
+  // held solve keeps its Newton steps).
+  void allow_small_chord(bool allow) { small_chord_ = allow; }
+  // Whether the next chord step would be a small group's: it follows only a Newton step that
+  // gained a hundredfold (near the answer, where the Jacobian moves little; further out a chord
+  // step gains little, and a dense Newton step is cheap).
+  bool small_chord_ready() const { return small_factored_; }
   // The factor the last step() scaled its dq by so that no body turns more than max_rotation
   // (the seed's 2.3), and whether it did (a step cut short; false for a whole step).
   double step_scale() const { return step_scale_; }
@@ -156,6 +167,13 @@ class Polisher {
   // above kDenseRows rows (polish_sparse.cpp).
   bool factor(const SolverState& s, double lambda);
   bool factor_dense(double lambda);
+  bool no_free_motion() const;
+  // no_free_motion() of the dense factor in hand, worked out once.
+  bool small_without_free_motion() {
+    if (small_free_ < 0) small_free_ = no_free_motion() ? 0 : 1;
+    return small_free_ == 0;
+  }
+  bool small_residuals(const SolverState& s, const std::vector<double>& band);
   bool factor_sparse(const SolverState& s, double lambda);
   bool same_pattern() const;
   bool solve_factored();
@@ -180,6 +198,13 @@ class Polisher {
   double step_scale_ = 1.0;         // see step_scale()
   bool cut_short_ = false;          // see cut_short()
   bool measured_ = false;           // measure() kept the rows' residuals in chord_
+  bool small_chord_ = false;        // see allow_small_chord()
+  // The last dense factorisation, with its damping (lambda times the diagonal's scale), may
+  // serve a chord step (a solve that persists; whether it leaves free motion: small_free_, -1
+  // while not worked out).
+  bool small_factored_ = false;
+  double small_damping_ = 0, small_scale_ = 0;
+  int small_free_ = -1;
   // A chord step's right-hand side (the rows' residuals) and the bodies each row joins, which
   // must be the analysed ones (chord_). Per group, not in PolishWork: measured at the start of a
   // frame, before the groups are shared among threads.

@@ -114,6 +114,7 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
   }
   ++p.polish;
   save_poses(s, group, before);
+  p.polisher.allow_small_chord(stuck == Session::Stuck::Persist);
   const bool stepped =
       p.polisher.step(s, work, band, p.lambda, o.max_rotation_step, p.chord, p.measured);
   p.measured = false;
@@ -122,9 +123,11 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
   const double next = stepped ? p.polisher.measure(s, band, joint_r) : p.r;
   if (stepped && next < p.r) {
     p.measured = true;
-    // After a Newton step the next may reuse its factorisation; a chord step that gained less
-    // than a hundredfold asks for a new one.
-    p.chord = !chord || next < 0.01 * p.r;
+    // After a Newton step the next may reuse its factorisation (a small group's only after a
+    // step that gained a hundredfold); a chord step that gained less than a hundredfold asks for
+    // a new one.
+    const bool gained = next < 0.01 * p.r;
+    p.chord = (chord || p.polisher.small_chord_ready()) ? gained : true;
     if (stuck == Session::Stuck::StopWhenSlow) {
       const bool slow = !chord && next > kSlowStep * p.r && !p.polisher.cut_short();
       p.slow = slow ? p.slow + 1 : 0;

@@ -164,6 +164,71 @@ TEST(DensePolish, GroupsSolvedTogetherAsEachAlone) {
   }
 }
 
+// The rocker's turn about z where add_fourbar's linkage closes (crank fixed at 0.7 rad, length
+// 1; coupler 3; rocker 2.5 from its pivot at (3, 0)): the coupler's far end on both circles, the
+// one on the side of the rough start.
+double closed_rocker_turn() {
+  const Vec3 a(std::cos(0.7), std::sin(0.7), 0), pivot(3, 0, 0);
+  const Vec3 d = pivot - a;
+  const double l = d.norm(), along = (9 - 6.25 + l * l) / (2 * l),
+               off = std::sqrt(9 - along * along);
+  const Vec3 mid = a + along / l * d, normal(-d.y() / l, d.x() / l, 0);
+  double best = 0, nearest = 1e9;
+  for (double side : {-1.0, 1.0}) {
+    const Vec3 b = mid + side * off * normal;
+    const double turn = std::atan2(b.y() - pivot.y(), b.x() - pivot.x());
+    if (std::abs(turn - 1.951) < nearest) nearest = std::abs(turn - 1.951), best = turn;
+  }
+  return best;
+}
+
+double turn_about_z(const Pose& p) {
+  const Vec3 x = p.q * Vec3::UnitX();
+  return std::atan2(x.y(), x.x());
+}
+
+// A small group whose rows leave no free motion (the crank fixed: the four-bar's poses are
+// isolated, three of its fifteen rows redundant) takes a chord step for its last step, the
+// factorisation of the step before reused: it lands on the same answer as Newton's steps, to
+// within the residual it leaves (about 2e-10, where a fourth Newton step leaves 2.5e-14).
+TEST(DensePolish, ChordStepWithoutFreeMotionLandsOnTheAnswer) {
+  Model m;
+  const std::vector<BodyId> moving = add_fourbar(m, 0, false, "");
+  SolveOptions o;
+  o.record_history = true;
+  const SolveResult r = assemble(m, o);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_EQ(r.iterations, 5);
+  EXPECT_LE(r.max_residual, o.tolerance);
+  EXPECT_GT(r.history.back(), 1e-12) << "the last step was not a chord step";
+  EXPECT_NEAR(turn_about_z(m.body(moving[1]).pose), closed_rocker_turn(), 1e-9);
+}
+
+// With free motion (the crank let go about its pivot) a chord step would lie in the old rows'
+// span and slide the poses along the free motion: every step stays a Newton step, which closes
+// in quadratically (its last residual far below a chord step's).
+TEST(DensePolish, NoChordStepWithFreeMotion) {
+  Model m;
+  add_fourbar(m, 0, false, "");
+  Body crank = m.body(BodyId{1});
+  ASSERT_EQ(crank.name, "crank");
+  ASSERT_TRUE(crank.fixed);
+  Model free;
+  for (int i = 1; i < m.body_count(); ++i) {
+    Body b = m.body(BodyId{i});
+    b.fixed = false;
+    free.add_body(b);
+  }
+  for (int i = 0; i < m.joint_count(); ++i) free.add_joint(m.joint(JointId{i}));
+  free.add_joint(
+      dispcon::revolute(Model::kWorld, Anchor{Vec3::Zero()}, BodyId{1}, Anchor{Vec3::Zero()}));
+  SolveOptions o;
+  o.record_history = true;
+  const SolveResult r = assemble(free, o);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LT(r.history.back(), 1e-12) << "a chord step was taken with free motion";
+}
+
 TEST(SparsePolish, GridOfFourBarsAssemblesIntoRhombi) {
   Grid g = grid(6);  // 78 links, 570 rows: solved sparse
   SolveOptions o;
