@@ -176,22 +176,29 @@ BENCHMARK(BM_Command_AssembleJson_FourBars)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
-// The same command of another build, named by DISPCON_BENCH_OTHER (registered only when set):
-// two builds compared in one run, their repetitions alternated with
+// The same command of other builds, named by DISPCON_BENCH_OTHER (paths separated by ':';
+// registered only when set): builds compared in one run, their repetitions alternated with
 // --benchmark_enable_random_interleaving=true (the machine's load changes from minute to minute).
+// The k-th is BM_Command_AssembleJson_FourBars_Other<k>.
 void BM_Command_AssembleJson_FourBars_Other(benchmark::State& state, const std::string& other) {
   time_process(state, other,
                {"assemble", fourbars_file(static_cast<int>(state.range(0))), "--json"});
 }
-const bool other_registered = [] {
-  const char* other = std::getenv("DISPCON_BENCH_OTHER");
-  if (!other || !*other) return false;
-  benchmark::RegisterBenchmark("BM_Command_AssembleJson_FourBars_Other",
-                               BM_Command_AssembleJson_FourBars_Other, std::string(other))
-      ->Arg(400)
-      ->UseManualTime()
-      ->Unit(benchmark::kMillisecond);
-  return true;
+const int others_registered = [] {
+  const char* list = std::getenv("DISPCON_BENCH_OTHER");
+  int k = 0;
+  for (std::string rest = list ? list : ""; !rest.empty(); ++k) {
+    const size_t colon = rest.find(':');
+    const std::string other = rest.substr(0, colon);
+    rest = colon == std::string::npos ? "" : rest.substr(colon + 1);
+    benchmark::RegisterBenchmark(
+        ("BM_Command_AssembleJson_FourBars_Other" + std::to_string(k)).c_str(),
+        BM_Command_AssembleJson_FourBars_Other, other)
+        ->Arg(400)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+  return k;
 }();
 #endif
 
