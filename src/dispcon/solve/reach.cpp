@@ -11,24 +11,76 @@
 
 namespace dispcon {
 
+namespace {
+
+// A guide whose set ReachBound::Anchor can hold: a point is kept on it, whatever the rotations.
+bool bounds_a_point(GuideKind kind) {
+  return kind == GuideKind::Axial || kind == GuideKind::Planar || kind == GuideKind::Sphere ||
+         kind == GuideKind::Circle;
+}
+
+// A unit vector across `n` (unit).
+Vec3 across(const Vec3& n) {
+  return (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+}
+
+}  // namespace
+
+Vec3 ReachBound::Anchor::nearest(const Vec3& x) const {
+  const Vec3 v = x - centre;
+  switch (kind) {
+    case GuideKind::Axial:
+      return centre + std::clamp(v.dot(dir), min, max) * dir;
+    case GuideKind::Sphere:
+    case GuideKind::Planar:
+    case GuideKind::Circle: {
+      const Vec3 w = kind == GuideKind::Sphere ? v : Vec3(v - v.dot(dir) * dir);
+      const double r = w.norm();
+      const double at = kind == GuideKind::Circle ? radius : std::clamp(r, min, max);
+      if (!(at > 0)) return centre;
+      return centre + at * (r > 0 ? Vec3(w / r) : across(dir));
+    }
+    default:
+      return centre;
+  }
+}
+
 ReachBound::ReachBound(const Model& model, BodyId held, double time)
     : held_(held), revision_(model.revision()) {
   std::vector<Node>& nodes = nodes_;
   joined_.resize(static_cast<size_t>(model.body_count()));
+  auto immovable = [&](int body) { return body == 0 || model.body(BodyId{body}).fixed; };
   for (int c = 0; c < model.joint_count(); ++c) {
     const Joint& j = model.joint(JointId{c});
     if (!j.active_at(time)) continue;
     joined_[static_cast<size_t>(j.body1.value)].push_back(j.body2.value);
     joined_[static_cast<size_t>(j.body2.value)].push_back(j.body1.value);
-    if (!j.has_hinge || j.guide) continue;
-    nodes.push_back(Node{j.body1.value, j.p1, c});
-    nodes.push_back(Node{j.body2.value, j.p2, c});
+    // A guide is a path's end only where its set cannot move: between moving parts the set's
+    // points are at any distance from each other.
+    const bool guide = j.guide && bounds_a_point(j.guide->kind) && immovable(j.body1.value) &&
+                       !immovable(j.body2.value);
+    if (!(j.has_hinge || guide) || (j.guide && !guide)) continue;
+    nodes.push_back(Node{j.body1.value, j.p1, c, guide});
+    nodes.push_back(Node{j.body2.value, j.p2, c, guide});
   }
   // The nodes of each body, so a path crosses a body from any of its points to any other.
   std::vector<std::vector<int>> on_body(static_cast<size_t>(model.body_count()));
   for (size_t k = 0; k < nodes.size(); ++k)
     on_body[static_cast<size_t>(nodes[k].body)].push_back(static_cast<int>(k));
-  auto immovable = [&](int body) { return body == 0 || model.body(BodyId{body}).fixed; };
+  // What a path ending at node n (on a part that cannot move) ends on.
+  auto anchor = [&](const Node& n) {
+    const Pose& at = model.body(BodyId{n.body}).pose;
+    Anchor a;
+    a.centre = at.apply(n.local);
+    if (!n.guide) return a;
+    const Guide& g = *model.joint(JointId{n.joint}).guide;
+    a.kind = g.kind;
+    a.dir = (at.q * g.dir).normalized();
+    a.min = g.kind == GuideKind::Axial ? g.min : std::max(0.0, g.min);
+    a.max = g.max;
+    a.radius = g.radius;
+    return a;
+  };
 
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> dist(nodes.size());
@@ -50,8 +102,7 @@ ReachBound::ReachBound(const Model& model, BodyId held, double time)
       const Node& n = nodes[static_cast<size_t>(k)];
       if (d > dist[static_cast<size_t>(k)] || n.body == held.value) continue;
       if (immovable(n.body)) {
-        const Body& b = model.body(BodyId{n.body});
-        paths_.push_back(Path{nodes[static_cast<size_t>(source)].local, b.pose.apply(n.local), d,
+        paths_.push_back(Path{nodes[static_cast<size_t>(source)].local, anchor(n), d,
                               hops[static_cast<size_t>(k)], JointId{first[static_cast<size_t>(k)]},
                               static_cast<int>(from_.size()) - 1, k});
         continue;  // a path through what cannot move says nothing more
@@ -76,7 +127,8 @@ ReachBound::ReachBound(const Model& model, BodyId held, double time)
 ReachBound::Gap ReachBound::gap(const Pose& target, double tolerance) const {
   Gap worst;
   for (const Path& p : paths_) {
-    const double g = (target.apply(p.held_point) - p.anchor).norm() - p.length;
+    const Vec3 x = target.apply(p.held_point);
+    const double g = (x - p.anchor.nearest(x)).norm() - p.length;
     if (g > p.joints * tolerance && g > worst.distance) worst = Gap{g, p.first, p.joints};
   }
   return worst;
@@ -91,11 +143,15 @@ std::optional<ReachBound::Stretch> ReachBound::stretch(const Model& model,
   const Path* path = nullptr;
   double worst = 0;
   for (const Path& p : paths_) {
-    const double g = (target - p.anchor).norm() - p.length - (point - p.held_point).norm();
+    const double g =
+        (target - p.anchor.nearest(target)).norm() - p.length - (point - p.held_point).norm();
     if (g > p.joints * options.tolerance && g > worst) worst = g, path = &p;
   }
   if (!path) return std::nullopt;
-  const Vec3 u = (target - path->anchor).normalized();
+  // On a guide's set the path leaves from the set's point nearest the target: no valid pose
+  // takes the point nearer than the path's length from it.
+  const Vec3 from = path->anchor.nearest(target);
+  const Vec3 u = (target - from).normalized();
   Stretch out;
   out.poses = poses;
   out.gap = Gap{worst, path->first, path->joints};
@@ -111,7 +167,7 @@ std::optional<ReachBound::Stretch> ReachBound::stretch(const Model& model,
     moved_with[static_cast<size_t>(body)] = body;
     return at + (far - near).norm() * u;
   };
-  Vec3 at = path->anchor;
+  Vec3 at = from;
   for (const Link& l : links(*path)) at = turn(l.body, l.near, l.far, at);
   at = turn(held_.value, path->held_point, point, at);
   if (!carry(model, poses, out.poses, moved_with, options, out.constraints)) return std::nullopt;
@@ -178,7 +234,9 @@ std::optional<std::vector<Pose>> ReachBound::straighten(const Model& model,
   const Path* path = nullptr;
   double least = HUGE_VAL;
   for (const Path& p : paths_) {
-    const double slack = p.length - (target.apply(p.held_point) - p.anchor).norm();
+    // (A path that ends on a guide's set is straightened about no point: left out.)
+    if (p.anchor.kind != GuideKind::Point) continue;
+    const double slack = p.length - (target.apply(p.held_point) - p.anchor.centre).norm();
     if (slack < least) least = slack, path = &p;
   }
   if (!path) return std::nullopt;
@@ -196,7 +254,7 @@ std::optional<std::vector<Pose>> ReachBound::straighten(const Model& model,
     dir[k] = length[k] > 0 ? Vec3(v / length[k]) : Vec3::Zero();
     end += v;
   }
-  const Vec3 goal = target.apply(path->held_point) - path->anchor;
+  const Vec3 goal = target.apply(path->held_point) - path->anchor.centre;
   if (!(end.norm() > 0) || !(goal.norm() > 0)) return std::nullopt;
   const Vec3 u = end.normalized();
   for (size_t k = 0; k < n; ++k) {
@@ -248,7 +306,7 @@ std::optional<std::vector<Pose>> ReachBound::straighten(const Model& model,
   const Quat onto = Quat::FromTwoVectors(e, goal);
   std::vector<Pose> out = poses;
   std::vector<int> moved_with(poses.size(), -1);
-  Vec3 at = path->anchor;
+  Vec3 at = path->anchor.centre;
   for (size_t k = 0; k < n; ++k) {
     const Link& l = path_links[k];
     Pose& p = out[static_cast<size_t>(l.body)];

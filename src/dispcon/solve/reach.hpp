@@ -15,9 +15,13 @@ namespace dispcon {
 // A drag target that no pose of the linkage can meet, by the triangle inequality: a point of the
 // held body is joined to a point that cannot move (the world's, a fixed body's) through a path of
 // point-to-point joints, so it is never farther from it than the path's length (the sum, over the
-// bodies on the path, of the distance between the body's two joint points). Joints that let a
-// point slide (guides) or have no point (couplings, angles alone) give no path; angle limits and
-// closed loops only make the true reach shorter, so what this finds is certain, never all.
+// bodies on the path, of the distance between the body's two joint points). A path may also end
+// at a guide of a part that cannot move (a slider's segment, a ring, a ball, a circle: the flying
+// snake's tail on its rod): its point then stays on that set, and the held point is never
+// farther from the set than the path's length. Guides between moving parts, the other guides
+// (cylinder, polyline) and joints without a point (couplings, angles alone) give no path; angle
+// limits and closed loops only make the true reach shorter, so what this finds is certain,
+// never all.
 // Built once per model revision (the paths depend on the joints only; the ends that cannot move
 // are read from the poses then).
 class ReachBound {
@@ -68,9 +72,20 @@ class ReachBound {
                                               const SolveOptions& options) const;
 
  private:
+  // Where a path ends on what cannot move: a point, or the set a guide keeps its point on
+  // (world coordinates, read from the poses when the bound was built).
+  struct Anchor {
+    GuideKind kind = GuideKind::Point;
+    Vec3 centre = Vec3::Zero();  // the point; the guide's P1
+    Vec3 dir = Vec3::UnitZ();    // the guide's axis (axial) or normal (planar, circle)
+    double min = 0, max = 0;     // the guide's bounds (axial: along dir; planar, sphere: radial)
+    double radius = 0;           // circle
+    // The point of the set nearest to x.
+    Vec3 nearest(const Vec3& x) const;
+  };
   struct Path {
     Vec3 held_point;  // on the held body, local
-    Vec3 anchor;      // the point that cannot move, world
+    Anchor anchor;    // what cannot move
     double length = 0;
     int joints = 0;
     JointId first{-1};
@@ -83,6 +98,7 @@ class ReachBound {
     int body = 0;
     Vec3 local = Vec3::Zero();
     int joint = 0;
+    bool guide = false;  // the joint guides body2's point on a set of body1 (which cannot move)
   };
   std::vector<Node> nodes_;
   // Per source, each node's predecessor on its shortest path (the node it was reached from, on

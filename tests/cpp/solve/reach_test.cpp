@@ -2,8 +2,10 @@
 // near as it can, and the step reporting the distance left (analytic answers).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "dispcon/io/dcl_reader.hpp"
 #include "dispcon/parts/angle.hpp"
@@ -476,6 +478,73 @@ TEST(Reach, SliderPastItsBoundStopsAtTheEnd) {
   EXPECT_LT((r.poses[static_cast<size_t>(slider.value)].x - Vec3(2, 0, 0)).norm(), 1e-9);
   EXPECT_TRUE(r.constraints[0].at_limit);
   expect_unchanged(m, before);
+}
+
+// The flying snake (samples/snake.dcl: five links pinned end to end, the tail's end sliding on a
+// rod of the world between x = -1 and 1), a link's end dragged far above: the bound ends on the
+// rod, so the step is told at once, the tail at the rod's point nearest the target and the links
+// stretched from it (the nearest pose there is: no pose takes the link's end farther from the
+// rod than the links' length). The held solve and the pull took 537-990 iterations here.
+TEST(Reach, SnakeOnItsRodIsToldAtOnce) {
+  ParseResult parsed = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/snake.dcl");
+  ASSERT_TRUE(parsed.ok()) << parsed.messages();
+  Model m = std::move(*parsed.model);
+  ASSERT_TRUE(assemble(m).converged);
+  const std::vector<Pose> before = m.poses();
+  const BodyId s4 = *m.find("s4"), tail = *m.find("tail");
+  Dragger drag(m, s4);
+  // s4's origin is four links (2) from the tail's end, which the rod keeps on x in [-1, 1].
+  for (const Vec3& t : {Vec3(0, 10, 0), Vec3(3, 0, -6), Vec3(-7, 1, 1)}) {
+    SCOPED_TRACE(t.transpose());
+    Pose at = m.body(s4).pose;
+    at.x = t;
+    const SolveResult r = drag.move_to(at);
+    ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+    EXPECT_EQ(r.iterations, 0);
+    const Vec3 rod(std::clamp(t.x(), -1.0, 1.0), 0, 0);
+    EXPECT_NEAR(r.distance_left, (t - rod).norm() - 2, 1e-9);
+    EXPECT_LT((r.poses[static_cast<size_t>(tail.value)].x - rod).norm(), 1e-12);
+    EXPECT_NEAR((r.poses[static_cast<size_t>(s4.value)].x - t).norm(), r.distance_left, 1e-9);
+    expect_unchanged(m, before);
+  }
+}
+
+// At any length: a thousand links on a ring (a planar guide: the first link's origin in the
+// world's z = 0 plane, between 1 and 2 from the origin), the last link's origin dragged far out of
+// reach: told without iterating, the anchor the ring's point nearest the target (its shadow on the
+// plane, brought onto the ring), the links stretched from there toward it.
+TEST(Reach, ThousandLinksOnARingAreToldAtOnce) {
+  constexpr int n = 1000;
+  Model m;
+  std::vector<BodyId> bars;
+  for (int i = 0; i < n; ++i) {
+    Body b;
+    b.name = "bar" + std::to_string(i);
+    b.pose = Pose::from(Vec3(1.5 + i, 0, 0), Vec3::Zero());
+    bars.push_back(m.add_body(b));
+  }
+  Joint ring;
+  ring.body2 = bars[0];
+  ring.guide = Guide{GuideKind::Planar, Vec3::UnitZ(), 1, 2, 0, {}};
+  m.add_joint(ring);
+  for (size_t i = 1; i < bars.size(); ++i) m.add_joint(pin(bars[i - 1], bars[i], Vec3(1, 0, 0)));
+  ASSERT_TRUE(assemble(m).converged);
+  const std::vector<Pose> before = m.poses();
+  const BodyId end = bars.back();
+  Dragger drag(m, end);
+  for (const Vec3& target : {Vec3(-300, 400, 1200), Vec3(0.5, 0, -1500)}) {
+    SCOPED_TRACE(target.transpose());
+    Pose far = m.body(end).pose;
+    far.x = target;
+    const SolveResult r = drag.move_to(far);
+    ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+    EXPECT_EQ(r.iterations, 0);
+    const Vec3 shadow(target.x(), target.y(), 0);
+    const Vec3 anchor = std::clamp(shadow.norm(), 1.0, 2.0) * shadow.normalized();
+    EXPECT_NEAR(r.distance_left, (target - anchor).norm() - (n - 1), 1e-9);
+    EXPECT_LT((r.poses[static_cast<size_t>(bars[0].value)].x - anchor).norm(), 1e-9);
+    expect_unchanged(m, before);
+  }
 }
 
 // The robot arm sample, assembled (its elbow bends 0.2 rad at least: angle limits). Its
