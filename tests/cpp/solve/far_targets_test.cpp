@@ -1,0 +1,242 @@
+// Every sample's every movable body dragged toward targets far out of reach, in one step: a step
+// that cannot be made is told within a few dozen iterations (issue 14: "an unreachable drag target
+// recognised within a few dozen iterations, at any size"), leaves the model bit for bit as it
+// was, and a nearest pose it reports is valid, measured as reported, and no farther from the
+// target than the start. The sweep found the flying snake's 537-990 iterations (its links on a
+// rod: reach.hpp); what it still finds is listed below, each with why.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "dispcon/solve/solver.hpp"
+#include "support/samples.hpp"
+
+namespace dispcon {
+namespace {
+
+// A few dozen: the most a step that cannot be made may take before it says so (the held solve's
+// Newton steps, the pull, the turn: every iteration the step reports).
+constexpr int kFewDozen = 60;
+
+// The targets: the body's origin moved 50 along each axis (far beyond every sample's reach where
+// the sample is tied to the world), and the body turned 2.5 rad about each axis with its origin
+// where it is.
+struct Far {
+  const char* name;
+  Vec3 move;
+  Vec3 turn;
+};
+const Far kTargets[] = {
+    {"+x", Vec3(50, 0, 0), Vec3::Zero()},  {"-x", Vec3(-50, 0, 0), Vec3::Zero()},
+    {"+y", Vec3(0, 50, 0), Vec3::Zero()},  {"-y", Vec3(0, -50, 0), Vec3::Zero()},
+    {"+z", Vec3(0, 0, 50), Vec3::Zero()},  {"-z", Vec3(0, 0, -50), Vec3::Zero()},
+    {"rx", Vec3::Zero(), Vec3(2.5, 0, 0)}, {"ry", Vec3::Zero(), Vec3(0, 2.5, 0)},
+    {"rz", Vec3::Zero(), Vec3(0, 0, 2.5)},
+};
+
+// Steps that still break a rule, by sample, body and target, with the rule they break: each is
+// checked to still break it (a case that passes must leave the list). Not hidden: counted in
+// docs/performance.md ("Issue 14, eighth round: long failing drags"). What they are (the status
+// and iterations in each line's comment, as measured when it was listed):
+// - Farther: a turn whose nearest pose is farther from the target's rotation than the start (the
+//   turn's rows measure a tilt by its sine, which falls again past a right angle: the known fault
+//   of Dragger::turn, performance.md "What falls short").
+// - Iterations, "stalled": the held Newton steps, cut short by the seed's 0.2 rad turn a step,
+//   crawl toward a target they never meet; the pull or the turn stops at its 40 steps still
+//   getting nearer; then the held solve that persists crawls to its stall rule and ends with no
+//   pose. Mostly turns of 2.5 rad and the monocycles' free parts; the vice's jaw is in reach only
+//   by turning its screw 250 times (its pitch 0.2), at 0.2 rad a step.
+// - Iterations, "out-of-reach": a pull or a turn that ends at the nearest pose, but converging
+//   linearly (the pull's one damping for modes of different stiffness, performance.md).
+enum class Breaks { Iterations, Farther };
+struct Known {
+  const char* sample;
+  const char* body;
+  const char* target;
+  Breaks rule;
+};
+const Known kKnown[] = {
+    {"bennett.dcl", "link2", "rz", Breaks::Iterations},               // stalled after 590
+    {"monocycle-push.dcl", "body", "ry", Breaks::Farther},            // out-of-reach after 30
+    {"monocycle-push.dcl", "wheel", "rx", Breaks::Iterations},        // stalled after 602
+    {"monocycle-push.dcl", "wheel", "ry", Breaks::Iterations},        // stalled after 474
+    {"monocycle-push.dcl", "wheel", "rz", Breaks::Iterations},        // stalled after 470
+    {"monocycle-push.dcl", "left-thigh", "rx", Breaks::Iterations},   // stalled after 689
+    {"monocycle-push.dcl", "left-thigh", "ry", Breaks::Iterations},   // stalled after 1026
+    {"monocycle-push.dcl", "left-thigh", "rz", Breaks::Iterations},   // stalled after 1059
+    {"monocycle-push.dcl", "right-thigh", "+z", Breaks::Iterations},  // stalled after 1391
+    {"monocycle-push.dcl", "right-thigh", "rx", Breaks::Iterations},  // out-of-reach after 165
+    {"monocycle-push.dcl", "right-thigh", "rx", Breaks::Farther},     // out-of-reach after 165
+    {"monocycle-push.dcl", "right-thigh", "rz", Breaks::Iterations},  // stalled after 717
+    {"monocycle-push.dcl", "left-leg", "ry", Breaks::Iterations},     // stalled after 453
+    {"monocycle-push.dcl", "right-leg", "ry", Breaks::Iterations},    // stalled after 455
+    {"monocycle-push.dcl", "left-foot", "rx", Breaks::Iterations},    // stalled after 473
+    {"monocycle-push.dcl", "right-foot", "+x", Breaks::Iterations},   // stalled after 801
+    {"monocycle-push.dcl", "right-foot", "-z", Breaks::Iterations},   // stalled after 1261
+    {"monocycle-push.dcl", "right-foot", "ry", Breaks::Farther},      // out-of-reach after 56
+    {"monocycle-push.dcl", "right-foot", "rz", Breaks::Iterations},   // stalled after 520
+    {"monocycle.dcl", "body", "rx", Breaks::Iterations},              // out-of-reach after 370
+    {"monocycle.dcl", "body", "rx", Breaks::Farther},                 // out-of-reach after 370
+    {"monocycle.dcl", "body", "ry", Breaks::Farther},                 // out-of-reach after 39
+    {"monocycle.dcl", "body", "rz", Breaks::Iterations},              // out-of-reach after 396
+    {"monocycle.dcl", "wheel", "ry", Breaks::Farther},                // out-of-reach after 37
+    {"monocycle.dcl", "wheel", "rz", Breaks::Iterations},             // stalled after 697
+    {"monocycle.dcl", "right-thigh", "-y", Breaks::Iterations},       // stalled after 708
+    {"monocycle.dcl", "right-thigh", "rz", Breaks::Iterations},       // stalled after 882
+    {"monocycle.dcl", "left-leg", "rx", Breaks::Iterations},          // stalled after 532
+    {"monocycle.dcl", "left-leg", "ry", Breaks::Iterations},          // stalled after 671
+    {"monocycle.dcl", "right-leg", "rx", Breaks::Iterations},         // out-of-reach after 106
+    {"monocycle.dcl", "right-leg", "rx", Breaks::Farther},            // out-of-reach after 106
+    {"monocycle.dcl", "left-foot", "rx", Breaks::Iterations},         // out-of-reach after 282
+    {"monocycle.dcl", "left-foot", "rx", Breaks::Farther},            // out-of-reach after 282
+    {"monocycle.dcl", "left-foot", "ry", Breaks::Farther},            // out-of-reach after 43
+    {"monocycle.dcl", "left-foot", "rz", Breaks::Iterations},         // stalled after 453
+    {"monocycle.dcl", "right-foot", "rx", Breaks::Farther},           // out-of-reach after 41
+    {"monocycle.dcl", "right-foot", "ry", Breaks::Iterations},        // out-of-reach after 99
+    {"monocycle.dcl", "right-foot", "ry", Breaks::Farther},           // out-of-reach after 99
+    {"otary.dcl", "body", "rx", Breaks::Farther},                     // out-of-reach after 35
+    {"otary.dcl", "body", "ry", Breaks::Farther},                     // out-of-reach after 48
+    {"otary.dcl", "head", "rx", Breaks::Farther},                     // out-of-reach after 20
+    {"otary.dcl", "head", "ry", Breaks::Farther},                     // out-of-reach after 37
+    {"otary.dcl", "tail", "rx", Breaks::Iterations},                  // stalled after 567
+    {"otary.dcl", "tail", "ry", Breaks::Iterations},                  // out-of-reach after 84
+    {"otary.dcl", "tail", "ry", Breaks::Farther},                     // out-of-reach after 84
+    {"otary.dcl", "tray", "rx", Breaks::Farther},                     // out-of-reach after 24
+    {"otary.dcl", "ball", "+x", Breaks::Iterations},                  // stalled after 3315
+    {"otary.dcl", "ball", "-x", Breaks::Iterations},                  // stalled after 694
+    {"otary.dcl", "ball", "+y", Breaks::Iterations},                  // out-of-reach after 130
+    {"otary.dcl", "ball", "-y", Breaks::Iterations},                  // stalled after 662
+    {"otary.dcl", "ball", "+z", Breaks::Iterations},                  // stalled after 493
+    {"otary.dcl", "ball", "-z", Breaks::Iterations},                  // stalled after 493
+    {"peaucellier.dcl", "crank", "rz", Breaks::Iterations},           // out-of-reach after 69
+    {"planetary.dcl", "sun", "rx", Breaks::Iterations},               // out-of-reach after 104
+    {"planetary.dcl", "sun", "ry", Breaks::Iterations},               // out-of-reach after 61
+    {"planetary.dcl", "ring", "ry", Breaks::Iterations},              // out-of-reach after 167
+    {"robot-arm.dcl", "base", "rx", Breaks::Farther},                 // out-of-reach after 10
+    {"robot-arm.dcl", "base", "ry", Breaks::Farther},                 // out-of-reach after 22
+    {"robot-arm.dcl", "base", "rz", Breaks::Farther},                 // out-of-reach after 22
+    {"robot-arm.dcl", "upper", "ry", Breaks::Farther},                // out-of-reach after 25
+    {"robot-arm.dcl", "hand", "rx", Breaks::Farther},                 // out-of-reach after 14
+    {"robot-arm.dcl", "hand", "ry", Breaks::Farther},                 // out-of-reach after 13
+    {"sarrus.dcl", "a1", "ry", Breaks::Farther},                      // out-of-reach after 40
+    {"sarrus.dcl", "a1", "rz", Breaks::Farther},                      // out-of-reach after 4
+    {"sarrus.dcl", "b1", "rx", Breaks::Farther},                      // out-of-reach after 19
+    {"steering.dcl", "knuckle_r", "rz", Breaks::Iterations},          // stalled after 586
+    {"three-gears.dcl", "g2", "rz", Breaks::Iterations},              // stalled after 600
+    {"three-gears.dcl", "g3", "rz", Breaks::Iterations},              // stalled after 570
+    {"vice.dcl", "screw", "+x", Breaks::Iterations},                  // iteration-limit after 71
+    {"vice.dcl", "screw", "-x", Breaks::Iterations},                  // iteration-limit after 71
+    {"vice.dcl", "jaw", "+x", Breaks::Iterations},                    // stalled after 5893
+    {"vice.dcl", "jaw", "-x", Breaks::Iterations},                    // stalled after 5893
+};
+
+bool known(const std::string& sample, const std::string& body, const std::string& target,
+           Breaks rule) {
+  return std::any_of(std::begin(kKnown), std::end(kKnown), [&](const Known& k) {
+    return k.sample == sample && k.body == body && k.target == target && k.rule == rule;
+  });
+}
+
+std::vector<std::string> sample_names() {
+  std::vector<std::string> names;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(DISPCON_SOURCE_DIR) + "/samples")) {
+    if (e.path().extension() == ".dcl") names.push_back(e.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(FarTargets, EverySamplesBodiesStopWithinAFewDozenIterations) {
+  const SolveOptions o;
+  std::set<std::string> skipped;
+  std::set<std::tuple<std::string, std::string, std::string, int>> broken;
+  int failed_steps = 0, out_of_reach = 0, bound_only = 0;
+  const std::vector<std::string> names = sample_names();
+  ASSERT_GE(names.size(), 20u);
+  for (const std::string& name : names) {
+    Model model = test_support::sample(name);
+    if (!assemble(model, o).converged) {
+      skipped.insert(name);
+      continue;
+    }
+    for (int b = 1; b < model.body_count(); ++b) {
+      const BodyId body{b};
+      if (model.body(body).fixed) continue;
+      const std::string body_name = model.body(body).name;
+      for (const Far& far : kTargets) {
+        SCOPED_TRACE(name + " " + body_name + " " + far.name);
+        Model m = model;
+        const std::vector<Pose> before = m.poses();
+        const Pose start = m.body(body).pose;
+        Pose target = start;
+        target.x += far.move;
+        target.q = (quat_from_rotation_vector(far.turn) * start.q).normalized();
+        Dragger drag(m, body, o);
+        const SolveResult r = drag.move_to(target);
+        if (r.converged) {
+          // Made: the body at its target, every joint holding.
+          EXPECT_LT((m.body(body).pose.x - target.x).norm(), 1e-9);
+          for (const ConstraintReport& c : measure(m, m.poses(), o)) EXPECT_TRUE(c.satisfied);
+          continue;
+        }
+        ++failed_steps;
+        // A failure changes nothing.
+        EXPECT_TRUE(same_bits(before, m.poses()));
+        auto rule = [&](Breaks which, bool holds, const std::string& what) {
+          if (known(name, body_name, far.name, which)) {
+            broken.insert({name, body_name, far.name, static_cast<int>(which)});
+            EXPECT_FALSE(holds) << "listed as breaking it, but " << what
+                                << " holds now: take it off kKnown";
+          } else {
+            EXPECT_TRUE(holds) << what << " (" << to_string(r.status) << ", " << r.iterations
+                               << " iterations: " << r.message << ")";
+          }
+        };
+        rule(Breaks::Iterations, r.iterations <= kFewDozen,
+             "told within " + std::to_string(kFewDozen) + " iterations");
+        if (r.status != SolveStatus::OutOfReach) continue;
+        ++out_of_reach;
+        ASSERT_EQ(r.poses.size(), before.size());
+        const Pose& at = r.poses[static_cast<size_t>(b)];
+        const double distance = (at.x - target.x).norm();
+        if (distance == 0 && r.distance_left > o.tolerance) {
+          // The reach bound alone (Dragger::move_to: the pull did not settle), said as such: the
+          // poses are the model's with the body at its target, no nearest pose (distance_left is
+          // how far a joint point of the body at its target stays beyond its path's reach).
+          ++bound_only;
+          EXPECT_NE(r.message.find("stays at least"), std::string::npos) << r.message;
+          continue;
+        }
+        // The nearest pose: valid, measured as reported, and no farther than where it began.
+        for (const ConstraintReport& c : measure(m, r.poses, o)) EXPECT_TRUE(c.satisfied);
+        EXPECT_NEAR(r.distance_left, distance, 1e-6);
+        bool nearer = distance <= (start.x - target.x).norm() + o.tolerance;
+        if (r.angle_left > 0) {
+          const double angle = at.q.angularDistance(target.q);
+          EXPECT_NEAR(r.angle_left, angle, 1e-6);
+          nearer = nearer && angle <= start.q.angularDistance(target.q) + o.tolerance;
+        }
+        rule(Breaks::Farther, nearer, "a nearest pose no farther from the target than the start");
+      }
+    }
+  }
+  // Only the sample meant not to assemble is left out (its joints conflict: samples/README.md).
+  EXPECT_EQ(skipped, std::set<std::string>{"conflicting.dcl"});
+  // Every listed case was met (a sample or body renamed would otherwise hide it).
+  EXPECT_EQ(broken.size(), std::size(kKnown));
+  // The sweep is exercised: most targets are out of reach.
+  EXPECT_GT(failed_steps, 300);
+  EXPECT_GT(out_of_reach, 250);
+  std::printf("%d steps failed, %d out of reach, %d of them the bound alone\n", failed_steps,
+              out_of_reach, bound_only);
+}
+
+}  // namespace
+}  // namespace dispcon
