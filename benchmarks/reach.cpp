@@ -30,6 +30,12 @@
 //                               turned 1.5 rad: out of reach by its rotation, 0.5 rad left
 //   BM_DragStep_TurnAgainstCone the robot arm's hand turned 2.5 rad about z against its wrist's
 //                               cone and twist: the swing stopped at the cone's edge
+//   BM_DragStep_SnakeFar/<body> the flying snake (samples/snake.dcl, its tail sliding on a rod
+//                               between x = -1 and 1) held by body 4, 5 or 6 (s3, s4, head) at
+//                               (0, 10, 0), far out of reach: out_of_reach 1 when the step says
+//                               so (its nearest pose: the links stretched up from the rod's
+//                               middle), 0 when it fails otherwise (before the eighth round:
+//                               stalled after 514-990 iterations, no pose)
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -305,5 +311,27 @@ void BM_DragStep_TurnAgainstCone(benchmark::State& state) {
   out_of_reach_step(state, m, hand, at);
 }
 BENCHMARK(BM_DragStep_TurnAgainstCone)->Unit(benchmark::kMicrosecond);
+
+void BM_DragStep_SnakeFar(benchmark::State& state) {
+  Model m = bench::sample("snake.dcl");
+  assemble(m);
+  const BodyId held{static_cast<int>(state.range(0))};
+  Pose at = m.body(held).pose;
+  at.x = Vec3(0, 10, 0);
+  Dragger drag(m, held);
+  int iterations = 0;
+  bool out = false;
+  double distance = 0;
+  for (auto _ : state) {
+    const SolveResult r = drag.move_to(at);
+    iterations = r.iterations;
+    out = r.status == SolveStatus::OutOfReach;
+    distance = r.distance_left;
+  }
+  state.counters["iterations"] = iterations;
+  state.counters["out_of_reach"] = out;
+  state.counters["distance"] = distance;
+}
+BENCHMARK(BM_DragStep_SnakeFar)->DenseRange(4, 6)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
