@@ -96,6 +96,10 @@ struct Joint {
   std::optional<AngleSpec> angle;
   std::optional<TwistSpec> twist;  // requires angle
   std::optional<CouplingSpec> coupling;
+  // Engine-internal, not in the format (nothing reads or writes it): object2's rotation held
+  // equal to object1's, measured by the angle between them (parts/same_rotation.hpp). Only
+  // Dragger::turn makes one, toward a drag's target rotation; no angle, twist or coupling with it.
+  bool same_rotation = false;
 
   std::optional<double> move;  // mu12 in [0, 1]: body1's share of a translation
   double t0 = -kInf;           // active while t0 <= t <= t1

@@ -240,8 +240,10 @@ JointId Model::add_joint(Joint j) {
     j.has_hinge = true;
     j.guide.reset();
   }
-  if (!j.has_translation() && !j.angle && !j.coupling)
+  if (!j.has_translation() && !j.angle && !j.coupling && !j.same_rotation)
     fail("", "no component: give a hinge, a translation guide, an angle or a coupling");
+  if (j.same_rotation && (j.angle || j.coupling))
+    fail("", "a same rotation takes no angle, twist or coupling");
   if (j.twist && !j.angle) fail("twist", "twist needs an angle (it uses the angle's vectors)");
   const JointId id{static_cast<int>(joints_.size())};
   std::vector<ModelWarning> clamped;  // kept only if the joint is accepted

@@ -8,7 +8,8 @@
 //   dR1 = +tau A1 h,  dR2 = -tau A2 h,  tau = wrap(twist - target) / (h.A1 h + h.A2 h),
 // which conserves the pair's angular momentum; the seed turns each solid about its own a_i, the
 // same rotation when the axes are aligned (the common case, and the one of a weld, 4.2.3).
-// Row: h . (dR2 - dR1), exact to first order when a1 = a2.
+// Row: h . (dR2 - dR1), exact to first order when a1 = a2 (its whole first order where the
+// angle part lets the axes tilt apart: twist_rows' `tilted`).
 #pragma once
 
 #include "dispcon/parts/nearest.hpp"
@@ -26,7 +27,9 @@ void twist_rotations(const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3&
                      double max, const Mobility& body1, const Mobility& body2, Vec3& dR1,
                      Vec3& dR2);
 
+// `tilted`: the axes may stand apart (the angle part allows a tilt: a ball joint's cone), and
+// the row is the twist's whole first order; else h . (dR2 - dR1), exact when they are aligned.
 PartRows twist_rows(const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2, double min,
-                    double max, BoundTest bound = {}, bool jacobian = true);
+                    double max, BoundTest bound = {}, bool jacobian = true, bool tilted = false);
 
 }  // namespace dispcon

@@ -12,6 +12,7 @@
 #include "dispcon/parts/point_to_point.hpp"
 #include "dispcon/parts/polyline.hpp"
 #include "dispcon/parts/ring.hpp"
+#include "dispcon/parts/same_rotation.hpp"
 #include "dispcon/parts/segment.hpp"
 #include "dispcon/parts/sphere.hpp"
 #include "dispcon/parts/twist.hpp"
@@ -245,6 +246,11 @@ double SolverState::residual_at(const JointState& js, const JointGeometry& g) co
   }
   if (j.coupling)
     r = std::max(r, std::abs(coupling_residual(coupling(js, false), js.last, js.phase)));
+  if (j.same_rotation) {
+    r = std::max(r, rotation_between(bodies[static_cast<size_t>(js.b1)].q,
+                                     bodies[static_cast<size_t>(js.b2)].q)
+                        .norm());
+  }
   return r;
 }
 
@@ -286,10 +292,15 @@ void SolverState::rows_at(const JointState& js, const JointGeometry& g, BoundTes
     new (&out[1]) PartRows(angle_rows(g.a1, g.a2, j.angle->min, j.angle->max, bound, jacobian));
   }
   if (j.twist) {
-    new (&out[2])
-        PartRows(twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max, bound, jacobian));
+    new (&out[2]) PartRows(twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max, bound,
+                                      jacobian, j.angle->max > 0));
   }
   if (j.coupling) new (&out[3]) PartRows(coupling_rows(coupling(js, true), js.last, js.phase));
+  // (In the angle's slot: a same rotation has none.)
+  if (j.same_rotation) {
+    new (&out[1]) PartRows(same_rotation_rows(bodies[static_cast<size_t>(js.b1)].q,
+                                              bodies[static_cast<size_t>(js.b2)].q, jacobian));
+  }
 }
 
 // The rotations one joint proposes (seed 4.2.3 order): the translation part's eq. 18 first,
@@ -309,6 +320,11 @@ void SolverState::propose_rotations(const JointState& js, Vec3& dR1, Vec3& dR2) 
   if (j.twist) {
     twist_rotations(rotated(dR1, g.a1), rotated(dR2, g.a2), rotated(dR1, g.b1), rotated(dR2, g.b2),
                     j.twist->min, j.twist->max, m1, m2, dR1, dR2);
+  }
+  if (j.same_rotation) {
+    same_rotation_rotations(quat_from_rotation_vector(dR1) * bodies[static_cast<size_t>(js.b1)].q,
+                            quat_from_rotation_vector(dR2) * bodies[static_cast<size_t>(js.b2)].q,
+                            m1, m2, dR1, dR2);
   }
   // The coupling's impulse, rotation half (its translation half follows in propose_translations).
   if (j.coupling) {

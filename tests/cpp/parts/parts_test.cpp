@@ -111,6 +111,18 @@ std::vector<Case> cases() {
          j.twist = TwistSpec{Vec3(1, 0, 0), Vec3(0, 1, 0), -0.3, 0.2};
        },
        true, true},
+      // A ball joint's twist (robot-arm.dcl's wrist): the axes tilt apart within the cone, and
+      // the twist row is its whole first order (twist_rows' `tilted`). The seed's turn about
+      // the bisector is exact only for aligned axes.
+      {"twist_ball",
+       [](Joint& j) {
+         j.angle = AngleSpec{Vec3(1, 0, 0), Vec3(1, 0, 0), 0, 0.5};
+         j.twist = TwistSpec{Vec3(0, 1, 0), Vec3(0, 1, 0), -0.3, 0.2};
+       },
+       false},
+      // Dragger::turn's: its rows are the rotation vector between the two, with the square root
+      // of the angle's Hessian (checked below by the gradient they give).
+      {"same_rotation", [](Joint& j) { j.same_rotation = true; }},
   };
 }
 
@@ -203,7 +215,26 @@ TEST(Parts, JacobianRowsMatchFiniteDifferences) {
           ++total;
         }
       }
-      if (rows[2].count == 1 && j.twist) {
+      if (rows[1].count == 3) {
+        // A same rotation's rows r, J: J^T r is the gradient of theta^2 / 2, theta the angle
+        // between the two rotations.
+        auto half_square = [](const SolverState& at) {
+          return 0.5 * at.bodies[2].q.angularDistance(at.bodies[1].q) *
+                 at.bodies[2].q.angularDistance(at.bodies[1].q);
+        };
+        double slope = 0;
+        for (int k = 0; k < 3; ++k) slope += rows[1].residual[k] * rows[1].J[k].dot(dq.transpose());
+        const double fd = (half_square(moved) - half_square(s)) / h;
+        EXPECT_NEAR(slope, fd, 1e-4 * (1 + std::abs(fd)));
+        ++total;
+      }
+      if (rows[2].count == 1 && j.twist && j.angle->max > 0) {
+        // Tilted axes: the row is the twist's whole first order.
+        const double t0 = twist_angle(g0.a1, g0.a2, g0.b1, g0.b2);
+        const double t1 = twist_angle(g1.a1, g1.a2, g1.b1, g1.b2);
+        EXPECT_NEAR(rows[2].J[0] * dq, (t1 - t0) / h, 1e-4 * (1 + std::abs(t1 - t0) / h));
+        ++total;
+      } else if (rows[2].count == 1 && j.twist) {
         const double t0 = twist_angle(g0.a1, g0.a2, g0.b1, g0.b2);
         const double t1 = twist_angle(g1.a1, g1.a2, g1.b1, g1.b2);
         // Only the rotation about the common axis is first-order exact for the twist row.
