@@ -210,10 +210,13 @@ class Dragger {
   //   pose, distance_left how far the body's origin stays from the target's there, and its
   //   constraints what holding the body at its target leaves open.
   // - When the origin got there, the body's rotation is pulled toward the target's with the
-  //   origin held (a turn past a limit): OutOfReach at the nearest pose, angle_left the angle
-  //   left; else the held solve that persists (seed iterations, the stall rule) from the pose
-  //   the pull reached (from where the step began when a pull was still getting nearer after 40
-  //   iterations, a nearly stretched linkage), the turn's pose if that one does not converge.
+  //   origin held (a turn past a limit), the angle between the rotations made least:
+  //   OutOfReach at the nearest pose, angle_left the angle left, no more than at the start;
+  //   IterationLimit with angle_left set when its 80 steps ran out still getting nearer (no
+  //   nearest claimed, the held solve not run); else the held solve that persists (seed
+  //   iterations, the stall rule) from the pose the pull reached (from where the step began
+  //   when a pull was still getting nearer after 40 iterations, a nearly stretched linkage),
+  //   the turn's pose if that one does not converge.
   SolveResult move_to(const Pose& target);
 
  private:
