@@ -8,8 +8,9 @@ a drive that locks on the way stops there and says where."""
 import FreeCADGui as Gui
 
 from .. import operations, panels
+from .base import TransactionPanel
 from ..objects import joints
-from ..qt import QtGui, QtWidgets, is_alive
+from ..qt import QtGui, QtWidgets
 from ..resources import icon_path
 from .joint import markers_icon, quantity_box, raw
 
@@ -21,7 +22,7 @@ def drivable_joints(asm):
     return [j for j in joints(asm) if operations.drivable(j)]
 
 
-class DrivePanel:
+class DrivePanel(TransactionPanel):
     """The task panel that drives one joint of `asm` (`joint`, else the first drivable one)."""
 
     def __init__(self, asm, joint=None):
@@ -155,44 +156,13 @@ class DrivePanel:
             self.pending = False
             self._changed()
 
-    def _say(self, text, error=False):
-        self.message.setText(text)
-        self.message.setStyleSheet("color: #cc0000;" if error else "")
-
-    def ok_button(self):
-        return panels.ok_button(self.form)
-
-    def _set_ok(self, enabled):
-        button = self.ok_button()
-        if button is not None:
-            button.setEnabled(enabled)
-
-    def _gone(self):
-        """True once its document or its form is gone (FreeCAD closes a task dialog without
-        asking it when the document closes)."""
-        try:
-            self.doc.Name
-            if is_alive(self.form):
-                return False
-        except ReferenceError:
-            pass
-        self.closed = True
-        return True
-
     # -- the task dialog ----------------------------------------------------------------------
-    def getStandardButtons(self):
-        return int(QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel)
-
     def accept(self):
         bad = self.problem()
         if bad:
             self._say(bad, True)
             return False
         self._close(commit=True)
-        return True
-
-    def reject(self):
-        self._close(commit=False)
         return True
 
     def _close(self, commit):

@@ -7,7 +7,6 @@ aborts it, which removes a new joint or gives an edited one (and the parts) back
 
 Only the fields that apply to the chosen type are shown; lengths and angles are FreeCAD quantity
 spin boxes (mm, deg). A min above its max is said in the panel and disables OK."""
-import FreeCAD as App
 import FreeCADGui as Gui
 
 from .. import engine, geometry, markers, operations, panels
@@ -15,7 +14,8 @@ from ..guide import PICK
 from ..adapter import offered_types
 from ..objects import COUPLINGS, LENGTH_PHASE, phase_value
 
-from ..qt import QtCore, QtGui, QtWidgets, is_alive
+from ..qt import QtCore, QtGui, QtWidgets
+from .base import TransactionPanel
 
 # Which groups of fields each type shows.
 FIELDS = {
@@ -56,7 +56,7 @@ def raw(box):
     return float(box.property("rawValue"))
 
 
-class JointPanel:
+class JointPanel(TransactionPanel):
     """The task panel of a new joint (asm, joint_type, refs) or of an existing one (joint)."""
 
     def __init__(self, asm, joint_type=None, refs=(), joint=None):
@@ -276,19 +276,10 @@ class JointPanel:
         self._say("Pick %s." % PICK[self.type_box.currentText()])
         self._set_ok(False)
 
-    def _gone(self):
-        """True, and the panel stops listening, once its document or its form is gone (FreeCAD
-        closes a task dialog without asking it when the document closes)."""
-        try:
-            self.doc.Name
-            if is_alive(self.form):
-                return False
-        except ReferenceError:
-            pass
-        self.closed = True
+    def _forget(self):
+        """A panel whose document or form is gone stops listening and drops its preview."""
         self._hide_preview()
         Gui.Selection.removeObserver(self)
-        return True
 
     def addSelection(self, doc, name, sub, pos):
         if self._gone() or not self.picking or not sub or doc != self.doc.Name:
@@ -454,32 +445,13 @@ class JointPanel:
             self._say("The parts cannot be placed so: %s. OK keeps the joint anyway." % r.message, True)
         Gui.updateGui()
 
-    def _say(self, text, error=False):
-        self.message.setText(text)
-        self.message.setStyleSheet("color: #cc0000;" if error else "")
-
-    def ok_button(self):
-        return panels.ok_button(self.form)
-
-    def _set_ok(self, enabled):
-        button = self.ok_button()
-        if button is not None:
-            button.setEnabled(enabled)
-
     # -- the task dialog ----------------------------------------------------------------------
-    def getStandardButtons(self):
-        return int(QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel)
-
     def accept(self):
         bad = self.problem()
         if bad or self.joint is None:
             self._say(bad or "Pick two references first.", True)
             return False
         self._close(commit=True)
-        return True
-
-    def reject(self):
-        self._close(commit=False)
         return True
 
     def _close(self, commit):
