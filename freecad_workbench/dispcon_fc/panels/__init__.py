@@ -20,6 +20,14 @@ def show(panel):
     return panel
 
 
+def current(kind):
+    """The panel of class `kind` open now, or None."""
+    panel = last_panel
+    if isinstance(panel, kind) and not panel.closed and Gui.Control.activeDialog():
+        return panel
+    return None
+
+
 def ok_button(form):
     """The task view's OK button of the panel whose form is `form`: the nearest one up from the
     form (a closed dialog's may still be there, waiting for deletion), or None."""

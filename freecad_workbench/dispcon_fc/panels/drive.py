@@ -194,8 +194,5 @@ def open_panel(asm, joint=None):
 
 def current():
     """The Drive panel open now, or None."""
-    panel = panels.last_panel
-    if isinstance(panel, DrivePanel) and not panel.closed and Gui.Control.activeDialog():
-        return panel
-    return None
+    return panels.current(DrivePanel)
 

@@ -501,7 +501,4 @@ def open_panel(joint=None, asm=None, joint_type=None, refs=()):
 
 def current():
     """The joint panel open now, or None."""
-    panel = panels.last_panel
-    if isinstance(panel, JointPanel) and not panel.closed and Gui.Control.activeDialog():
-        return panel
-    return None
+    return panels.current(JointPanel)
