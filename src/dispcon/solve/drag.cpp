@@ -336,22 +336,20 @@ SolveResult Dragger::turn(const Pose& target, const std::vector<Pose>& from) {
   // Never farther than where it began (the pull keeps only steps that get nearer; its last
   // correction back onto the joints could move it by their tolerance): else the start itself.
   const double began = from[held].q.angularDistance(target.q);
+  const std::string& name = model_.body(body_).name;
   std::ostringstream msg;
-  msg << "out of reach: '" << model_.body(body_).name << "' stays ";
   if (r.angle_left > began) {
     r.status = SolveStatus::IterationLimit;
     r.poses = from;
     r.angle_left = began;
-    msg.str("");
-    msg << "turn: '" << model_.body(body_).name << "' found no pose nearer its target's rotation "
-        << "than where it began, " << began << " rad from it (no nearest pose is claimed)";
+    msg << "turn: '" << name << "' found no pose nearer its target's rotation than where it "
+        << "began, " << began << " rad from it (no nearest pose is claimed)";
   } else if (r.status == SolveStatus::OutOfReach) {
-    msg << r.angle_left
+    msg << "out of reach: '" << name << "' stays " << r.angle_left
         << " rad from its target's rotation at the nearest pose its joints allow (its origin at "
            "the target's)";
   } else {
-    msg.str("");
-    msg << "turn: '" << model_.body(body_).name << "' is still " << r.angle_left
+    msg << "turn: '" << name << "' is still " << r.angle_left
         << " rad from its target's rotation after " << r.iterations
         << " iterations, getting nearer when they ran out (its origin at the target's; no "
            "nearest pose is claimed)";
