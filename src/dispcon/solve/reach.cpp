@@ -9,6 +9,8 @@
 #include <queue>
 #include <utility>
 
+#include "dispcon/solve/state.hpp"
+
 namespace dispcon {
 
 namespace {
@@ -19,30 +21,12 @@ bool bounds_a_point(GuideKind kind) {
          kind == GuideKind::Circle;
 }
 
-// A unit vector across `n` (unit).
-Vec3 across(const Vec3& n) {
-  return (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
-}
-
 }  // namespace
 
 Vec3 ReachBound::Anchor::nearest(const Vec3& x) const {
-  const Vec3 v = x - centre;
-  switch (kind) {
-    case GuideKind::Axial:
-      return centre + std::clamp(v.dot(dir), min, max) * dir;
-    case GuideKind::Sphere:
-    case GuideKind::Planar:
-    case GuideKind::Circle: {
-      const Vec3 w = kind == GuideKind::Sphere ? v : Vec3(v - v.dot(dir) * dir);
-      const double r = w.norm();
-      const double at = kind == GuideKind::Circle ? radius : std::clamp(r, min, max);
-      if (!(at > 0)) return centre;
-      return centre + at * (r > 0 ? Vec3(w / r) : across(dir));
-    }
-    default:
-      return centre;
-  }
+  if (!guide) return centre();
+  const Vec3 local = frame.q.conjugate() * (x - frame.x);
+  return frame.apply(nearest_on_guide(p1, &*guide, local).q);
 }
 
 ReachBound::ReachBound(const Model& model, BodyId held, double time)
@@ -69,16 +53,8 @@ ReachBound::ReachBound(const Model& model, BodyId held, double time)
     on_body[static_cast<size_t>(nodes[k].body)].push_back(static_cast<int>(k));
   // What a path ending at node n (on a part that cannot move) ends on.
   auto anchor = [&](const Node& n) {
-    const Pose& at = model.body(BodyId{n.body}).pose;
-    Anchor a;
-    a.centre = at.apply(n.local);
-    if (!n.guide) return a;
-    const Guide& g = *model.joint(JointId{n.joint}).guide;
-    a.kind = g.kind;
-    a.dir = (at.q * g.dir).normalized();
-    a.min = g.kind == GuideKind::Axial ? g.min : std::max(0.0, g.min);
-    a.max = g.max;
-    a.radius = g.radius;
+    Anchor a{model.body(BodyId{n.body}).pose, n.local, std::nullopt};
+    if (n.guide) a.guide = model.joint(JointId{n.joint}).guide;
     return a;
   };
 
@@ -235,8 +211,8 @@ std::optional<std::vector<Pose>> ReachBound::straighten(const Model& model,
   double least = HUGE_VAL;
   for (const Path& p : paths_) {
     // (A path that ends on a guide's set is straightened about no point: left out.)
-    if (p.anchor.kind != GuideKind::Point) continue;
-    const double slack = p.length - (target.apply(p.held_point) - p.anchor.centre).norm();
+    if (p.anchor.guide) continue;
+    const double slack = p.length - (target.apply(p.held_point) - p.anchor.centre()).norm();
     if (slack < least) least = slack, path = &p;
   }
   if (!path) return std::nullopt;
@@ -254,7 +230,7 @@ std::optional<std::vector<Pose>> ReachBound::straighten(const Model& model,
     dir[k] = length[k] > 0 ? Vec3(v / length[k]) : Vec3::Zero();
     end += v;
   }
-  const Vec3 goal = target.apply(path->held_point) - path->anchor.centre;
+  const Vec3 goal = target.apply(path->held_point) - path->anchor.centre();
   if (!(end.norm() > 0) || !(goal.norm() > 0)) return std::nullopt;
   const Vec3 u = end.normalized();
   for (size_t k = 0; k < n; ++k) {
@@ -306,7 +282,7 @@ std::optional<std::vector<Pose>> ReachBound::straighten(const Model& model,
   const Quat onto = Quat::FromTwoVectors(e, goal);
   std::vector<Pose> out = poses;
   std::vector<int> moved_with(poses.size(), -1);
-  Vec3 at = path->anchor.centre;
+  Vec3 at = path->anchor.centre();
   for (size_t k = 0; k < n; ++k) {
     const Link& l = path_links[k];
     Pose& p = out[static_cast<size_t>(l.body)];

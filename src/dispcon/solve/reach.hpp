@@ -75,12 +75,11 @@ class ReachBound {
   // Where a path ends on what cannot move: a point, or the set a guide keeps its point on
   // (world coordinates, read from the poses when the bound was built).
   struct Anchor {
-    GuideKind kind = GuideKind::Point;
-    Vec3 centre = Vec3::Zero();  // the point; the guide's P1
-    Vec3 dir = Vec3::UnitZ();    // the guide's axis (axial) or normal (planar, circle)
-    double min = 0, max = 0;     // the guide's bounds (axial: along dir; planar, sphere: radial)
-    double radius = 0;           // circle
-    // The point of the set nearest to x.
+    Pose frame;                  // the pose of the part that cannot move
+    Vec3 p1 = Vec3::Zero();      // the joint's point on it, local
+    std::optional<Guide> guide;  // the set about p1 its point stays on; none: p1 alone
+    Vec3 centre() const { return frame.apply(p1); }
+    // The point of the set nearest to x (world; nearest_on_guide's, in the part's frame).
     Vec3 nearest(const Vec3& x) const;
   };
   struct Path {

@@ -21,28 +21,6 @@ namespace dispcon {
 
 namespace {
 
-Nearest nearest_on_guide(const Joint& j, const Vec3& p, BoundTest bound) {
-  if (!j.guide) return nearest_on_point(j.p1, p);
-  const Guide& g = *j.guide;
-  switch (g.kind) {
-    case GuideKind::Point:
-      return nearest_on_point(j.p1, p);
-    case GuideKind::Axial:
-      return nearest_on_segment(j.p1, g.dir, g.min, g.max, p, bound);
-    case GuideKind::Planar:
-      return nearest_on_ring(j.p1, g.dir, g.min, g.max, p, bound);
-    case GuideKind::Sphere:
-      return nearest_in_sphere(j.p1, g.min, g.max, p, bound);
-    case GuideKind::Circle:
-      return nearest_on_circle(j.p1, g.dir, g.radius, p);
-    case GuideKind::Cylinder:
-      return nearest_on_cylinder(j.p1, g.dir, g.radius, g.min, g.max, p, bound);
-    case GuideKind::Polyline:
-      return nearest_on_polyline(g.points, p, bound);
-  }
-  return nearest_on_point(j.p1, p);
-}
-
 Vec3 rotated(const Vec3& dR, const Vec3& v) {
   return quat_from_rotation_vector(dR) * v;
 }
@@ -52,6 +30,28 @@ Frame frame(const BodyState& b) {
 }
 
 }  // namespace
+
+Nearest nearest_on_guide(const Vec3& p1, const Guide* guide, const Vec3& p, BoundTest bound) {
+  if (!guide) return nearest_on_point(p1, p);
+  const Guide& g = *guide;
+  switch (g.kind) {
+    case GuideKind::Point:
+      return nearest_on_point(p1, p);
+    case GuideKind::Axial:
+      return nearest_on_segment(p1, g.dir, g.min, g.max, p, bound);
+    case GuideKind::Planar:
+      return nearest_on_ring(p1, g.dir, g.min, g.max, p, bound);
+    case GuideKind::Sphere:
+      return nearest_in_sphere(p1, g.min, g.max, p, bound);
+    case GuideKind::Circle:
+      return nearest_on_circle(p1, g.dir, g.radius, p);
+    case GuideKind::Cylinder:
+      return nearest_on_cylinder(p1, g.dir, g.radius, g.min, g.max, p, bound);
+    case GuideKind::Polyline:
+      return nearest_on_polyline(g.points, p, bound);
+  }
+  return nearest_on_point(p1, p);
+}
 
 void BodyState::set_pose(const Pose& pose) {
   // A unit quaternion is taken bit for bit (normalising it again may change its last bits), so
@@ -212,7 +212,7 @@ JointGeometry SolverState::geometry(const JointState& js, BoundTest bound) const
       g.Q = s1.R * j.p1 + s1.x;
     } else {
       const Vec3 local = s1.R.transpose() * (g.P2 - s1.x);
-      g.nearest = nearest_on_guide(j, local, bound);
+      g.nearest = nearest_on_guide(j.p1, &*j.guide, local, bound);
       g.Q = s1.R * g.nearest.q + s1.x;
       for (int k = 0; k < g.nearest.rows; ++k) {
         Vec3& n = g.nearest.normals[static_cast<size_t>(k)];

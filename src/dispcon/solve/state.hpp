@@ -17,6 +17,10 @@ namespace dispcon {
 // What a body needs during a solve, and no more: the largest models hold a hundred thousand of
 // these, which every pass of the iteration reads (416 bytes a body before the physics-only
 // inertia and the Jacobi iteration's sums left it, 288 now).
+// The nearest point of a joint's set to p, and the directions it constrains there (seed 4.1),
+// all in object1's frame: the point p1 itself without a guide, else the guide's set about p1.
+Nearest nearest_on_guide(const Vec3& p1, const Guide* guide, const Vec3& p, BoundTest bound = {});
+
 struct BodyState {
   Quat q = Quat::Identity();
   Mat3 R = Mat3::Identity();
