@@ -9,8 +9,10 @@ here is a document property, so nothing of it is saved into the file.
 
 The glyphs are drawn over the parts (an SoAnnotation), so a joint inside a part stays visible, and
 at one size on the screen whatever the zoom. Markers drawn at one place (the coaxial revolutes of a
-planetary set's centre, two joints on one pin) are set apart on the screen, side by side across
-their axis (stacks()), so each stays readable and pickable."""
+planetary set's centre, two joints on one pin) are set apart side by side across their axis
+(stacks()), and markers that crowd each other on the screen (a planet's axle, its mesh with the
+sun and its mesh with the ring, a few pixels apart at fit-all zoom) are pushed apart there
+(spread()), so each stays readable and pickable at any zoom."""
 import math
 
 import FreeCAD as App
@@ -186,10 +188,13 @@ def _piece(kind, s):
                 pts.append((r * s * math.cos(a + da), r * s * math.sin(a + da), 0))
         sep.addChild(_polyline(pts + pts[:1], 3.0))
     elif kind == "belt":
+        # Two pulleys and the belt round them, within a ring's size (a glyph reaching further
+        # would cross the markers beside it: a planet's mesh and axle).
         sep.addChild(_material(ORANGE))
-        pts = [(s * math.cos(a), s * math.sin(a), 0) for a in (math.radians(d) for d in range(90, 271, 10))]
-        pts += [(2.5 * s + 0.6 * s * math.cos(a), 0.6 * s * math.sin(a), 0)
-                for a in (math.radians(d) for d in range(-90, 91, 10))]
+        pts = [(-0.5 * s + 0.55 * s * math.cos(a), 0.55 * s * math.sin(a), 0)
+               for a in (math.radians(d) for d in range(90, 271, 15))]
+        pts += [(0.75 * s + 0.35 * s * math.cos(a), 0.35 * s * math.sin(a), 0)
+                for a in (math.radians(d) for d in range(-90, 91, 15))]
         sep.addChild(_polyline(pts + pts[:1], 3.0))
     elif kind == "rack":
         sep.addChild(_material(GREEN))
@@ -241,6 +246,9 @@ PIXELS = 14.0
 # The k-th marker of a stack at one place sits this many glyph units (PIXELS pixels each) from
 # the first, across the axis: a ring (radius 1) or a gear (1.15) beside the next with a gap.
 STACK_SPACING = 2.8
+# Markers near each other on the screen are set this many glyph units apart, centre to centre: a
+# gear (1.15) and a ring (1) with their lines' widths and a gap a person sees.
+SCREEN_GAP = 3.3
 
 
 def stacks(frames, tolerance):
@@ -262,6 +270,53 @@ def stacks(frames, tolerance):
                 across = a.cross(App.Vector(0, 1, 0))
             firsts.append([point, across.normalize(), 0])
     return out
+
+
+def spread(anchors, gap, seeds=None, iterations=60):
+    """A layout of markers on the screen: `anchors` are the markers' points in pixels [(x, y)],
+    `seeds` their first offsets (a stack's side by side, or (0, 0)); returns the offsets [(dx, dy)]
+    in pixels that set every two markers at least `gap` apart, each pair that is nearer pushed
+    apart along the line between them, half each, until none is (or `iterations` passes). A
+    marker that nothing crowds keeps its seed; none goes further than its seed's length and
+    2 gaps from its point, so a marker stays beside its joint in a crowd it cannot leave."""
+    n = len(anchors)
+    seeds = seeds or [(0.0, 0.0)] * n
+    pos = [[a[0] + s[0], a[1] + s[1]] for a, s in zip(anchors, seeds)]
+    caps = [math.hypot(*s) + 2.0 * gap for s in seeds]
+    for _ in range(iterations):
+        # Pairs within a gap, found through a grid of gap-sized cells (a drag's hundred
+        # markers spread over the screen are each near a few).
+        cells = {}
+        for i, (x, y) in enumerate(pos):
+            cells.setdefault((math.floor(x / gap), math.floor(y / gap)), []).append(i)
+        crowded = False
+        for (cx, cy), members in cells.items():
+            near = [k for dx in (-1, 0, 1) for dy in (-1, 0, 1) for k in cells.get((cx + dx, cy + dy), ())]
+            for i in members:
+                for k in near:
+                    if k <= i:
+                        continue
+                    dx, dy = pos[k][0] - pos[i][0], pos[k][1] - pos[i][1]
+                    d = math.hypot(dx, dy)
+                    if d >= gap - 1e-9:
+                        continue
+                    crowded = True
+                    if d < 1e-9:  # one point: apart along a direction of their own
+                        a = 2.399963 * (i + k)  # the golden angle: no two pairs alike
+                        dx, dy, d = math.cos(a), math.sin(a), 1.0
+                    push = 0.5 * (gap - d) + 1e-6
+                    pos[i][0] -= dx / d * push
+                    pos[i][1] -= dy / d * push
+                    pos[k][0] += dx / d * push
+                    pos[k][1] += dy / d * push
+        for i in range(n):  # none wanders off its joint
+            ox, oy = pos[i][0] - anchors[i][0], pos[i][1] - anchors[i][1]
+            r = math.hypot(ox, oy)
+            if r > caps[i]:
+                pos[i] = [anchors[i][0] + ox * caps[i] / r, anchors[i][1] + oy * caps[i] / r]
+        if not crowded:
+            break
+    return [(p[0] - a[0], p[1] - a[1]) for p, a in zip(pos, anchors)]
 
 
 def _screen_scaled(child, pixels):
@@ -376,7 +431,8 @@ def joint_frame(joint):
     """The joint's point and axis in world coordinates, from part 1 (the guide's part), or None
     when a reference is missing. A Gears joint's marker sits where the pitch circles touch (the
     centres' distance split as r1 : r2, that is ratio : 1), a Belt's half-way between the
-    pulleys, so it stands apart from the gears' own revolutes."""
+    pulleys, or, a planet in its ring, where they mesh; so it stands apart from the gears' own
+    revolutes."""
     ref = joint.Reference1
     if not ref or ref[0] is None:
         return None
@@ -385,9 +441,31 @@ def joint_frame(joint):
     other = joint.Reference2
     if joint.JointType in ("Gears", "Belt") and other and other[0] is not None and "Ratio" in joint.PropertiesList:
         centre2 = other[0].Placement.multVec(joint.Point2)
+        inside = _internal_mesh(joint, point, centre2) if joint.JointType == "Belt" else None
+        if inside is not None:
+            return inside, axis
         share = joint.Ratio / (1.0 + joint.Ratio) if joint.JointType == "Gears" and joint.Ratio > 0 else 0.5
         point = point + (centre2 - point) * share
     return point, axis
+
+
+def _internal_mesh(joint, centre1, centre2):
+    """Where a Belt that is an internal mesh (a planet in its ring: one picked circle's centre
+    inside the other circle) meshes: on the larger circle, on the side of the smaller one; None
+    for a belt between pulleys apart (or circles no longer there)."""
+    from . import geometry
+
+    try:
+        r1, r2 = (geometry.feature(ref[0], ref[1][0]).radius for ref in (joint.Reference1, joint.Reference2))
+    except Exception:  # an element gone, or not a circle: the solve names it
+        return None
+    if not r1 or not r2:
+        return None
+    d = centre2 - centre1
+    if not 1e-12 < d.Length < max(r1, r2):
+        return None
+    big, small, r = (centre2, centre1, r2) if r2 > r1 else (centre1, centre2, r1)
+    return big + (small - big) * (r / d.Length)
 
 
 def joint_placement(joint):

@@ -6,6 +6,8 @@ red while it is the joint a failed Solve or Check points at. All of that is stat
 the proxies save nothing (Stateless; no property of the document changes), so a saved file never
 carries a highlight; objects.adopt() gives them back to objects whose view proxy a restore lost.
 Double-clicking a joint opens its task panel."""
+import math
+
 import FreeCAD as App
 import FreeCADGui as Gui
 
@@ -41,9 +43,14 @@ class ViewProviderAssembly(_ViewProxy):
         QtCore.QTimer.singleShot(0, self.restack)
 
     def restack(self):
+        """Sets the markers apart: those at one place side by side across their axis (stacks),
+        then, on the screen of the document's 3D view, every two nearer than a gap pushed apart
+        (spread) as the camera sees them now; the camera moving (a zoom, a turn, a fit) lays them
+        out again."""
         self.restack_pending = False
         try:
             group = list(self.Object.Group)
+            doc = self.Object.Document
         except Exception:  # the assembly (or its document) is gone meanwhile
             return
         frames, views = [], {}
@@ -60,8 +67,31 @@ class ViewProviderAssembly(_ViewProxy):
         xs, ys, zs = ([f[1][i] for f in frames] for i in range(3))
         spread = max(max(xs) - min(xs), max(ys) - min(ys), max(zs) - min(zs), 1e-9)
         stacked = markers.stacks(frames, 1e-6 * spread)
+        # Each shift is a world vector in glyph units (PIXELS pixels each on the screen).
+        shifts = {name: across * (k * markers.STACK_SPACING) for name, (k, across) in stacked.items()}
+        screen = _screen(doc)
+        if screen is not None:
+            self._watch(screen.camera)
+            gap = markers.SCREEN_GAP * markers.PIXELS
+            anchors = [screen.pixels(point) for _, point, _ in frames]
+            seeds = [screen.across(shifts[name]) if name in shifts else (0.0, 0.0) for name, _, _ in frames]
+            offsets = markers.spread(anchors, gap, seeds)
+            shifts = {name: screen.world(offset) for (name, _, _), offset in zip(frames, offsets)}
         for name, view in views.items():
-            view.set_stack(*stacked.get(name, (0, None)))
+            view.set_shift(shifts.get(name))
+
+    def _watch(self, camera):
+        """Lays the markers out again whenever `camera` (the 3D view's) moves."""
+        from pivy import coin
+
+        sensor = getattr(self, "camera_sensor", None)
+        if sensor is not None and getattr(self, "camera", None) is camera:
+            return
+        if sensor is not None:
+            sensor.detach()
+        self.camera = camera
+        self.camera_sensor = coin.SoNodeSensor(lambda *_: self.restack_later(), None)
+        self.camera_sensor.attach(camera)
 
     def getIcon(self):
         return icon("Assembly")
@@ -115,7 +145,7 @@ class ViewProviderJoint(_ViewProxy):
         self.error = False
         obj = vobj.Object
         self.marker = markers.Marker(obj.JointType, "dispcon_marker_" + obj.Name)
-        self.stack = (0, None)  # its place in a stack of markers at one point (markers.stacks)
+        self.shift = None  # set off its point, apart from markers near it (the assembly's restack)
         vobj.addDisplayMode(self.marker.root, "Marker")
         self.follow(obj)
 
@@ -145,23 +175,25 @@ class ViewProviderJoint(_ViewProxy):
 
     def follow(self, obj, restack=True):
         """Puts the marker at the joint's point and axis as the parts now stand (set apart from
-        the others at the same place by its stack; the assembly restacks them once idle)."""
+        the others near it by its shift; the assembly lays them out again once idle)."""
         placement = markers.joint_placement(obj)
         if placement is not None:
             self.marker.set_placement(placement)
-            k, across = getattr(self, "stack", (0, None))
-            local = placement.Rotation.inverted().multVec(across) * (k * markers.STACK_SPACING) if k else App.Vector()
-            self.marker.set_offset(local)
+            shift = getattr(self, "shift", None)
+            self.marker.set_offset(placement.Rotation.inverted().multVec(shift) if shift else App.Vector())
         if restack:
             view = _assembly_view(obj)
             if view is not None:
                 view.restack_later()
 
-    def set_stack(self, k, across):
-        """The k-th marker (0: the first, not moved) of a stack at one place, set apart along the
-        world direction `across`."""
-        if (k, across) != getattr(self, "stack", (0, None)):
-            self.stack = (k, across)
+    def set_shift(self, shift):
+        """Sets the marker off its joint's point by `shift`, a world vector in glyph units (None:
+        not moved), as the assembly's layout says."""
+        if shift is not None and shift.Length < 1e-9:
+            shift = None
+        was = getattr(self, "shift", None)
+        if (shift is None) != (was is None) or (shift is not None and (shift - was).Length > 1e-9):
+            self.shift = shift
             self.follow(self.Object, restack=False)
 
     def set_error(self, on):
@@ -227,6 +259,60 @@ class Observer:
             proxy = _joint_view(o)
             if proxy is not None:
                 proxy.set_selected(o.Name in selected)
+
+
+class _Screen:
+    """How the camera of a 3D view shows the world: pixels(point) the point's place on the screen
+    (pixels from the camera's axis, x right, y up), world((dx, dy)) a shift of so many pixels as
+    a world vector in glyph units (markers.PIXELS pixels each), across(shift) the other way."""
+
+    def __init__(self, camera, height_pixels):
+        from pivy import coin
+
+        self.camera = camera
+        rot = camera.orientation.getValue()
+        self.right, self.up, self.forward = (App.Vector(*rot.multVec(coin.SbVec3f(*v)).getValue())
+                                             for v in ((1, 0, 0), (0, 1, 0), (0, 0, -1)))
+        self.eye = App.Vector(*camera.position.getValue().getValue())
+        if camera.isOfType(coin.SoOrthographicCamera.getClassTypeId()):
+            self.per_unit, self.angle = height_pixels / max(camera.height.getValue(), 1e-12), None
+        else:  # perspective: the pixels per unit fall with the depth
+            self.per_unit, self.angle = height_pixels, camera.heightAngle.getValue()
+
+    def _scale(self, point):
+        if self.angle is None:
+            return self.per_unit
+        depth = max((point - self.eye).dot(self.forward), 1e-9)
+        return self.per_unit / (2 * depth * math.tan(0.5 * self.angle))
+
+    def pixels(self, point):
+        d, s = point - self.eye, self._scale(point)
+        return (d.dot(self.right) * s, d.dot(self.up) * s)
+
+    def world(self, offset):
+        return (self.right * offset[0] + self.up * offset[1]) * (1.0 / markers.PIXELS)
+
+    def across(self, shift):
+        """A world shift in glyph units as pixels on the screen, kept at its length when the
+        camera looks along it (a stack seen end on still starts side by side)."""
+        x, y = shift.dot(self.right), shift.dot(self.up)
+        r = math.hypot(x, y)
+        if r < 0.2 * shift.Length:
+            x, y, r = 1.0, 0.0, 1.0
+        return (x / r * shift.Length * markers.PIXELS, y / r * shift.Length * markers.PIXELS)
+
+
+def _screen(doc):
+    """The _Screen of `doc`'s active 3D view, or None (no GUI document, or another kind of view)."""
+    try:
+        gdoc = Gui.getDocument(doc.Name)
+        view = gdoc.ActiveView if gdoc is not None else None
+        if view is None or not hasattr(view, "getCameraNode"):
+            return None
+        height = view.getViewer().getSoRenderManager().getViewportRegion().getViewportSizePixels()[1]
+        return _Screen(view.getCameraNode(), height)
+    except Exception:  # a view closing meanwhile: the world's stacks only
+        return None
 
 
 def _assembly_parts(joint):
