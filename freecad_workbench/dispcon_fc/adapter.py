@@ -8,7 +8,8 @@ import re
 import FreeCAD as App
 
 from . import engine, geometry, subassembly
-from .objects import COUPLINGS, JOINT_TYPES, LENGTH_PHASE, joints, parts, phase_value, set_phase, shape_of
+from .objects import (COUPLINGS, JOINT_TYPES, LENGTH_PHASE, joints, parts, phase_value, remake_phase,
+                      set_phase, shape_of)
 
 
 def _vec(v):
@@ -52,7 +53,7 @@ def missing_part(j, parts_by_name):
 OWN_AXIS = ("circle", "line", "curve", "cylinder", "plane")
 ANCHORS = ("Point1", "Axis1", "Perp1", "Point2", "Axis2", "Perp2")
 LIVE_TYPES = ("Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "PointOnLine", "PointOnPlane",
-              "PointOnCurve", "Angle")
+              "PointOnCurve", "Angle") + COUPLINGS
 
 
 def live_anchors(j):
@@ -63,8 +64,9 @@ def live_anchors(j):
     it. A joint on the whole part keeps what it has. ValueError, naming the joint, when a
     referenced element is gone (FreeCAD renumbers the edges and faces of a changed shape)."""
     out = {name: App.Vector(getattr(j, name)) for name in ANCHORS}
-    if j.JointType not in LIVE_TYPES:  # couplings and Distance keep what they were made with
+    if j.JointType not in LIVE_TYPES:  # a Distance keeps what it was made with
         return out
+    axis1 = None
     for k, ref in (("1", j.Reference1), ("2", j.Reference2)):
         part, subs = ref[0], ref[1]
         sub = subs[0] if subs else ""
@@ -75,6 +77,13 @@ def live_anchors(j):
         except Exception:  # FreeCAD's errors vary (no such element, an edge with no curve)
             raise ValueError("%s: %s has no %s any more, its shape changed: pick that reference again"
                              % (j.Label, part.Label, sub)) from None
+        if k == "1":
+            axis1 = f.axis
+        elif j.JointType == "RackPinion" and f.kind == "plane" and axis1 is not None:
+            # A rack picked by its face travels in it, across the pinion's axis (as made).
+            travel = axis1.cross(f.axis)
+            if travel.Length > 1e-9:
+                f = geometry.Feature(f.point, travel, f.kind)
         point = geometry.to_local(part.Placement, point=f.point)
         stored = out["Point" + k]
         if (point - stored).Length > 1e-9 * max(1.0, stored.Length):
@@ -160,17 +169,18 @@ def distance_kwargs(j, p1, a1, p2, a2):
                      "faces again)" % (j.Label, j.Feature1 or "?", j.Feature2 or "?"))
 
 
-def coupling_kwargs(row, j):
+def coupling_kwargs(row, j, remake=False):
     """A coupling's value under the name its row of the engine's table gives it (coupling_args:
     ratio, radius or pitch first), a screw's hand, and its phase when it is known (PhaseKnown:
-    the engine's, in radians or mm; the engine checks it). Without one, the engine makes the
-    coupling at the poses the parts have, and record_phases keeps what it made."""
+    the engine's, in radians or mm; the engine checks it) and still measured with the geometry it
+    was made with (not `remake`). Without one, the engine makes the coupling at the poses the
+    parts have, and record_phases keeps what it made."""
     takes = row["coupling_args"]
     values = {"ratio": j.Ratio, "radius": j.Radius.Value, "pitch": j.Pitch.Value}
     kw = {takes[0]: values[takes[0]]}
     if "left" in takes:
         kw["left"] = bool(j.LeftHanded)
-    if "phase" in takes and getattr(j, "PhaseKnown", False):
+    if "phase" in takes and getattr(j, "PhaseKnown", False) and not remake:
         kw["phase"] = phase_to_engine(j, phase_value(j))
     return kw
 
@@ -184,10 +194,10 @@ def phase_from_engine(j, value):
     return value if j.JointType in LENGTH_PHASE else math.degrees(value)
 
 
-def joint_kwargs(dispcon, j, anchors=None):
+def joint_kwargs(dispcon, j, anchors=None, remake=False):
     """The joint as add_joint's arguments: its kind, its anchors in each part's frame (`anchors`,
     from live_anchors, or those stored), and those of its limits the kind takes (a revolute keeps
-    no travel set while it was a slider)."""
+    no travel set while it was a slider); a coupling's phase left to the engine when `remake`."""
     a = anchors or {name: getattr(j, name) for name in ANCHORS}
     # Offset: part 2's point sits that far along part 1's axis; Reversed: part 2's axis flipped
     # (part 2 turned over about the twist reference, which stays put).
@@ -212,12 +222,19 @@ def joint_kwargs(dispcon, j, anchors=None):
         limits["cone"] = rad(j.ConeAngle.Value)
     kw.update({name: value for name, value in limits.items() if name in row["limits"]})
     if row.get("coupling"):
-        kw.update(coupling_kwargs(row, j))
+        kw.update(coupling_kwargs(row, j, remake))
     if row["needs_curve"]:
         kw["curve"] = [_vec(p) for p in live_curve(j)]
     if j.Move >= 0:
         kw["move"] = j.Move
     return kw
+
+
+def moved_anchors(j, anchors):
+    """The labels of the parts whose live `anchors` (live_anchors) moved a point or an axis of
+    `j` from those the joint holds ([] when none did)."""
+    return [ref[0].Label for k, ref in (("1", j.Reference1), ("2", j.Reference2))
+            if any(getattr(j, name + k) != anchors[name + k] for name in ("Point", "Axis"))]
 
 
 def _in_body(kw, side, local):
@@ -297,6 +314,13 @@ class Adapter:
             else:
                 active.append(j)
         self.joints = active
+        # Couplings whose parts' geometry moved an axis or a centre since their phase was taken
+        # (a hole moved, a gear made larger): the phase, measured about the old axes, would hold
+        # the parts in a mesh nobody made, so the engine makes it again at the poses the parts
+        # have, and the solve says so by label.
+        self.moved = {j.Name: moved_anchors(j, self.anchors[j.Name, j.Document.Name]) for j in active
+                      if j.JointType in COUPLINGS and getattr(j, "PhaseKnown", False) and j.Document == asm.Document}
+        self.remade = [j for j in active if self.moved.get(j.Name)]
         with self.engine_errors():
             for j in self.joints:
                 self.add_joint(j)
@@ -305,7 +329,7 @@ class Adapter:
         """Adds joint `j` to the model (with the arguments in `changed` in place of its own:
         what an edit would give the engine, which checks them); returns its index."""
         (b1, l1), (b2, l2) = self.frames[j.Reference1[0].Name], self.frames[j.Reference2[0].Name]
-        kw = dict(joint_kwargs(self.dispcon, j, self.anchors[j.Name, j.Document.Name]), **changed)
+        kw = dict(joint_kwargs(self.dispcon, j, self.anchors[j.Name, j.Document.Name], j in self.remade), **changed)
         kw = _in_body(_in_body(kw, "1", l1), "2", l2)
         return self.model.add_joint(b2, object1=b1, label=j.Label, **kw)
 
@@ -420,8 +444,28 @@ class Adapter:
             if phase is None:
                 continue
             value = phase_from_engine(j, phase)
+            if j in self.remade:  # made at these poses: its geometry goes with it
+                self.store_anchors(j)
+                j.PhaseKnown = False
+            if not getattr(j, "PhaseKnown", False) and "MeshOffset" in j.PropertiesList:
+                j.MeshOffset = 0.0  # made at the poses: the mesh as it stands is the one made
             if not getattr(j, "PhaseKnown", False) or abs(phase_value(j) - value) > 1e-12:
                 set_phase(j, value)
+        self.recorded = True
+
+    def remade_message(self):
+        """The couplings whose phase this model made again, by label ("" when none)."""
+        if not self.remade:
+            return ""
+        return "; ".join("made the phase of %s again at the parts' poses (the geometry of %s moved its axis or "
+                         "centre; its mesh offset starts at 0)"
+                         % (j.Label, " and ".join(self.moved[j.Name]))
+                         for j in self.remade)
+
+    def store_anchors(self, j):
+        for name, value in self.anchors[j.Name, j.Document.Name].items():
+            if getattr(j, name) != value:
+                setattr(j, name, value)
 
     def update_joints(self):
         """Stores the geometry the joints were solved with (read from the live shapes) in the
@@ -430,9 +474,9 @@ class Adapter:
         for j in self.joints:
             if j.Document != self.asm.Document:
                 continue
-            for name, value in self.anchors[j.Name, j.Document.Name].items():
-                if getattr(j, name) != value:
-                    setattr(j, name, value)
+            self.store_anchors(j)
+            if j in self.remade and not getattr(self, "recorded", False):
+                remake_phase(j)  # the solve failed: made at the poses by the next model
 
     def mark(self, result):
         for report, j in zip(result.constraints, self.joints):
@@ -458,6 +502,8 @@ class Result:
             self.message = "nothing to solve: %s has no joint" % adapter.asm.Label
         if adapter.skipped:
             self.message += "; " + adapter.skipped_message()
+        if adapter.remade:
+            self.message += "; " + adapter.remade_message()
 
     def __bool__(self):
         return self.converged

@@ -16,8 +16,8 @@ from . import engine, geometry  # noqa: F401  (scripts reach the engine as da.en
 from .adapter import Adapter, Result, live_curve, offered_types  # noqa: F401
 from .objects import (COUPLINGS, JOINT_TYPES, AssemblyProxy, JointProxy, SubAssemblyProxy, adopt,  # noqa: F401
                       adopt_document, instance_parts, is_assembly, is_joint, is_sub_assembly, joints,
-                      part_properties, parts, phase_value, placed_parts, preferences, shape_of, sub_assemblies,
-                      top_assemblies)
+                      mesh_offset, part_properties, parts, phase_value, placed_parts, preferences, shape_of,
+                      sub_assemblies, top_assemblies)
 from .operations import (Drag, PointDrag, Transaction, add_joint, add_part, check,  # noqa: F401
                          create_assembly, drag, drivable, drive, drive_limits, drive_to, drive_value,
                          driven_side, edit_joint, export_dcl,

@@ -146,6 +146,35 @@ class JointProxy(_Proxy):
         _add(obj, "App::PropertyBool", "Violated", "Solve", "not satisfied after the last solve")
         joint_extras(obj)
 
+    def execute(self, obj):
+        """A coupling whose part's geometry moved its axis or centre (the part recomputed: a hole
+        moved, a gear made larger) takes the new geometry and has its phase made again at the
+        poses the parts have, so a saved document never holds a phase measured about axes that
+        are no longer there; the Report view and the status bar say so by label."""
+        if getattr(obj, "JointType", "") not in COUPLINGS or not getattr(obj, "PhaseKnown", False):
+            return
+        from .adapter import live_anchors, moved_anchors
+
+        try:
+            anchors = live_anchors(obj)
+        except Exception:  # a reference gone: the next solve skips the joint and names it
+            return
+        moved = moved_anchors(obj, anchors)
+        if not moved:
+            return
+        for name, value in anchors.items():
+            if getattr(obj, name) != value:
+                setattr(obj, name, value)
+        remake_phase(obj)
+        parts = " and ".join(moved)
+        text = ("dispcon: the geometry of %s moved the axis or centre of %s: its phase is made again at the "
+                "parts' poses (its mesh offset starts at 0)" % (parts, obj.Label))
+        App.Console.PrintWarning(text + "\n")
+        if App.GuiUp:
+            from . import feedback
+
+            feedback.status(text[len("dispcon: "):])
+
     def onDocumentRestored(self, obj):
         self.attach(obj)
         # A document saved by freecadcmd has no view providers' proxies (no GuiDocument.xml):
@@ -236,16 +265,21 @@ def phase_property(obj):
     """Phase in the unit of the joint's type (deg, or mm for a rack or a screw), and PhaseKnown:
     whether it is the engine's (False: the engine makes it at the poses the parts have, as for a
     coupling just made or changed, or one saved by an earlier workbench, whose Phase was a turn of
-    its own part). A Phase of the other unit (the joint's type changed) goes, unknown."""
+    its own part). MeshOffset, the designer's reading of it (mesh_offset). A Phase or MeshOffset
+    of the other unit (the joint's type changed) goes, unknown."""
     want = "App::PropertyDistance" if getattr(obj, "JointType", "") in LENGTH_PHASE else "App::PropertyAngle"
     known = "PhaseKnown" in obj.PropertiesList
-    if "Phase" in obj.PropertiesList and obj.getTypeIdOfProperty("Phase") != want:
-        obj.removeProperty("Phase")
-        if known:
-            obj.PhaseKnown = False
-    _add(obj, want, "Phase", "Coupling", "the constant of the coupling's equation, as the engine holds it: "
-         "ratio x turn1 + turn2 (Gears; Belt: -ratio), or travel - radius x turn (RackPinion; Screw: "
-         "pitch / 2 pi); change it to turn part 2 against part 1")
+    for name in ("Phase", "MeshOffset"):
+        if name in obj.PropertiesList and obj.getTypeIdOfProperty(name) != want:
+            obj.removeProperty(name)
+            if known:
+                obj.PhaseKnown = False
+    _add(obj, want, "MeshOffset", "Coupling",
+         "how far part 2 is turned (deg; a rack's or a screw's part 2: moved, mm) against part 1 from where "
+         "the coupling was made, part 1 held: set it in the joint's panel")
+    _add(obj, want, "Phase", "Coupling", "the engine's constant of the coupling's equation (kept for it; "
+         "MeshOffset is its reading): ratio x turn1 + turn2 (Gears; Belt: -ratio), or travel - radius x turn "
+         "(RackPinion; Screw: pitch / 2 pi), each turn measured from the line of centres")
     # FreeCAD holds an angle property within +-360 deg, and a gear's phase goes round with the
     # turns: the whole turns of part 2 are kept beside it (the engine's phase is Phase + 360 deg
     # x PhaseTurns; a turn of part 2 is the same pose, so Phase alone says where its teeth are).
@@ -253,6 +287,10 @@ def phase_property(obj):
          "Gears, Belt: whole turns of part 2 in the phase (the engine's is Phase + 360 deg x PhaseTurns)")
     _add(obj, "App::PropertyBool", "PhaseKnown", "Coupling", "Phase is the engine's (else made at the poses)")
     obj.setEditorMode("PhaseKnown", 2)  # hidden: the workbench's bookkeeping
+    # Read only: the engine's value changes only with the mesh offset (the panel, the engine's
+    # door), and the offset only so.
+    for name in ("MeshOffset", "Phase", "PhaseTurns"):
+        obj.setEditorMode(name, 1)
 
 
 def phase_value(joint):
@@ -270,6 +308,29 @@ def set_phase(joint, value):
     joint.Phase = value - 360.0 * turns
     joint.PhaseTurns = turns
     joint.PhaseKnown = True
+
+
+def mesh_offset(joint):
+    """The coupling's mesh offset (deg, or mm for a rack or a screw): how far part 2 stands
+    against part 1, part 1 held, from where the coupling was made (0: as made). The engine's
+    phase moves by as much (its equation is ratio x turn1 + turn2, or travel - radius x turn: part
+    2's turn or travel enters it with a factor 1), but it also moves on by whole wrapped turns as
+    the parts go round, which the offset does not: it changes only when the designer sets it."""
+    return joint.MeshOffset.Value if "MeshOffset" in joint.PropertiesList else 0.0
+
+
+def normal_offset(joint_type, value):
+    """A mesh offset as shown: an angle within -180..180 deg (a whole turn of part 2 is the same
+    pose, the same mesh), a length as it is."""
+    return value if joint_type in LENGTH_PHASE else math.remainder(value, 360.0)
+
+
+def remake_phase(joint):
+    """The coupling's phase made again at the poses the parts have at the next model (what it
+    is measured with changed: a ratio, an axis, the geometry): its mesh offset starts at 0."""
+    joint.PhaseKnown = False
+    if "MeshOffset" in joint.PropertiesList:
+        joint.MeshOffset = 0.0
 
 
 def part_properties(obj):

@@ -255,8 +255,9 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
     along part 1's axis; rotation=False and travel=False (edit_joint) take such limits off.
     Distance: distance=length. Couplings: ratio= (Gears, Belt: part 2's turn per turn of part 1;
     by default the picked radii's r1 / r2), radius= (RackPinion: by default the picked circle's),
-    pitch= (Screw: travel per turn), left=True (a left-handed screw), phase=degrees (part 2's turn
-    added to the pose the coupling was made in)."""
+    pitch= (Screw: travel per turn), left=True (a left-handed screw), mesh_offset=degrees (mm for a
+    rack or a screw: part 2 turned, or moved, that far against part 1 from the pose the coupling is
+    made in), phase= (the engine's constant itself, degrees or mm)."""
     _assembly(asm)
     if joint_type not in objects.JOINT_TYPES:
         raise ValueError("unknown joint type %r (expected one of %s)" % (joint_type, ", ".join(objects.JOINT_TYPES)))
@@ -283,13 +284,29 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
         _place(j, joint_type, a, b)
         _set_limits(j, **limits)
         asm.addObject(j)
+        given = limits.get("phase") is not None or limits.get("mesh_offset") is not None
+        if given and joint_type not in objects.COUPLINGS:
+            raise ValueError("%s: only a coupling (%s) has a phase" % (j.Label, ", ".join(objects.COUPLINGS)))
         if joint_type in objects.COUPLINGS and limits.get("phase") is None:
             _record_phases(asm)
-        elif limits.get("phase") is not None:
-            if joint_type not in objects.COUPLINGS:
-                raise ValueError("%s: only a coupling (%s) has a phase" % (j.Label, ", ".join(objects.COUPLINGS)))
+        if limits.get("mesh_offset") is not None:
+            _offset_mesh(asm, j, limits["mesh_offset"])
+        if given:
             Adapter(asm)  # the engine checks the phase given (its door); an error undoes the joint
     return j
+
+
+def _offset_mesh(asm, j, offset):
+    """Sets the coupling's mesh offset (deg, or mm) and the engine's phase by as much: made at
+    the poses first when it is not known yet."""
+    if not j.PhaseKnown:
+        _record_phases(asm)
+    if not j.PhaseKnown:
+        raise ValueError("%s: its assembly does not hold yet, so its mesh has no place to offset from: "
+                         "solve it first" % j.Label)
+    phase = objects.phase_value(j) + offset - objects.mesh_offset(j)
+    objects.set_phase(j, phase)
+    j.MeshOffset = objects.normal_offset(j.JointType, offset)
 
 
 def _place(j, joint_type, a, b):
@@ -330,7 +347,8 @@ def _check_distance(label, joint_type, f1, distance):
 
 
 def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None,
-                  offset=None, distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None):
+                  offset=None, distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None,
+                  mesh_offset=None):
     """Refuses limits that cannot hold, before anything changes; names the joint and the limit."""
     for what, pair, unit in (("rotation", rotation, "deg"), ("travel", travel, "mm"), ("angle", angle, "deg")):
         if pair not in (None, False):
@@ -349,7 +367,7 @@ def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move
 
 
 def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None, offset=None,
-                distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None):
+                distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None, mesh_offset=None):
     # rotation=False, travel=False: no such limits any more.
     if rotation is not None:
         j.HasRotationLimits = rotation is not False
@@ -377,9 +395,12 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None,
             remade |= name in _PHASE_MEASURE and getattr(old, "Value", old) != value
             setattr(j, name, value)
     if phase is not None:
+        # The engine's value given: the mesh offset moves with it (when the old one was known).
+        if getattr(j, "PhaseKnown", False):
+            j.MeshOffset = objects.normal_offset(j.JointType, objects.mesh_offset(j) + phase - objects.phase_value(j))
         objects.set_phase(j, phase)
     elif remade:
-        j.PhaseKnown = False
+        objects.remake_phase(j)
 
 
 # The values a coupling's phase is measured with (its equation's coefficients and axes).
@@ -450,6 +471,15 @@ def edit_joint(joint, joint_type=None, undo_step=True, **limits):
     _check_distance(joint.Label, kind, f1, limits.get("distance"))
     if limits.get("phase") is not None:
         _check_phase(joint, kind, limits["phase"])
+    offset = limits.pop("mesh_offset", None)
+    if offset is not None:
+        if kind not in objects.COUPLINGS:
+            raise ValueError("%s: only a coupling (%s) has a mesh offset" % (joint.Label, ", ".join(objects.COUPLINGS)))
+        # The engine's phase it makes, checked at the model's door before anything changes (a
+        # phase still to be made: the offset alone, which the door checks the same way).
+        known = getattr(joint, "PhaseKnown", False) and limits.get("phase") is None
+        probe = objects.phase_value(joint) - objects.mesh_offset(joint) if known else 0.0
+        _check_phase(joint, kind, probe + offset)
     with _step(joint.Document, "Edit joint", undo_step):
         retyped = joint_type is not None and joint_type != joint.JointType
         if joint_type is not None:
@@ -458,7 +488,12 @@ def edit_joint(joint, joint_type=None, undo_step=True, **limits):
             _place(joint, joint_type, *replace)
         _set_limits(joint, **limits)
         if (retyped or replace) and limits.get("phase") is None:
-            joint.PhaseKnown = False  # measured otherwise now: made again at the poses
+            objects.remake_phase(joint)  # measured otherwise now: made again at the poses
+        if offset is not None:
+            asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
+            if asm is None:
+                raise ValueError("%s is in no assembly" % joint.Label)
+            _offset_mesh(asm, joint, offset)
     return joint
 
 

@@ -122,6 +122,59 @@ def same(p, q, tol=1e-9):
     return (p.Base - q.Base).Length <= tol and p.Rotation.multiply(q.Rotation.inverted()).Angle <= tol
 
 
+def coin_vec(v):
+    from pivy import coin
+
+    return coin.SbVec3f(v.x, v.y, v.z)
+
+
+def rendered(view, path):
+    """The view rendered at its own size as an array of RGB pixels (rows, columns, 3)."""
+    import numpy
+
+    region = view.getViewer().getSoRenderManager().getViewportRegion()
+    w, h = region.getViewportSizePixels()
+    view.saveImage(path, w, h, "White")
+    image = QtGui.QImage(path).convertToFormat(QtGui.QImage.Format_RGB888)
+    os.remove(path)
+    data = bytes(image.constBits())[:image.bytesPerLine() * image.height()]
+    rows = numpy.frombuffer(data, numpy.uint8).reshape(image.height(), image.bytesPerLine())
+    return rows[:, :3 * image.width()].reshape(image.height(), image.width(), 3).astype(numpy.int16)
+
+
+def marker_overlaps(view, joints):
+    """Each joint's marker drawn alone over the parts: ({(a, b): the share of the smaller one's
+    pixels that the other also covers}, {joint name: its pixel count}). Every marker is drawn
+    again afterwards."""
+    from dispcon_fc import viewproviders
+
+    marks = {j.Name: viewproviders.joint_view(j).marker for j in joints}
+    path = os.path.join(OUT, "_alone.png")
+    try:
+        for m in marks.values():
+            m.set_visible(False)
+        settle()
+        background = rendered(view, path)
+        masks = {}
+        for j in joints:
+            marks[j.Name].set_visible(True)
+            settle()
+            masks[j.Name] = (abs(rendered(view, path) - background).max(axis=2) > 40)
+            marks[j.Name].set_visible(False)
+    finally:
+        for m in marks.values():
+            m.set_visible(True)
+        settle()
+    sizes = {n: int(m.sum()) for n, m in masks.items()}
+    overlaps = {}
+    for a in range(len(joints)):
+        for b in range(a + 1, len(joints)):
+            ja, jb = joints[a], joints[b]
+            shared = int((masks[ja.Name] & masks[jb.Name]).sum())
+            overlaps[ja, jb] = shared / max(1, min(sizes[ja.Name], sizes[jb.Name]))
+    return overlaps, sizes
+
+
 class Documents(unittest.TestCase):
     """Each test in a fresh document, closed afterwards."""
 
@@ -359,9 +412,11 @@ class TestMarkers(Documents):
         for j in js[1:]:
             j.ViewObject.Visibility = True
 
-    def test_markers_at_one_place_are_set_apart(self):
-        # The planetary set: the carrier, the sun and the ring turn on one axle, so their three
-        # Revolutes' markers were drawn on top of each other (with the planets' meshes beside).
+    def test_every_planetary_marker_is_readable_at_fit_all_zoom(self):
+        # The planetary set: the carrier, the sun and the ring turn on one axle (three revolutes
+        # at one point), and each planet's axle, its mesh with the sun and its mesh with the ring
+        # sit a few pixels apart at fit-all zoom: every marker is drawn alone and the pixels it
+        # shares with another counted.
         from dispcon_fc import markers, operations, viewproviders
         import couplings
 
@@ -370,39 +425,59 @@ class TestMarkers(Documents):
 
         asm, p = couplings.planetary(self.doc)
         self.assertTrue(operations.solve(asm).converged)
-        self.view().viewIsometric()
+        view = self.view()
+        view.viewIsometric()
         Gui.SendMsgToActiveView("ViewFit")
         settle()
+        settle()
         joints = [o for o in asm.Group if hasattr(o, "JointType")]
+        self.assertEqual(len(joints), 12)
         axle = [j for j in joints if j.JointType == "Revolute" and p["Base"] in (j.Reference1[0], j.Reference2[0])]
         self.assertEqual(len(axle), 3)
+        shot("planetary-markers")
+        overlaps, sizes = marker_overlaps(view, joints)
+        report = sorted(((f, a.Label, b.Label) for (a, b), f in overlaps.items()), reverse=True)
+        print("planetary at fit-all: marker pixels %s; most shared: %s"
+              % (sorted(sizes.values()), ", ".join("%s/%s %.3f" % (a, b, f) for f, a, b in report[:4])))
+        for j in joints:
+            self.assertGreater(sizes[j.Name], 40, "%s's marker is not drawn" % j.Label)
+        for f, a, b in report:
+            # A line crossing a ring shares a few pixels; a marker drawn over another shares many.
+            self.assertLess(f, 0.06, "%s and %s are drawn over each other (%.0f%% of the smaller's pixels)"
+                            % (a, b, 100 * f))
 
         def shift(j):
             """The glyph's shift off the joint's point, in glyph units, in world directions."""
-            view = viewproviders.joint_view(j)
-            return markers.joint_placement(j).Rotation.multVec(view.marker.offset_units())
+            return markers.joint_placement(j).Rotation.multVec(viewproviders.joint_view(j).marker.offset_units())
 
+        # The axle's three stay side by side, at least a gap apart; none goes far from its joint.
         shifts = [shift(j) for j in axle]
         for a in range(3):
             for b in range(a + 1, 3):
-                self.assertGreaterEqual((shifts[a] - shifts[b]).Length, markers.STACK_SPACING - 1e-5,
-                                        "%s and %s are drawn on top of each other" % (axle[a].Label, axle[b].Label))
-        # Each shift lies across the axle (side by side seen along it), and the first stays put
-        # (Coin holds the shift in single precision).
-        self.assertEqual(sorted(round(s.Length / markers.STACK_SPACING, 5) for s in shifts), [0, 1, 2])
-        for s in shifts:
-            self.assertLess(abs(s.z), 1e-5)
-        # Markers alone at their place are not moved.
-        alone = [j for j in joints if j not in axle]
-        self.assertTrue(alone)
-        for j in alone:
-            self.assertLess(shift(j).Length, 1e-9, j.Label)
-        # A part moved: the stack follows (the shifts are across the axle as the carrier turns).
+                self.assertGreaterEqual((shifts[a] - shifts[b]).Length, markers.STACK_SPACING * 0.99)
+        for j in joints:
+            self.assertLess(shift(j).Length, 5 * markers.STACK_SPACING, j.Label)
+        # Zoomed in on one planet, its markers are far apart on the screen: each at its joint.
+        planet = p["Planet1"]
+        near = [j for j in joints if planet in (j.Reference1[0], j.Reference2[0])]
+        self.assertEqual(len(near), 3)
+        camera = view.getCameraNode()
+        centre = planet.Placement.Base
+        camera.position.setValue(camera.position.getValue() + coin_vec(centre - App.Vector(0, 0, 0)))
+        camera.height.setValue(camera.height.getValue() / 5)
+        settle()
+        settle()
+        for j in near:
+            self.assertLess(shift(j).Length, 1e-6, "%s is moved off its joint zoomed in" % j.Label)
+        shot("planetary-markers-near")
+        # A part moved: the layout follows (the axle's three still apart as the carrier turns).
+        view.viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
         operations.drive_to(asm, axle[0], operations.drive_value(axle[0]) + 30.0)
         settle()
-        again = [shift(j) for j in axle]
-        self.assertEqual(sorted(round(s.Length / markers.STACK_SPACING, 5) for s in again), [0, 1, 2])
-        shot("planetary-markers")
+        settle()
+        overlaps, sizes = marker_overlaps(view, joints)
+        self.assertLess(max(overlaps.values()), 0.06)
 
     def test_hovering_over_an_edge_shows_the_marker_to_come(self):
         # The cursor moved over the arm's pin edge (a Coin3D mouse move through the viewer's
@@ -1157,9 +1232,9 @@ class TestCouplings(Documents):
                           and j.Reference2[0] == p["G3"] and j.Reference1[0] == p["G1"]])
 
     @unittest.skipUnless(engine_couples(), "this build's engine has no coupling rows")
-    def test_the_phase_in_the_panel_is_the_engines_and_turns_part_2(self):
+    def test_the_mesh_offset_in_the_panel_turns_part_2_the_engines_phase_beneath(self):
         from dispcon_fc import operations
-        from dispcon_fc.objects import phase_value
+        from dispcon_fc.objects import mesh_offset, phase_value
 
         asm, p = self.gears()
         self.assertTrue(operations.solve(asm).converged)
@@ -1172,8 +1247,11 @@ class TestCouplings(Documents):
 
         panel = jp.current()
         self.assertIsNotNone(panel, "the joint panel did not open")
+        # The offset from the mesh as made (0), in degrees; the engine's phase beside it, read only.
         self.assertIn("°", panel.phase.text())
-        self.assertAlmostEqual(raw_of(panel.phase), phase_value(mesh), places=1)
+        self.assertEqual(raw_of(panel.phase), 0.0)
+        phase = phase_value(mesh)
+        self.assertIn("Engine's phase: %.6g°" % phase, panel.engine_phase.text())
 
         def mesh_value():
             s1 = math.copysign(1, p["G1"].Placement.Rotation.multVec(mesh.Axis1).z)
@@ -1182,21 +1260,24 @@ class TestCouplings(Documents):
                                                     for o in (p["G1"], p["G2"]))]
             return mesh.Ratio * s1 * turn[0] + s2 * turn[1]
 
-        before, phase = mesh_value(), phase_value(mesh)
-        panel.phase.setProperty("rawValue", phase + 12.0)
+        before = mesh_value()
+        panel.phase.setProperty("rawValue", 12.0)
         settle()
         target = raw_of(panel.phase)
+        self.assertEqual(target, 12.0)
         self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
-        self.assertAlmostEqual(phase_value(mesh), target, places=9)
-        # The preview's solve turned the gears so that the equation's constant moved by as much.
-        self.assertAlmostEqual(math.remainder(mesh_value() - before, 2 * math.pi), math.radians(target - phase),
-                               places=7)
+        self.assertEqual(mesh_offset(mesh), 12.0)
+        self.assertAlmostEqual(phase_value(mesh), phase + 12.0, places=9)
+        self.assertIn("Engine's phase: %.6g°" % (phase + 12.0), panel.engine_phase.text())
+        # The preview's solve turned part 2 12 degrees on against part 1.
+        self.assertAlmostEqual(math.remainder(mesh_value() - before, 2 * math.pi), math.radians(12), places=7)
         shot("panel-gears-phase")
         panel.ok_button().click()
         settle()
-        self.assertAlmostEqual(phase_value(mesh), target, places=9)
+        self.assertEqual(mesh_offset(mesh), 12.0)
+        self.assertAlmostEqual(phase_value(mesh), phase + 12.0, places=9)
         self.assertTrue(mesh.PhaseKnown)
-        # A screw's phase is a length.
+        # A screw's offset is a length.
         self.assertTrue(operations.solve(asm).converged)
         mesh.ViewObject.Proxy.doubleClicked(mesh.ViewObject)
         settle()
@@ -1211,7 +1292,8 @@ class TestCouplings(Documents):
         kept = [j for j in asm.Group if getattr(j, "JointType", "") == "Gears"
                 and {j.Reference1[0], j.Reference2[0]} == {p["G1"], p["G2"]}]
         self.assertEqual(len(kept), 1)
-        self.assertAlmostEqual(phase_value(kept[0]), target, places=9)
+        self.assertEqual(mesh_offset(kept[0]), 12.0)
+        self.assertAlmostEqual(phase_value(kept[0]), phase + 12.0, places=9)
 
     @unittest.skipUnless(engine_couples(), "this build's engine has no coupling rows")
     def test_gear_train_markers(self):

@@ -373,6 +373,116 @@ class Samples(unittest.TestCase):
         da.drive(asm, joint_between(asm, p["Plate"], p["G1"]), range(10, 100, 10), callback=turns.sample)
         self.assertAlmostEqual(turns.total["G2"], -0.5 * turns.total["G1"], delta=TOL)
 
+    def test_the_mesh_offset_reads_from_the_pose_made_and_keeps_through_turns(self):
+        # The designer's reading of the phase: 0 where the coupling was made, in degrees of part
+        # 2 (part 1 held); the engine's phase underneath moves with it, and moves on by whole
+        # wrapped turns as the gears go round, which the offset does not.
+        asm, p = self.build("three-gears")
+        mesh = joint_between(asm, p["G1"], p["G2"])
+        self.assertEqual(mesh.getTypeIdOfProperty("MeshOffset"), "App::PropertyAngle")
+        self.assertEqual((da.mesh_offset(mesh), mesh.PhaseKnown), (0.0, True))
+        before, phase = self.mesh_value(mesh, p), da.phase_value(mesh)
+        da.edit_joint(mesh, mesh_offset=12.0)
+        self.assertEqual(da.mesh_offset(mesh), 12.0)
+        self.assertAlmostEqual(da.phase_value(mesh), phase + 12.0, delta=1e-12)
+        self.assertTrue(da.solve(asm).converged)
+        # Part 2 stands 12 degrees on against part 1: the equation's ratio turn1 + turn2 by 12.
+        self.assertAlmostEqual(math.remainder(self.mesh_value(mesh, p) - before, 2 * math.pi), math.radians(12),
+                               delta=1e-8)
+        turns = Turns({n: p[n] for n in ("G1", "G2")})
+        da.drive(asm, joint_between(asm, p["Plate"], p["G1"]), range(10, 371, 10), callback=turns.sample)
+        self.assertAlmostEqual(turns.total["G2"], -0.5 * turns.total["G1"], delta=TOL)
+        wrapped = da.phase_value(mesh)
+        self.assertGreater(abs(wrapped - phase - 12.0), 1.0)  # the engine's moved on with the turns ...
+        self.assertEqual(da.mesh_offset(mesh), 12.0)  # ... the offset did not
+        # Set again from there: the engine's phase moves by the change only.
+        da.edit_joint(mesh, mesh_offset=-5.0)
+        self.assertAlmostEqual(da.phase_value(mesh), wrapped - 17.0, delta=1e-9)
+        # A whole turn of part 2 is the same mesh: shown within -180..180 degrees.
+        da.edit_joint(mesh, mesh_offset=370.0)
+        self.assertAlmostEqual(da.mesh_offset(mesh), 10.0, delta=1e-12)
+        self.assertAlmostEqual(da.phase_value(mesh), wrapped - 17.0 + 375.0, delta=1e-9)
+        # Refused at the engine's door, nothing changed.
+        for bad in (float("nan"), 1e300):
+            with self.assertRaisesRegex(ValueError, "phase"):
+                da.edit_joint(mesh, mesh_offset=bad)
+            self.assertEqual(da.mesh_offset(mesh), 10.0)
+        # Made again (a new ratio): the mesh as it stands is the one made, offset 0.
+        da.edit_joint(mesh, ratio=0.4)
+        self.assertEqual((da.mesh_offset(mesh), mesh.PhaseKnown), (0.0, False))
+        self.assertTrue(da.solve(asm).converged)
+        self.assertEqual((da.mesh_offset(mesh), mesh.PhaseKnown), (0.0, True))
+        # A rack's offset is a length: the rack moved along its travel against the pinion.
+        rack = next(j for j in da.joints(self.build_other("steering")) if j.JointType == "RackPinion")
+        self.assertEqual(rack.getTypeIdOfProperty("MeshOffset"), "App::PropertyDistance")
+        phase = da.phase_value(rack)
+        da.edit_joint(rack, mesh_offset=0.05)
+        self.assertAlmostEqual(da.phase_value(rack), phase + 0.05, delta=1e-12)
+
+    def moved_gear(self, gear, by):
+        """`gear`'s shape with its geometry moved by `by` in its own frame (a hole moved in the
+        part): its Placement stays, its edges keep their names."""
+        shape = gear.Shape.copy()
+        shape.Placement = App.Placement()
+        m = App.Matrix()
+        m.move(App.Vector(*by))
+        shape.transformShape(m, True)
+        shape.Placement = gear.Placement
+        return shape
+
+    def test_a_coupling_whose_geometry_moved_is_made_again_and_said(self):
+        # G2's geometry moved 0.3 in its own frame (its bore and its pitch circle): its revolute
+        # follows the bore; the mesh's phase, taken about the old centre, would hold the gears
+        # by a centre that is no longer the axle's. Solve makes it again at the poses and says so.
+        asm, p = self.build("three-gears")
+        mesh = joint_between(asm, p["G1"], p["G2"])
+        da.edit_joint(mesh, mesh_offset=7.0)
+        self.assertTrue(da.solve(asm).converged)
+        p["G2"].Shape = self.moved_gear(p["G2"], (0.3, 0, 0))
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        self.assertIn("made the phase of %s again" % mesh.Label, r.message)
+        self.assertIn("G2", r.message)
+        self.assertTrue(mesh.PhaseKnown)
+        self.assertEqual(da.mesh_offset(mesh), 0.0)
+        self.assertAlmostEqual((mesh.Point2 - App.Vector(0.3, 0, 0)).Length, 0.0, delta=1e-9)
+        again = da.solve(asm)
+        self.assertNotIn("made the phase", again.message)  # made once
+        # The ratio holds about the axles as they are now.
+        turns = Turns({n: p[n] for n in ("G1", "G2")})
+        da.drive(asm, joint_between(asm, p["Plate"], p["G1"]), range(10, 100, 10), callback=turns.sample)
+        self.assertAlmostEqual(turns.total["G1"], math.radians(90), delta=TOL)
+        self.assertAlmostEqual(turns.total["G2"], -0.5 * turns.total["G1"], delta=TOL)
+
+    def test_a_recompute_remakes_a_moved_coupling_before_it_is_saved(self):
+        # The part recomputed (as a Pad changed in the GUI): the joint takes the new geometry and
+        # its phase is to be made again at the poses, before any solve, so the saved file holds
+        # no phase measured about the old axes.
+        tmp = tempfile.mkdtemp()
+        try:
+            asm, p = self.build("three-gears")
+            mesh = joint_between(asm, p["G1"], p["G2"])
+            p["G1"].Shape = self.moved_gear(p["G1"], (0, 0.2, 0))
+            self.doc.recompute()
+            self.assertFalse(mesh.PhaseKnown)
+            self.assertAlmostEqual((mesh.Point1 - App.Vector(0, 0.2, 0)).Length, 0.0, delta=1e-9)
+            path = os.path.join(tmp, "moved.FCStd")
+            self.doc.saveAs(path)
+            self.tearDown()
+            self.doc = App.openDocument(path)
+            asm = next(o for o in self.doc.Objects if da.is_assembly(o))
+            p = {o.Label: o for o in self.doc.Objects}
+            mesh = joint_between(asm, p["G1"], p["G2"])
+            self.assertFalse(mesh.PhaseKnown)
+            self.assertAlmostEqual((mesh.Point1 - App.Vector(0, 0.2, 0)).Length, 0.0, delta=1e-9)
+            self.assertTrue(da.solve(asm).converged)
+            self.assertTrue(mesh.PhaseKnown)
+            turns = Turns({n: p[n] for n in ("G1", "G2")})
+            da.drive(asm, joint_between(asm, p["Plate"], p["G1"]), range(10, 100, 10), callback=turns.sample)
+            self.assertAlmostEqual(turns.total["G2"], -0.5 * turns.total["G1"], delta=TOL)
+        finally:
+            shutil.rmtree(tmp)
+
     def test_bad_values_refused_changing_nothing(self):
         asm, p = self.build("three-gears")
         before = len(self.doc.Objects)
@@ -430,7 +540,7 @@ class Samples(unittest.TestCase):
                 asm, _ = self.build(name)
                 path = os.path.join(tmp, name + ".FCStd")
                 keys = ("Label", "JointType", "Ratio", "Radius", "Pitch", "LeftHanded", "PhaseTurns", "PhaseKnown",
-                        "Feature1", "Feature2")
+                        "MeshOffset", "Feature1", "Feature2")
                 saved = [tuple(str(getattr(j, k)) for k in keys) for j in da.joints(asm)]
                 phases = [da.phase_value(j) for j in da.joints(asm)]
                 self.doc.saveAs(path)

@@ -12,7 +12,7 @@ import FreeCADGui as Gui
 from .. import engine, geometry, markers, operations, panels
 from ..guide import PICK
 from ..adapter import offered_types
-from ..objects import COUPLINGS, LENGTH_PHASE, phase_value
+from ..objects import COUPLINGS, LENGTH_PHASE, mesh_offset, phase_value
 
 from ..qt import QtCore, QtGui, QtWidgets
 from .base import TransactionPanel
@@ -137,13 +137,20 @@ class JointPanel(TransactionPanel):
                                  "The nut's travel along the screw per turn")
         self.left = QtWidgets.QCheckBox("Left-handed thread")
         self.groups["pitch"].layout().addWidget(self.left)
-        # The engine's phase (an angle, or a length for a rack or a screw): taken when the
-        # coupling was made; a new one turns part 2 against part 1 at the preview's solve.
-        self.phase = self._value(top, "phase", "Phase", quantity_box("deg", -1e7, 1e7),
-                                 "The constant of the coupling's equation, as the engine holds it (ratio x "
-                                 "turn 1 + turn 2; a rack's or a screw's travel less its turns, in mm): "
-                                 "change it to turn part 2 against part 1")
-        self.phase_edited = False  # only a phase typed in the panel goes to the joint
+        # The mesh offset (an angle, or a length for a rack or a screw): 0 where the coupling
+        # was made; a new one turns part 2 against part 1 at the preview's solve. The engine's
+        # phase underneath is shown beside it, read only.
+        self.phase = self._value(top, "phase", "Mesh offset", quantity_box("deg", -1e7, 1e7),
+                                 "How far part 2 is turned against part 1 (part 1 held) from where the "
+                                 "coupling was made; a rack's or a screw's part 2: how far it is moved")
+        self.engine_phase = QtWidgets.QLabel()
+        self.engine_phase.setObjectName("enginePhase")
+        self.engine_phase.setToolTip("The engine's constant of the coupling's equation (ratio x turn 1 + turn 2; "
+                                     "a rack's or a screw's travel less its turns), kept in the joint: it moves "
+                                     "by the offset, and by whole turns as the parts go round")
+        self.engine_phase.setStyleSheet("color: gray;")
+        self.groups["phase"].layout().addWidget(self.engine_phase)
+        self.phase_edited = False  # only an offset typed in the panel goes to the joint
         self.phase.valueChanged.connect(self._phase_edited)
 
         self.message = QtWidgets.QLabel()
@@ -240,7 +247,10 @@ class JointPanel(TransactionPanel):
             if name in props:
                 box.setProperty("rawValue", getattr(j, name).Value)
         if "Phase" in props:
-            self.phase.setProperty("rawValue", phase_value(j))
+            self.phase.setProperty("rawValue", mesh_offset(j))
+            unit = " mm" if j.JointType in LENGTH_PHASE else "°"
+            self.engine_phase.setText("Engine's phase: %.6g%s%s" % (phase_value(j), unit, "" if j.PhaseKnown
+                                                                      else " (made at the poses at the next solve)"))
         self.phase_edited = False
         if "Ratio" in props:
             self.ratio.setValue(j.Ratio)
@@ -403,7 +413,7 @@ class JointPanel(TransactionPanel):
         if "pitch" in shown:
             kw["pitch"], kw["left"] = raw(self.pitch), self.left.isChecked()
         if "phase" in shown and self.phase_edited:
-            kw["phase"] = raw(self.phase)
+            kw["mesh_offset"] = raw(self.phase)
         return kw
 
     def problem(self):
@@ -438,7 +448,7 @@ class JointPanel(TransactionPanel):
             self._set_ok(False)
             return
         self._set_ok(True)
-        self._load_values()  # the phase the solve kept (made at the poses, or the one typed)
+        self._load_values()  # the offset and phase the solve kept (made at the poses, or the one typed)
         if r.converged:
             self._say("%s holds (%s)." % (self.joint.Label, r.message))
         else:
