@@ -272,11 +272,12 @@ def stacks(frames, tolerance):
     return out
 
 
-def spread(anchors, gap, seeds=None, iterations=60):
+def spread(anchors, gap, seeds=None, iterations=100):
     """A layout of markers on the screen: `anchors` are the markers' points in pixels [(x, y)],
     `seeds` their first offsets (a stack's side by side, or (0, 0)); returns the offsets [(dx, dy)]
     in pixels that set every two markers at least `gap` apart, each pair that is nearer pushed
-    apart along the line between them, half each, until none is (or `iterations` passes). A
+    apart along the line between them, half each, all pairs at once from where the markers are
+    (so the layout does not depend on their order), until none is (or `iterations` passes). A
     marker that nothing crowds keeps its seed; none goes further than its seed's length and
     2 gaps from its point, so a marker stays beside its joint in a crowd it cannot leave."""
     n = len(anchors)
@@ -290,6 +291,7 @@ def spread(anchors, gap, seeds=None, iterations=60):
         for i, (x, y) in enumerate(pos):
             cells.setdefault((math.floor(x / gap), math.floor(y / gap)), []).append(i)
         crowded = False
+        moves = [[0.0, 0.0] for _ in range(n)]  # all pairs pushed from the same positions
         for (cx, cy), members in cells.items():
             near = [k for dx in (-1, 0, 1) for dy in (-1, 0, 1) for k in cells.get((cx + dx, cy + dy), ())]
             for i in members:
@@ -305,10 +307,13 @@ def spread(anchors, gap, seeds=None, iterations=60):
                         a = 2.399963 * (i + k)  # the golden angle: no two pairs alike
                         dx, dy, d = math.cos(a), math.sin(a), 1.0
                     push = 0.5 * (gap - d) + 1e-6
-                    pos[i][0] -= dx / d * push
-                    pos[i][1] -= dy / d * push
-                    pos[k][0] += dx / d * push
-                    pos[k][1] += dy / d * push
+                    moves[i][0] -= dx / d * push
+                    moves[i][1] -= dy / d * push
+                    moves[k][0] += dx / d * push
+                    moves[k][1] += dy / d * push
+        for i in range(n):
+            pos[i][0] += moves[i][0]
+            pos[i][1] += moves[i][1]
         for i in range(n):  # none wanders off its joint
             ox, oy = pos[i][0] - anchors[i][0], pos[i][1] - anchors[i][1]
             r = math.hypot(ox, oy)

@@ -27,6 +27,7 @@ class _ViewProxy(Stateless):
 
 
 class ViewProviderAssembly(_ViewProxy):
+    CAMERA_REST_MS = 150  # the markers are laid out again this long after the camera stopped
     def attach(self, vobj):
         self.Object = vobj.Object
         self.restack_pending = False
@@ -89,8 +90,17 @@ class ViewProviderAssembly(_ViewProxy):
             return
         if sensor is not None:
             sensor.detach()
+        if getattr(self, "camera_timer", None) is None:
+            from .qt import QtCore
+
+            # Once the camera rests (a turn or a zoom with the mouse moves it at every frame):
+            # the layout of a hundred markers takes some 20 ms (docs/performance.md).
+            self.camera_timer = QtCore.QTimer()
+            self.camera_timer.setSingleShot(True)
+            self.camera_timer.setInterval(self.CAMERA_REST_MS)
+            self.camera_timer.timeout.connect(self.restack)
         self.camera = camera
-        self.camera_sensor = coin.SoNodeSensor(lambda *_: self.restack_later(), None)
+        self.camera_sensor = coin.SoNodeSensor(lambda *_: self.camera_timer.start(), None)
         self.camera_sensor.attach(camera)
 
     def getIcon(self):

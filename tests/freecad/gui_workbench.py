@@ -122,6 +122,18 @@ def same(p, q, tol=1e-9):
     return (p.Base - q.Base).Length <= tol and p.Rotation.multiply(q.Rotation.inverted()).Angle <= tol
 
 
+def laid_out():
+    """Waits until the markers are laid out again after the camera moved (they wait for it to
+    rest: viewproviders.ViewProviderAssembly.CAMERA_REST_MS)."""
+    from dispcon_fc import viewproviders
+
+    end = time.time() + 3 * viewproviders.ViewProviderAssembly.CAMERA_REST_MS / 1000.0
+    while time.time() < end:
+        settle()
+        time.sleep(0.02)
+    settle()
+
+
 def coin_vec(v):
     from pivy import coin
 
@@ -428,8 +440,7 @@ class TestMarkers(Documents):
         view = self.view()
         view.viewIsometric()
         Gui.SendMsgToActiveView("ViewFit")
-        settle()
-        settle()
+        laid_out()
         joints = [o for o in asm.Group if hasattr(o, "JointType")]
         self.assertEqual(len(joints), 12)
         axle = [j for j in joints if j.JointType == "Revolute" and p["Base"] in (j.Reference1[0], j.Reference2[0])]
@@ -465,8 +476,7 @@ class TestMarkers(Documents):
         centre = planet.Placement.Base
         camera.position.setValue(camera.position.getValue() + coin_vec(centre - App.Vector(0, 0, 0)))
         camera.height.setValue(camera.height.getValue() / 5)
-        settle()
-        settle()
+        laid_out()
         for j in near:
             self.assertLess(shift(j).Length, 1e-6, "%s is moved off its joint zoomed in" % j.Label)
         shot("planetary-markers-near")
@@ -474,8 +484,7 @@ class TestMarkers(Documents):
         view.viewIsometric()
         Gui.SendMsgToActiveView("ViewFit")
         operations.drive_to(asm, axle[0], operations.drive_value(axle[0]) + 30.0)
-        settle()
-        settle()
+        laid_out()
         overlaps, sizes = marker_overlaps(view, joints)
         self.assertLess(max(overlaps.values()), 0.06)
 

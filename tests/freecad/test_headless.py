@@ -945,7 +945,33 @@ class WorkbenchFiles(unittest.TestCase):
         self.assertTrue(qt.QtCore.__name__.startswith("PySide"))
         self.assertTrue(hasattr(qt.QtWidgets, "QWidget"))
 
-UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles)
+class MarkerLayout(unittest.TestCase):
+    """markers.spread, the screen layout of the joints' markers, against what it promises."""
+
+    def test_crowded_markers_are_set_a_gap_apart_and_lone_ones_stay(self):
+        from dispcon_fc import markers
+
+        gap = 40.0
+        # A planet's three (10 px apart on a line), three at one point seeded side by side, one alone.
+        anchors = [(0, 0), (10, 0), (20, 0), (300, 300), (300, 300), (300, 300), (-400, 50)]
+        seeds = [(0, 0)] * 3 + [(0, 0), (gap, 0), (2 * gap, 0)] + [(0, 0)]
+        out = markers.spread(anchors, gap, seeds)
+        pos = [(a[0] + o[0], a[1] + o[1]) for a, o in zip(anchors, out)]
+        for i in range(len(pos)):
+            for k in range(i + 1, len(pos)):
+                self.assertGreaterEqual(math.hypot(pos[i][0] - pos[k][0], pos[i][1] - pos[k][1]), gap - 1e-6)
+        self.assertEqual(out[6], (0.0, 0.0))  # nothing crowds it: not moved
+        self.assertEqual(out[3:6], [(0.0, 0.0), (gap, 0.0), (2 * gap, 0.0)])  # seeded apart already
+        # The line's three pushed apart along it, the middle one staying at its point.
+        self.assertAlmostEqual(pos[1][0], 10.0, delta=1e-6)
+        self.assertTrue(all(abs(p[1]) < 1e-9 for p in pos[:3]))
+        # None goes further than its seed and two gaps from its point, even in a crowd.
+        crowd = markers.spread([(0.0, 0.0)] * 30, gap)
+        self.assertTrue(all(math.hypot(*o) <= 2 * gap + 1e-9 for o in crowd))
+
+
+UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles,
+              MarkerLayout)
 
 
 def run_unit_tests():
