@@ -272,56 +272,72 @@ def stacks(frames, tolerance):
     return out
 
 
+def _near_pairs(pos, gap):
+    """The pairs (i, k), i < k, of points nearer than `gap`, through a grid of gap-sized cells
+    (a hundred markers spread over the screen are each near a few)."""
+    cells = {}
+    for i, (x, y) in enumerate(pos):
+        cells.setdefault((math.floor(x / gap), math.floor(y / gap)), []).append(i)
+    for (cx, cy), members in cells.items():
+        near = [k for dx in (-1, 0, 1) for dy in (-1, 0, 1) for k in cells.get((cx + dx, cy + dy), ())]
+        for i in members:
+            for k in near:
+                if k > i and math.hypot(pos[k][0] - pos[i][0], pos[k][1] - pos[i][1]) < gap - 1e-9:
+                    yield i, k
+
+
 def spread(anchors, gap, seeds=None, iterations=100):
     """A layout of markers on the screen: `anchors` are the markers' points in pixels [(x, y)],
     `seeds` their first offsets (a stack's side by side, or (0, 0)); returns the offsets [(dx, dy)]
     in pixels that set every two markers at least `gap` apart, each pair that is nearer pushed
     apart along the line between them, half each, all pairs at once from where the markers are
     (so the layout does not depend on their order), until none is (or `iterations` passes). A
-    marker that nothing crowds keeps its seed; none goes further than its seed's length and
-    2 gaps from its point, so a marker stays beside its joint in a crowd it cannot leave."""
+    marker that nothing crowds keeps its seed; none goes further than its seed's length and a
+    gap from its point. A crowd that cannot be made readable so (a hundred joints along a chain
+    seen whole: more markers than the screen has room for beside their joints) keeps its seeds:
+    markers scattered about would say less than markers at their joints."""
     n = len(anchors)
     seeds = seeds or [(0.0, 0.0)] * n
     pos = [[a[0] + s[0], a[1] + s[1]] for a, s in zip(anchors, seeds)]
-    caps = [math.hypot(*s) + 2.0 * gap for s in seeds]
+    caps = [math.hypot(*s) + gap for s in seeds]
+    # The crowds: markers joined by chains of pairs nearer than a gap, as seeded.
+    crowd = list(range(n))
+
+    def top(i):
+        while crowd[i] != i:
+            crowd[i] = crowd[crowd[i]]
+            i = crowd[i]
+        return i
+
+    for i, k in _near_pairs(pos, gap):
+        crowd[top(i)] = top(k)
     for _ in range(iterations):
-        # Pairs within a gap, found through a grid of gap-sized cells (a drag's hundred
-        # markers spread over the screen are each near a few).
-        cells = {}
-        for i, (x, y) in enumerate(pos):
-            cells.setdefault((math.floor(x / gap), math.floor(y / gap)), []).append(i)
-        crowded = False
         moves = [[0.0, 0.0] for _ in range(n)]  # all pairs pushed from the same positions
-        for (cx, cy), members in cells.items():
-            near = [k for dx in (-1, 0, 1) for dy in (-1, 0, 1) for k in cells.get((cx + dx, cy + dy), ())]
-            for i in members:
-                for k in near:
-                    if k <= i:
-                        continue
-                    dx, dy = pos[k][0] - pos[i][0], pos[k][1] - pos[i][1]
-                    d = math.hypot(dx, dy)
-                    if d >= gap - 1e-9:
-                        continue
-                    crowded = True
-                    if d < 1e-9:  # one point: apart along a direction of their own
-                        a = 2.399963 * (i + k)  # the golden angle: no two pairs alike
-                        dx, dy, d = math.cos(a), math.sin(a), 1.0
-                    push = 0.5 * (gap - d) + 1e-6
-                    moves[i][0] -= dx / d * push
-                    moves[i][1] -= dy / d * push
-                    moves[k][0] += dx / d * push
-                    moves[k][1] += dy / d * push
-        for i in range(n):
+        crowded = False
+        for i, k in _near_pairs(pos, gap):
+            crowded = True
+            dx, dy = pos[k][0] - pos[i][0], pos[k][1] - pos[i][1]
+            d = math.hypot(dx, dy)
+            if d < 1e-9:  # one point: apart along a direction of their own
+                a = 2.399963 * (i + k)  # the golden angle: no two pairs alike
+                dx, dy, d = math.cos(a), math.sin(a), 1.0
+            push = 0.5 * (gap - d) + 1e-6
+            moves[i][0] -= dx / d * push
+            moves[i][1] -= dy / d * push
+            moves[k][0] += dx / d * push
+            moves[k][1] += dy / d * push
+        for i in range(n):  # none wanders off its joint
             pos[i][0] += moves[i][0]
             pos[i][1] += moves[i][1]
-        for i in range(n):  # none wanders off its joint
             ox, oy = pos[i][0] - anchors[i][0], pos[i][1] - anchors[i][1]
             r = math.hypot(ox, oy)
             if r > caps[i]:
                 pos[i] = [anchors[i][0] + ox * caps[i] / r, anchors[i][1] + oy * caps[i] / r]
         if not crowded:
             break
-    return [(p[0] - a[0], p[1] - a[1]) for p, a in zip(pos, anchors)]
+    unreadable = {top(i) for pair in _near_pairs(pos, gap * (1 - 1e-3)) for i in pair}
+    return [tuple(seeds[i]) if top(i) in unreadable else (pos[i][0] - anchors[i][0], pos[i][1] - anchors[i][1])
+            for i in range(n)]
 
 
 def _screen_scaled(child, pixels):

@@ -965,9 +965,14 @@ class MarkerLayout(unittest.TestCase):
         # The line's three pushed apart along it, the middle one staying at its point.
         self.assertAlmostEqual(pos[1][0], 10.0, delta=1e-6)
         self.assertTrue(all(abs(p[1]) < 1e-9 for p in pos[:3]))
-        # None goes further than its seed and two gaps from its point, even in a crowd.
-        crowd = markers.spread([(0.0, 0.0)] * 30, gap)
-        self.assertTrue(all(math.hypot(*o) <= 2 * gap + 1e-9 for o in crowd))
+        # None goes further than its seed and a gap from its point.
+        self.assertTrue(all(math.hypot(*o) <= math.hypot(*s) + gap + 1e-9 for o, s in zip(out, seeds)))
+        # A crowd with no room beside its joints (thirty along 300 pixels, as a long chain seen
+        # whole) keeps its seeds; a readable group apart from it is still set apart.
+        line = [(10.0 * k, 0.0) for k in range(30)] + [(0.0, 500.0), (5.0, 500.0)]
+        out = markers.spread(line, gap)
+        self.assertEqual(out[:30], [(0.0, 0.0)] * 30)
+        self.assertAlmostEqual(math.hypot(out[31][0] - out[30][0] + 5.0, out[31][1] - out[30][1]), gap, delta=1e-3)
 
 
 UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles,
