@@ -311,10 +311,20 @@ def spread(anchors, gap, seeds=None, iterations=100):
 
     for i, k in _near_pairs(pos, gap):
         crowd[top(i)] = top(k)
+    # A crowd that has not the room for its markers a gap apart (packed as closely as discs can
+    # be, 0.87 gap^2 each, in its box grown by a gap all round) is left as seeded at once.
+    boxes = {}
+    for i, (x, y) in enumerate(pos):
+        b = boxes.setdefault(top(i), [x, y, x, y, 0])
+        b[:] = [min(b[0], x), min(b[1], y), max(b[2], x), max(b[3], y), b[4] + 1]
+    hopeless = {c for c, (x0, y0, x1, y1, m) in boxes.items()
+                if m > 1 and 0.87 * m * gap * gap > (x1 - x0 + 2 * gap) * (y1 - y0 + 2 * gap)}
+    free = [i for i in range(n) if top(i) not in hopeless]
     for _ in range(iterations):
         moves = [[0.0, 0.0] for _ in range(n)]  # all pairs pushed from the same positions
         crowded = False
-        for i, k in _near_pairs(pos, gap):
+        for a, b in _near_pairs([pos[i] for i in free], gap):
+            i, k = free[a], free[b]
             crowded = True
             dx, dy = pos[k][0] - pos[i][0], pos[k][1] - pos[i][1]
             d = math.hypot(dx, dy)
@@ -335,7 +345,7 @@ def spread(anchors, gap, seeds=None, iterations=100):
                 pos[i] = [anchors[i][0] + ox * caps[i] / r, anchors[i][1] + oy * caps[i] / r]
         if not crowded:
             break
-    unreadable = {top(i) for pair in _near_pairs(pos, gap * (1 - 1e-3)) for i in pair}
+    unreadable = hopeless | {top(i) for pair in _near_pairs(pos, gap * (1 - 1e-3)) for i in pair}
     return [tuple(seeds[i]) if top(i) in unreadable else (pos[i][0] - anchors[i][0], pos[i][1] - anchors[i][1])
             for i in range(n)]
 
