@@ -8,8 +8,8 @@ import re
 import FreeCAD as App
 
 from . import engine, geometry, subassembly
-from .objects import (COUPLINGS, JOINT_TYPES, LENGTH_PHASE, joints, parts, phase_value, remake_phase,
-                      set_phase, shape_of)
+from .objects import (COUPLINGS, JOINT_TYPES, LENGTH_PHASE, frame_rotation, joints, parts, phase_value,
+                      remake_phase, set_phase, shape_of)
 
 
 def _vec(v):
@@ -210,9 +210,9 @@ def joint_kwargs(dispcon, j, anchors=None, remake=False):
         return kw
     row = kind_of(dispcon, j.JointType)
     rad = math.radians
+    axis2, across2 = turned_frame(a["Axis2"] * flip, a["Perp2"], frame_rotation(j))
     kw = dict(kind=row["name"], point1=_vec(a["Point1"] + a["Axis1"] * offset), point2=_vec(a["Point2"]),
-              axis1=_vec(a["Axis1"]), axis2=_vec(a["Axis2"] * flip), across1=_vec(a["Perp1"]),
-              across2=_vec(a["Perp2"]))
+              axis1=_vec(a["Axis1"]), axis2=_vec(axis2), across1=_vec(a["Perp1"]), across2=_vec(across2))
     limits = {"angle": (rad(j.AngleMin.Value), rad(j.AngleMax.Value))}
     if j.HasRotationLimits:
         limits["turn"] = (rad(j.RotationMin.Value), rad(j.RotationMax.Value))
@@ -235,6 +235,26 @@ def moved_anchors(j, anchors):
     `j` from those the joint holds ([] when none did)."""
     return [ref[0].Label for k, ref in (("1", j.Reference1), ("2", j.Reference2))
             if any(getattr(j, name + k) != anchors[name + k] for name in ("Point", "Axis"))]
+
+
+def turned_frame(axis, across, rotation):
+    """Part 2's joint axis and twist reference (its frame's z and x, in part 2's frame) with the
+    frame's rotation offset: the frame turned by the inverse of `rotation` about its own axes, so
+    that when the joint lines it up with part 1's, part 2 stands turned by `rotation` in the joint's
+    frame (a yaw of 30 degrees turns part 2 30 degrees on about the joint's axis). None: as they
+    are."""
+    if rotation is None:
+        return axis, across
+    z = App.Vector(axis).normalize()
+    x = App.Vector(across) - z * App.Vector(across).dot(z)
+    x = x.normalize() if x.Length > 1e-12 else _across(z)
+    y = z.cross(x)
+    back = rotation.inverted()
+
+    def in_part(v):  # a vector of the joint's frame in part 2's
+        return x * v.x + y * v.y + z * v.z
+
+    return in_part(back.multVec(App.Vector(0, 0, 1))) * axis.Length, in_part(back.multVec(App.Vector(1, 0, 0)))
 
 
 def _in_body(kw, side, local):

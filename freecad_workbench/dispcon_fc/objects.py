@@ -240,11 +240,17 @@ class PartProxy(_Proxy):
 
 
 def joint_extras(obj):
-    """Reversed and Offset (the joint panel's), the features picked, a Distance's value and the
-    couplings' values, which joints made before them lack: a joint without them reads as not
-    reversed, offset 0, a coupling of ratio 1."""
+    """Reversed, Offset and the frame's rotation offset (the joint panel's), the features picked, a
+    Distance's value and the couplings' values, which joints made before them lack: a joint
+    without them reads as not reversed, offset 0, not turned, a coupling of ratio 1."""
     _add(obj, "App::PropertyBool", "Reversed", "Joint", "part 2's axis flipped")
     _add(obj, "App::PropertyDistance", "Offset", "Joint", "part 2's point this far from part 1's, along part 1's axis")
+    # The rotation offset of part 2's joint frame (FreeCAD 1.x's Assembly has an offset
+    # placement on each joint's frames): yaw about the joint's axis, then pitch and roll.
+    for name, doc in (("FrameYaw", "part 2 turned this far about the joint's axis from the picked frame"),
+                      ("FramePitch", "part 2's axis tilted this far about the frame's y (after the yaw)"),
+                      ("FrameRoll", "part 2's axis tilted this far about the frame's x (after the pitch)")):
+        _add(obj, "App::PropertyAngle", name, "Joint", doc)
     _add(obj, "App::PropertyString", "Feature1", "Geometry", "what reference 1 is: point, line, plane, circle, ...")
     _add(obj, "App::PropertyString", "Feature2", "Geometry", "what reference 2 is")
     _add(obj, "App::PropertyDistance", "Distance", "Joint", "Distance joint: the distance between the features")
@@ -253,6 +259,21 @@ def joint_extras(obj):
     _add(obj, "App::PropertyDistance", "Pitch", "Coupling", "Screw: travel per turn", 1.0)
     _add(obj, "App::PropertyBool", "LeftHanded", "Coupling", "Screw: a left-handed thread")
     phase_property(obj)
+
+
+# The joint types whose part 2 frame can be turned by a rotation offset: those that hold part 2's
+# orientation by its axis and the twist reference across it (a coupling measures its turns from
+# its axes as picked, a ball or a point holds no orientation).
+FRAME_ROTATED = ("Fixed", "Revolute", "Slider", "Cylindrical", "Planar")
+
+
+def frame_rotation(joint):
+    """The rotation offset of part 2's joint frame (App.Rotation from FrameYaw, FramePitch,
+    FrameRoll in degrees), or None when there is none (or the type takes none)."""
+    if getattr(joint, "JointType", "") not in FRAME_ROTATED or "FrameYaw" not in joint.PropertiesList:
+        return None
+    angles = (joint.FrameYaw.Value, joint.FramePitch.Value, joint.FrameRoll.Value)
+    return App.Rotation(*angles) if any(angles) else None
 
 
 # A coupling's phase is the engine's: the constant of its equation (docs/format.md, "Couplings"),

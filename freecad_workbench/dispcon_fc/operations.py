@@ -257,7 +257,9 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
     by default the picked radii's r1 / r2), radius= (RackPinion: by default the picked circle's),
     pitch= (Screw: travel per turn), left=True (a left-handed screw), mesh_offset=degrees (mm for a
     rack or a screw: part 2 turned, or moved, that far against part 1 from the pose the coupling is
-    made in), phase= (the engine's constant itself, degrees or mm)."""
+    made in), phase= (the engine's constant itself, degrees or mm). Fixed, Revolute, Slider,
+    Cylindrical and Planar: frame=(yaw, pitch, roll) in degrees turns part 2's joint frame, so that
+    part 2 stands so turned against part 1 (yaw about the joint's axis, then pitch and roll)."""
     _assembly(asm)
     if joint_type not in objects.JOINT_TYPES:
         raise ValueError("unknown joint type %r (expected one of %s)" % (joint_type, ", ".join(objects.JOINT_TYPES)))
@@ -284,6 +286,11 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
         _place(j, joint_type, a, b)
         _set_limits(j, **limits)
         asm.addObject(j)
+        if limits.get("frame") is not None:
+            if joint_type not in objects.FRAME_ROTATED:
+                raise ValueError("%s: a %s joint's frame takes no rotation offset (only %s)"
+                                 % (j.Label, joint_type, ", ".join(objects.FRAME_ROTATED)))
+            Adapter(asm)  # the engine checks the turned axis (its door); an error undoes the joint
         given = limits.get("phase") is not None or limits.get("mesh_offset") is not None
         if given and joint_type not in objects.COUPLINGS:
             raise ValueError("%s: only a coupling (%s) has a phase" % (j.Label, ", ".join(objects.COUPLINGS)))
@@ -348,7 +355,7 @@ def _check_distance(label, joint_type, f1, distance):
 
 def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None,
                   offset=None, distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None,
-                  mesh_offset=None):
+                  mesh_offset=None, frame=None):
     """Refuses limits that cannot hold, before anything changes; names the joint and the limit."""
     for what, pair, unit in (("rotation", rotation, "deg"), ("travel", travel, "mm"), ("angle", angle, "deg")):
         if pair not in (None, False):
@@ -367,7 +374,8 @@ def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move
 
 
 def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None, offset=None,
-                distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None, mesh_offset=None):
+                distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None, mesh_offset=None,
+                frame=None):
     # rotation=False, travel=False: no such limits any more.
     if rotation is not None:
         j.HasRotationLimits = rotation is not False
@@ -384,6 +392,8 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None,
     if move is not None:
         j.Move = move
     objects.joint_extras(j)
+    if frame is not None:
+        j.FrameYaw, j.FramePitch, j.FrameRoll = (float(a) for a in frame)
     # What the coupling's phase is measured with changed: the engine makes it again at the
     # poses the parts have (record_phases keeps it), so the parts stay where they are.
     remade = False
@@ -425,6 +435,37 @@ def _check_phase(joint, kind, phase):
 
     with adapter.engine_errors():
         adapter.add_joint(joint, phase=phase_to_engine(joint, phase))
+
+
+def _check_frame(joint, kind, frame):
+    """A rotation offset of part 2's joint frame, (yaw, pitch, roll) in degrees, checked by the
+    engine (the model's door) before anything changes: the joint added again with the axis and
+    twist reference it turns to, to a model of its assembly as it stands."""
+    if kind not in objects.FRAME_ROTATED:
+        raise ValueError("%s: a %s joint's frame takes no rotation offset (only %s)"
+                         % (joint.Label, kind, ", ".join(objects.FRAME_ROTATED)))
+    if len(frame) != 3:
+        raise ValueError("%s: a frame's rotation offset is (yaw, pitch, roll) in degrees, not %r" % (joint.Label, frame))
+    asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
+    if asm is None or joint.JointType != kind:
+        return  # a joint changing its type meets the door at its first solve
+    adapter = Adapter(asm)
+    if joint not in adapter.joints:  # skipped (a part deleted): its solve says so
+        return
+    from .adapter import turned_frame
+
+    a = adapter.anchors[joint.Name, joint.Document.Name]
+    flip = -1 if getattr(joint, "Reversed", False) else 1
+    try:
+        turn = App.Rotation(*(float(v) for v in frame))
+    except (TypeError, ValueError):
+        raise ValueError("%s: the frame's rotation offset %r is not three angles" % (joint.Label, frame)) from None
+    axis, across = turned_frame(a["Axis2"] * flip, a["Perp2"], turn)
+    try:
+        with adapter.engine_errors():
+            adapter.add_joint(joint, axis2=_vec(axis), across2=_vec(across))
+    except ValueError as e:
+        raise ValueError("%s: its frame turned by %r deg: %s" % (joint.Label, tuple(frame), e)) from None
 
 
 def _record_phases(asm):
@@ -471,6 +512,10 @@ def edit_joint(joint, joint_type=None, undo_step=True, **limits):
     _check_distance(joint.Label, kind, f1, limits.get("distance"))
     if limits.get("phase") is not None:
         _check_phase(joint, kind, limits["phase"])
+    frame = limits.get("frame")
+    if frame is not None and tuple(frame) != tuple(getattr(joint, name).Value if name in joint.PropertiesList else 0.0
+                                               for name in ("FrameYaw", "FramePitch", "FrameRoll")):
+        _check_frame(joint, kind, frame)
     offset = limits.pop("mesh_offset", None)
     if offset is not None:
         if kind not in objects.COUPLINGS:

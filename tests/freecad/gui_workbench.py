@@ -719,14 +719,14 @@ class TestJointPanel(Documents):
 
     def test_fields_per_type_and_units(self):
         panel, asm, base, arm = self.open("Revolute")
-        self.assertEqual(self.visible_groups(panel), {"reverse", "offset", "rotation"})
+        self.assertEqual(self.visible_groups(panel), {"reverse", "offset", "frame", "rotation"})
         self.assertIn("°", panel.rot_min.text())
         self.assertIn("mm", panel.offset.text())
         self.assertEqual(panel.ref_list.count(), 2)
         self.assertIn("Base", panel.ref_list.item(0).text())
         self.assertIn("Arm", panel.ref_list.item(1).text())
         shot("panel-revolute")
-        for kind, groups in (("Slider", {"reverse", "travel"}), ("Ball", {"offset", "cone"}),
+        for kind, groups in (("Slider", {"reverse", "frame", "travel"}), ("Ball", {"offset", "cone"}),
                              ("PointOnCurve", set()), ("Angle", {"reverse", "angle"})):
             panel.type_box.setCurrentText(kind)
             settle()
@@ -742,6 +742,25 @@ class TestJointPanel(Documents):
         self.assertIsNotNone(ok)
         self.assertTrue(ok.isVisible())
         self.assertGreaterEqual(ok.parentWidget().width(), ok.parentWidget().minimumSizeHint().width())
+
+    def test_part_2s_frame_turned_in_the_panel(self):
+        # The rotation offset of part 2's joint frame, in degrees: a pitch of 90 stands the arm's
+        # pin axis across the base's at the preview's solve; OK keeps it, saved with the joint.
+        panel, asm, base, arm = self.open("Revolute")
+        j = panel.joint
+        for box in panel.frame:
+            self.assertIn("°", box.text())
+        panel.frame[1].setProperty("rawValue", 90.0)
+        settle()
+        self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
+        self.assertEqual(j.FramePitch.Value, 90.0)
+        a1 = base.Placement.Rotation.multVec(j.Axis1)
+        a2 = arm.Placement.Rotation.multVec(j.Axis2)
+        self.assertLess(abs(a1.dot(a2)) / (a1.Length * a2.Length), 1e-8)
+        shot("panel-frame-pitch")
+        panel.ok_button().click()
+        settle()
+        self.assertEqual((j.FrameYaw.Value, j.FramePitch.Value, j.FrameRoll.Value), (0.0, 90.0, 0.0))
 
     def test_min_above_max_refused_in_the_panel(self):
         panel, asm, base, arm = self.open("Revolute")

@@ -945,6 +945,74 @@ class WorkbenchFiles(unittest.TestCase):
         self.assertTrue(qt.QtCore.__name__.startswith("PySide"))
         self.assertTrue(hasattr(qt.QtWidgets, "QWidget"))
 
+class FrameRotation(unittest.TestCase):
+    """The rotation offset of part 2's joint frame (yaw, pitch, roll), against the pose it must
+    give: the pose without it turned by as much about the joint's frame."""
+
+    def setUp(self):
+        self.doc = App.newDocument("frame")
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def fixed(self):
+        asm, base, arm = arm_on_base(self.doc)
+        arm.Placement = App.Placement(App.Vector(0.2, 0.1, 0.3), App.Rotation(App.Vector(0, 0, 1), 20))
+        j = da.add_joint(asm, "Fixed", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)))
+        self.assertTrue(da.solve(asm).converged)
+        return asm, base, arm, j
+
+    def assertPlaced(self, pl, expected, tol=1e-7):
+        self.assertLess((pl.Base - expected.Base).Length, tol, (pl, expected))
+        self.assertLess(pl.Rotation.multiply(expected.Rotation.inverted()).Angle, tol, (pl, expected))
+
+    def test_a_turned_frame_turns_part_2_in_the_joints_frame(self):
+        asm, base, arm, j = self.fixed()
+        p0 = arm.Placement
+        point, axis = base.Placement.multVec(j.Point1), base.Placement.Rotation.multVec(j.Axis1)
+        da.edit_joint(j, frame=(30, 0, 0))
+        self.assertEqual((j.FrameYaw.Value, j.FramePitch.Value, j.FrameRoll.Value), (30, 0, 0))
+        self.assertTrue(da.solve(asm).converged)
+        turn = App.Rotation(axis, 30)  # yaw: about the joint's axis, right-handed
+        self.assertPlaced(arm.Placement, App.Placement(point + turn.multVec(p0.Base - point),
+                                                       turn.multiply(p0.Rotation)))
+        # Pitch 90: part 2's picked axis stands across part 1's, their points still together.
+        da.edit_joint(j, joint_type="Revolute", frame=(0, 90, 0))
+        self.assertTrue(da.solve(asm).converged)
+        a1 = base.Placement.Rotation.multVec(j.Axis1)
+        a2 = arm.Placement.Rotation.multVec(j.Axis2)
+        self.assertLess(abs(a1.dot(a2)) / (a1.Length * a2.Length), 1e-8)
+        self.assertLess((base.Placement.multVec(j.Point1) - arm.Placement.multVec(j.Point2)).Length, 1e-8)
+        # Back to none: the pose without it.
+        da.edit_joint(j, joint_type="Fixed", frame=(0, 0, 0))
+        self.assertTrue(da.solve(asm).converged)
+        self.assertPlaced(arm.Placement, p0)
+
+    def test_saved_refused_and_types_without_a_frame(self):
+        asm, base, arm, j = self.fixed()
+        da.edit_joint(j, frame=(-45, 0, 10))
+        self.assertTrue(da.solve(asm).converged)
+        placed = arm.Placement
+        # Refused at the engine's door (a NaN angle turns the axis into NaNs), nothing changed.
+        with self.assertRaisesRegex(ValueError, "Fixed"):
+            da.edit_joint(j, frame=(float("nan"), 0, 0))
+        self.assertEqual((j.FrameYaw.Value, j.FramePitch.Value, j.FrameRoll.Value), (-45, 0, 10))
+        with self.assertRaisesRegex(ValueError, "Ball joint's frame takes no rotation offset"):
+            da.edit_joint(j, joint_type="Ball", frame=(10, 0, 0))
+        self.assertEqual(j.JointType, "Fixed")
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "frame.FCStd")
+            self.doc.saveAs(path)
+            App.closeDocument(self.doc.Name)
+            self.doc = App.openDocument(path)
+            asm = next(o for o in self.doc.Objects if da.is_assembly(o))
+            j = da.joints(asm)[0]
+            arm = self.doc.getObject("Arm")
+            self.assertEqual((j.FrameYaw.Value, j.FramePitch.Value, j.FrameRoll.Value), (-45, 0, 10))
+            self.assertTrue(da.solve(asm).converged)
+            self.assertPlaced(arm.Placement, placed, 1e-9)
+
+
 class MarkerLayout(unittest.TestCase):
     """markers.spread, the screen layout of the joints' markers, against what it promises."""
 
@@ -976,7 +1044,7 @@ class MarkerLayout(unittest.TestCase):
 
 
 UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles,
-              MarkerLayout)
+              MarkerLayout, FrameRotation)
 
 
 def run_unit_tests():

@@ -6,7 +6,8 @@ preview solve and every change of a field are inside it, so OK is one undo step 
 aborts it, which removes a new joint or gives an edited one (and the parts) back as they were.
 
 Only the fields that apply to the chosen type are shown; lengths and angles are FreeCAD quantity
-spin boxes (mm, deg). A min above its max is said in the panel and disables OK."""
+spin boxes (mm, deg): among them the rotation offset of part 2's joint frame (yaw, pitch, roll).
+A min above its max is said in the panel and disables OK."""
 import FreeCADGui as Gui
 
 from .. import engine, geometry, markers, operations, panels
@@ -19,12 +20,12 @@ from .base import TransactionPanel
 
 # Which groups of fields each type shows.
 FIELDS = {
-    "Fixed": ("reverse", "offset"),
-    "Revolute": ("reverse", "offset", "rotation"),
-    "Slider": ("reverse", "travel"),
-    "Cylindrical": ("reverse", "rotation", "travel"),
+    "Fixed": ("reverse", "offset", "frame"),
+    "Revolute": ("reverse", "offset", "frame", "rotation"),
+    "Slider": ("reverse", "frame", "travel"),
+    "Cylindrical": ("reverse", "frame", "rotation", "travel"),
     "Ball": ("offset", "cone"),
-    "Planar": ("reverse", "offset"),
+    "Planar": ("reverse", "offset", "frame"),
     "PointOnLine": ("travel",),
     "PointOnPlane": ("offset",),
     "PointOnCurve": (),
@@ -114,6 +115,20 @@ class JointPanel(TransactionPanel):
         self.offset = quantity_box("mm", -1e6, 1e6)
         self.offset.setToolTip("Gap between the two points along part 1's axis")
         gl.addRow("Offset", self.offset)
+        # The rotation offset of part 2's joint frame, as FreeCAD's placement dialog spells a
+        # rotation: yaw about the joint's axis, then pitch and roll.
+        g = self._group(top, "frame", "Part 2's frame turned")
+        gl = QtWidgets.QFormLayout()
+        g.layout().addLayout(gl)
+        self.frame = []
+        for name, label, tip in (("frameYaw", "Yaw", "Part 2 turned this far about the joint's axis"),
+                                 ("framePitch", "Pitch", "Part 2's axis tilted this far about the frame's y"),
+                                 ("frameRoll", "Roll", "Part 2's axis tilted this far about the frame's x")):
+            box = quantity_box("deg", -360, 360)
+            box.setObjectName(name)
+            box.setToolTip(tip)
+            gl.addRow(label, box)
+            self.frame.append(box)
         self.rot_min, self.rot_max, self.has_rotation = self._range(top, "rotation", "Limit the turn", "deg", -360, 360)
         self.tr_min, self.tr_max, self.has_travel = self._range(top, "travel", "Limit the travel", "mm", -1e6, 1e6)
         g = self._group(top, "cone", None)
@@ -164,7 +179,8 @@ class JointPanel(TransactionPanel):
         self.pick_button.clicked.connect(lambda *_: self._start_picking())
         self.reverse.toggled.connect(self._changed)
         for box in (self.offset, self.rot_min, self.rot_max, self.tr_min, self.tr_max, self.cone,
-                    self.ang_min, self.ang_max, self.distance, self.ratio, self.radius, self.pitch, self.phase):
+                    self.ang_min, self.ang_max, self.distance, self.ratio, self.radius, self.pitch, self.phase,
+                    *self.frame):
             box.valueChanged.connect(self._changed)
         for check in (self.has_rotation, self.has_travel, self.left):
             check.toggled.connect(self._changed)
@@ -230,6 +246,8 @@ class JointPanel(TransactionPanel):
             self.cone.setProperty("rawValue", j.ConeAngle.Value)
             self.ang_min.setProperty("rawValue", j.AngleMin.Value)
             self.ang_max.setProperty("rawValue", j.AngleMax.Value)
+            for box, name in zip(self.frame, ("FrameYaw", "FramePitch", "FrameRoll")):
+                box.setProperty("rawValue", getattr(j, name).Value if name in j.PropertiesList else 0.0)
             self._load_values()
         else:
             self.ang_max.setProperty("rawValue", 180.0)
@@ -404,6 +422,8 @@ class JointPanel(TransactionPanel):
             kw["angle"] = (raw(self.ang_min), raw(self.ang_max))
         kw["reverse"] = "reverse" in shown and self.reverse.isChecked()
         kw["offset"] = raw(self.offset) if "offset" in shown else 0.0
+        if "frame" in shown:
+            kw["frame"] = tuple(raw(box) for box in self.frame)
         if "distance" in shown:
             kw["distance"] = raw(self.distance)
         if "ratio" in shown:
