@@ -339,7 +339,8 @@ class Adapter:
         # the parts in a mesh nobody made, so the engine makes it again at the poses the parts
         # have, and the solve says so by label.
         self.moved = {j.Name: moved_anchors(j, self.anchors[j.Name, j.Document.Name]) for j in active
-                      if j.JointType in COUPLINGS and getattr(j, "PhaseKnown", False) and j.Document == asm.Document}
+                      if j.JointType in COUPLINGS and getattr(j, "PhaseKnown", False) and j.Document == asm.Document
+                      and not isinstance(j, subassembly.InstanceJoint)}  # a placed file's: never written
         self.remade = [j for j in active if self.moved.get(j.Name)]
         with self.engine_errors():
             for j in self.joints:
