@@ -338,10 +338,10 @@ class Adapter:
         # (a hole moved, a gear made larger): the phase, measured about the old axes, would hold
         # the parts in a mesh nobody made, so the engine makes it again at the poses the parts
         # have, and the solve says so by label.
-        self.moved = {j.Name: moved_anchors(j, self.anchors[j.Name, j.Document.Name]) for j in active
-                      if j.JointType in COUPLINGS and getattr(j, "PhaseKnown", False) and j.Document == asm.Document
-                      and not isinstance(j, subassembly.InstanceJoint)}  # a placed file's: never written
-        self.remade = [j for j in active if self.moved.get(j.Name)]
+        self.remade = [j for j in active if j.JointType in COUPLINGS and getattr(j, "PhaseKnown", False)
+                       and not isinstance(j, subassembly.InstanceJoint)  # a placed file's: never written
+                       and j.Document == asm.Document and moved_anchors(j, self.anchors[j.Name, j.Document.Name])]
+        self.moved = {j.Name: moved_anchors(j, self.anchors[j.Name, j.Document.Name]) for j in self.remade}
         with self.engine_errors():
             for j in self.joints:
                 self.add_joint(j)
