@@ -470,7 +470,8 @@ class Adapter:
                 j.PhaseKnown = False
             if not getattr(j, "PhaseKnown", False) and "MeshOffset" in j.PropertiesList:
                 j.MeshOffset = 0.0  # made at the poses: the mesh as it stands is the one made
-            if not getattr(j, "PhaseKnown", False) or abs(phase_value(j) - value) > 1e-12:
+            held = "MeshOffsetHeld" in j.PropertiesList and j.MeshOffsetHeld.Value == j.MeshOffset.Value
+            if not getattr(j, "PhaseKnown", False) or abs(phase_value(j) - value) > 1e-12 or not held:
                 set_phase(j, value)
         self.recorded = True
 

@@ -286,18 +286,19 @@ def phase_property(obj):
     """Phase in the unit of the joint's type (deg, or mm for a rack or a screw), and PhaseKnown:
     whether it is the engine's (False: the engine makes it at the poses the parts have, as for a
     coupling just made or changed, or one saved by an earlier workbench, whose Phase was a turn of
-    its own part). MeshOffset, the designer's reading of it (mesh_offset). A Phase or MeshOffset
-    of the other unit (the joint's type changed) goes, unknown."""
+    its own part). MeshOffset, the designer's reading of it (mesh_offset), and MeshOffsetHeld, the
+    offset the stored Phase holds (an offset typed in the property editor reaches the engine at
+    the next model). A value of the other unit (the joint's type changed) goes, unknown."""
     want = "App::PropertyDistance" if getattr(obj, "JointType", "") in LENGTH_PHASE else "App::PropertyAngle"
     known = "PhaseKnown" in obj.PropertiesList
-    for name in ("Phase", "MeshOffset"):
+    for name in ("Phase", "MeshOffset", "MeshOffsetHeld"):
         if name in obj.PropertiesList and obj.getTypeIdOfProperty(name) != want:
             obj.removeProperty(name)
             if known:
                 obj.PhaseKnown = False
     _add(obj, want, "MeshOffset", "Coupling",
          "how far part 2 is turned (deg; a rack's or a screw's part 2: moved, mm) against part 1 from where "
-         "the coupling was made, part 1 held: set it in the joint's panel")
+         "the coupling was made, part 1 held (the joint's panel previews it; here, the next Solve takes it)")
     _add(obj, want, "Phase", "Coupling", "the engine's constant of the coupling's equation (kept for it; "
          "MeshOffset is its reading): ratio x turn1 + turn2 (Gears; Belt: -ratio), or travel - radius x turn "
          "(RackPinion; Screw: pitch / 2 pi), each turn measured from the line of centres")
@@ -307,27 +308,40 @@ def phase_property(obj):
     _add(obj, "App::PropertyInteger", "PhaseTurns", "Coupling",
          "Gears, Belt: whole turns of part 2 in the phase (the engine's is Phase + 360 deg x PhaseTurns)")
     _add(obj, "App::PropertyBool", "PhaseKnown", "Coupling", "Phase is the engine's (else made at the poses)")
-    obj.setEditorMode("PhaseKnown", 2)  # hidden: the workbench's bookkeeping
-    # Read only: the engine's value changes only with the mesh offset (the panel, the engine's
-    # door), and the offset only so.
-    for name in ("MeshOffset", "Phase", "PhaseTurns"):
-        obj.setEditorMode(name, 1)
+    # A joint saved before it: its Phase holds the offset it has.
+    _add(obj, want, "MeshOffsetHeld", "Coupling", "the mesh offset the stored Phase holds", obj.MeshOffset.Value)
+    # Hidden: the workbench's bookkeeping. Read only: the engine's value, which moves with the
+    # mesh offset and with the turns.
+    for name, mode in (("PhaseKnown", 2), ("MeshOffsetHeld", 2), ("Phase", 1), ("PhaseTurns", 1)):
+        obj.setEditorMode(name, mode)
 
 
 def phase_value(joint):
-    """The coupling's phase as the engine has it, in the joint's unit (deg, or mm for a rack or a
-    screw): Phase with its whole turns."""
+    """The coupling's phase as the engine is to have it, in the joint's unit (deg, or mm for a
+    rack or a screw): Phase with its whole turns, and the mesh offset set since it was stored (in
+    the property editor: MeshOffset less MeshOffsetHeld; part 2's turn or travel enters the
+    coupling's equation with a factor 1)."""
+    own = _held_change(joint)
     if getattr(joint, "JointType", "") in LENGTH_PHASE:
-        return joint.Phase.Value
-    return joint.Phase.Value + 360.0 * getattr(joint, "PhaseTurns", 0)
+        return joint.Phase.Value + own
+    return joint.Phase.Value + 360.0 * getattr(joint, "PhaseTurns", 0) + own
+
+
+def _held_change(joint):
+    props = joint.PropertiesList
+    if "MeshOffset" not in props or "MeshOffsetHeld" not in props:
+        return 0.0
+    return joint.MeshOffset.Value - joint.MeshOffsetHeld.Value
 
 
 def set_phase(joint, value):
     """Stores the engine's phase `value` (deg, or mm) in the joint, its whole turns apart for an
-    angle; the phase is then known."""
+    angle, as holding the mesh offset the joint has now; the phase is then known."""
     turns = 0 if joint.JointType in LENGTH_PHASE else int(round(value / 360.0))
     joint.Phase = value - 360.0 * turns
     joint.PhaseTurns = turns
+    if "MeshOffsetHeld" in joint.PropertiesList and joint.MeshOffsetHeld.Value != mesh_offset(joint):
+        joint.MeshOffsetHeld = mesh_offset(joint)
     joint.PhaseKnown = True
 
 
@@ -350,8 +364,9 @@ def remake_phase(joint):
     """The coupling's phase made again at the poses the parts have at the next model (what it
     is measured with changed: a ratio, an axis, the geometry): its mesh offset starts at 0."""
     joint.PhaseKnown = False
-    if "MeshOffset" in joint.PropertiesList:
-        joint.MeshOffset = 0.0
+    for name in ("MeshOffset", "MeshOffsetHeld"):
+        if name in joint.PropertiesList:
+            setattr(joint, name, 0.0)
 
 
 def part_properties(obj):

@@ -312,8 +312,8 @@ def _offset_mesh(asm, j, offset):
         raise ValueError("%s: its assembly does not hold yet, so its mesh has no place to offset from: "
                          "solve it first" % j.Label)
     phase = objects.phase_value(j) + offset - objects.mesh_offset(j)
-    objects.set_phase(j, phase)
     j.MeshOffset = objects.normal_offset(j.JointType, offset)
+    objects.set_phase(j, phase)  # holding the offset
 
 
 def _place(j, joint_type, a, b):

@@ -419,6 +419,25 @@ class Samples(unittest.TestCase):
         da.edit_joint(rack, mesh_offset=0.05)
         self.assertAlmostEqual(da.phase_value(rack), phase + 0.05, delta=1e-12)
 
+    def test_a_mesh_offset_typed_in_the_property_editor_is_taken_at_the_next_solve(self):
+        asm, p = self.build("three-gears")
+        mesh = joint_between(asm, p["G1"], p["G2"])
+        self.assertEqual(mesh.getEditorMode("MeshOffset"), [])  # editable there
+        self.assertEqual(mesh.getEditorMode("Phase"), ["ReadOnly"])
+        before, phase = self.mesh_value(mesh, p), da.phase_value(mesh)
+        mesh.MeshOffset = 12.0  # as the property editor sets it: nothing else changes now
+        self.assertAlmostEqual(da.phase_value(mesh), phase + 12.0, delta=1e-12)  # the engine's to be
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        self.assertAlmostEqual(math.remainder(self.mesh_value(mesh, p) - before, 2 * math.pi), math.radians(12),
+                               delta=1e-8)
+        self.assertEqual((mesh.MeshOffset.Value, mesh.MeshOffsetHeld.Value), (12.0, 12.0))
+        self.assertAlmostEqual(da.phase_value(mesh), phase + 12.0, delta=1e-9)
+        placed = {n: o.Placement for n, o in p.items()}
+        self.assertTrue(da.solve(asm).converged)
+        for n, pl in placed.items():
+            self.assertTrue(same_placement(p[n].Placement, pl), "%s moved at the second solve" % n)
+
     def moved_gear(self, gear, by):
         """`gear`'s shape with its geometry moved by `by` in its own frame (a hole moved in the
         part): its Placement stays, its edges keep their names."""
