@@ -75,15 +75,20 @@ double group_size(const SolverState& s, const Group& group) {
 }
 
 // Threads for a solve: SolveOptions::threads when given; by default every core, but only when
-// there are several groups and about a millisecond of work between them (a thousand joints):
-// starting threads costs tens of microseconds, which a drag step of a hundred parts cannot pay
-// (a closed chain held at one link splits in two groups: two threads made its step 4 times
-// slower).
+// there are several groups and some 4 ms of work between them (2,500 joints; the 400 four-bars'
+// 1,200 joints take about 1.9 ms on one core): a second thread costs 0.2-0.6 ms of CPU on the
+// development VM (its start and stack, and the groups' data moving to another core's caches:
+// the same instructions, measured in the whole `dispcon assemble` process), and on a machine
+// whose other core is busy it made the 400 four-bars' solve slower in wall time too (4.3-5.0 ms
+// on one thread against 7.3-8.0 ms on two, at load 6 to 7). Below that, one thread. Starting
+// threads for a drag step of a hundred parts cannot pay either (a closed chain held at one link
+// splits in two groups: two threads made its step 4 times slower).
 int thread_count(const SolveOptions& o, const std::vector<Group>& groups) {
+  constexpr size_t kThreadJoints = 2500;
   if (o.threads == 1 || groups.size() < 2) return 1;
   size_t joints = 0;
   for (const Group& c : groups) joints += c.joints.size();
-  if (o.threads <= 0 && joints < 1000) return 1;
+  if (o.threads <= 0 && joints < kThreadJoints) return 1;
   const int cores = static_cast<int>(std::thread::hardware_concurrency());
   const int wanted = o.threads > 1 ? o.threads : std::max(1, cores);
   return std::min(wanted, static_cast<int>(groups.size()));

@@ -34,7 +34,7 @@ struct SolveOptions {
 
   bool record_history = false;  // keep the largest violation after every iteration
   int threads = 0;  // independent groups of bodies shared among this many threads; 0: every
-                    // core when there are several groups and a thousand joints or more
+                    // core when there are several groups and 2,500 joints or more
 
   bool newton_polish = true;  // finish with Newton steps once close
   double polish_below = 0.1;  // switch to Newton when the largest violation is below this times
