@@ -1,6 +1,7 @@
 #include "report.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <iomanip>
 
@@ -50,13 +51,33 @@ void write_object(JsonWriter& w, std::vector<Member> members) {
 
 void write_bodies(JsonWriter& w, const Model& model, const std::vector<Pose>& poses,
                   const std::vector<int>* dof) {
-  std::vector<int> order;  // by name, as a sorted map has them
+  // By name, as a sorted map has them: each name's first 16 bytes as two numbers whose order is
+  // the bytes' (missing bytes 0), the whole names compared only where those are equal. The
+  // strings compared at each step of the sort (a call to memcmp, through the model's bodies) were
+  // a million instructions for the 400 four-bars' 1,200 names, 2 % of the command.
+  struct Named {
+    std::uint64_t first, second;  // bytes 0-7 and 8-15, the earlier byte the higher
+    int body;
+  };
+  std::vector<Named> order;
   order.reserve(static_cast<size_t>(model.body_count()));
-  for (int i = 1; i < model.body_count(); ++i) order.push_back(i);
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return model.body(BodyId{a}).name < model.body(BodyId{b}).name; });
+  for (int i = 1; i < model.body_count(); ++i) {
+    const std::string& name = model.body(BodyId{i}).name;
+    std::uint64_t key[2] = {0, 0};
+    for (size_t k = 0; k < 16; ++k) {
+      const auto byte = k < name.size() ? static_cast<unsigned char>(name[k]) : 0u;
+      key[k / 8] = key[k / 8] << 8 | byte;
+    }
+    order.push_back({key[0], key[1], i});
+  }
+  std::sort(order.begin(), order.end(), [&](const Named& a, const Named& b) {
+    if (a.first != b.first) return a.first < b.first;
+    if (a.second != b.second) return a.second < b.second;
+    return model.body(BodyId{a.body}).name < model.body(BodyId{b.body}).name;
+  });
   w.begin_object();
-  for (const int i : order) {
+  for (const Named& n : order) {
+    const int i = n.body;
     w.key(model.body(BodyId{i}).name);
     write_pose(w, poses[static_cast<size_t>(i)], dof ? &(*dof)[static_cast<size_t>(i)] : nullptr);
   }
