@@ -14,6 +14,10 @@ JOINT_TYPES = ["Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "
                "Gears", "Belt", "RackPinion", "Screw"]
 # The couplings: one equation between the parts' turns (or a turn and a travel).
 COUPLINGS = ("Gears", "Belt", "RackPinion", "Screw")
+# The joint types whose part 2 frame can be turned by a rotation offset: those that hold part 2's
+# orientation by its axis and the twist reference across it (a coupling measures its turns from
+# its axes as picked, a ball or a point holds no orientation).
+FRAME_ROTATED = ("Fixed", "Revolute", "Slider", "Cylindrical", "Planar")
 
 
 class Stateless:
@@ -146,6 +150,12 @@ class JointProxy(_Proxy):
         _add(obj, "App::PropertyBool", "Violated", "Solve", "not satisfied after the last solve")
         joint_extras(obj)
 
+    def onChanged(self, obj, prop):
+        # Its type changed in the property editor: that type's properties shown (a document
+        # being read gets them from attach, once its objects are restored).
+        if prop == "JointType" and "Ratio" in obj.PropertiesList and "Restoring" not in obj.State:
+            show_properties(obj)
+
     def execute(self, obj):
         """A coupling whose part's geometry moved its axis or centre (the part recomputed: a hole
         moved, a gear made larger) takes the new geometry and has its phase made again at the
@@ -259,12 +269,29 @@ def joint_extras(obj):
     _add(obj, "App::PropertyDistance", "Pitch", "Coupling", "Screw: travel per turn", 1.0)
     _add(obj, "App::PropertyBool", "LeftHanded", "Coupling", "Screw: a left-handed thread")
     phase_property(obj)
+    show_properties(obj)
 
 
-# The joint types whose part 2 frame can be turned by a rotation offset: those that hold part 2's
-# orientation by its axis and the twist reference across it (a coupling measures its turns from
-# its axes as picked, a ball or a point holds no orientation).
-FRAME_ROTATED = ("Fixed", "Revolute", "Slider", "Cylindrical", "Planar")
+# The properties only some joint types use, with those types: the property editor shows a joint
+# what its type takes (a revolute no ratio, no phase), as the joint's panel does.
+_USED_BY = {"Ratio": ("Gears", "Belt"), "Radius": ("RackPinion",), "Pitch": ("Screw",), "LeftHanded": ("Screw",),
+            "MeshOffset": COUPLINGS, "Phase": COUPLINGS, "PhaseTurns": ("Gears", "Belt"),
+            "Distance": ("Distance",), "FrameYaw": FRAME_ROTATED, "FramePitch": FRAME_ROTATED,
+            "FrameRoll": FRAME_ROTATED}
+_READ_ONLY = ("Phase", "PhaseTurns")  # the engine's: the mesh offset sets them
+
+
+def show_properties(obj):
+    """Shows in the property editor the properties the joint's type uses (the engine's phase read
+    only) and hides the others; nothing of a hidden one is lost."""
+    kind = getattr(obj, "JointType", "")
+    for name, types in _USED_BY.items():
+        if name in obj.PropertiesList:
+            mode = (1 if name in _READ_ONLY else 0) if kind in types else 2
+            if obj.getEditorMode(name) != {0: [], 1: ["ReadOnly"], 2: ["Hidden"]}[mode]:
+                obj.setEditorMode(name, mode)
+
+
 
 
 def frame_rotation(joint):
@@ -310,10 +337,9 @@ def phase_property(obj):
     _add(obj, "App::PropertyBool", "PhaseKnown", "Coupling", "Phase is the engine's (else made at the poses)")
     # A joint saved before it: its Phase holds the offset it has.
     _add(obj, want, "MeshOffsetHeld", "Coupling", "the mesh offset the stored Phase holds", obj.MeshOffset.Value)
-    # Hidden: the workbench's bookkeeping. Read only: the engine's value, which moves with the
-    # mesh offset and with the turns.
-    for name, mode in (("PhaseKnown", 2), ("MeshOffsetHeld", 2), ("Phase", 1), ("PhaseTurns", 1)):
-        obj.setEditorMode(name, mode)
+    # Hidden: the workbench's bookkeeping (the engine's value is read only: show_properties).
+    for name in ("PhaseKnown", "MeshOffsetHeld"):
+        obj.setEditorMode(name, 2)
 
 
 def phase_value(joint):

@@ -990,6 +990,12 @@ class FrameRotation(unittest.TestCase):
 
     def test_saved_refused_and_types_without_a_frame(self):
         asm, base, arm, j = self.fixed()
+        # The property editor shows what the type takes: a frame, no ratio nor phase.
+        self.assertEqual([j.getEditorMode(n) for n in ("FrameYaw", "Ratio", "Phase", "MeshOffset")],
+                         [[], ["Hidden"], ["Hidden"], ["Hidden"]])
+        j.JointType = "Ball"  # as the property editor changes it
+        self.assertEqual(j.getEditorMode("FrameYaw"), ["Hidden"])
+        j.JointType = "Fixed"
         da.edit_joint(j, frame=(-45, 0, 10))
         self.assertTrue(da.solve(asm).converged)
         placed = arm.Placement
