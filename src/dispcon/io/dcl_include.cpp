@@ -53,11 +53,12 @@ void Parser::include_into(Model& model, IncludeBlock& ib, Declarations& declared
   const fs::path path = fs::path(file_).parent_path() / ib.path;
   std::error_code ec;
   const std::string canonical = fs::weakly_canonical(path, ec).string();
-  for (size_t k = 0; k < stack_.size(); ++k) {
-    if (stack_[k] != canonical) continue;
+  const std::vector<std::string>& files = stack_.files();
+  for (size_t k = 0; k < files.size(); ++k) {
+    if (files[k] != canonical) continue;
     std::string cycle;
-    for (size_t i = k; i < stack_.size(); ++i)
-      cycle += fs::path(stack_[i]).filename().string() + " -> ";
+    for (size_t i = k; i < files.size(); ++i)
+      cycle += fs::path(files[i]).filename().string() + " -> ";
     error(file_at, "include cycle: " + cycle + fs::path(canonical).filename().string());
     return;
   }
@@ -66,9 +67,9 @@ void Parser::include_into(Model& model, IncludeBlock& ib, Declarations& declared
     error(file_at, "cannot include '" + ib.path + "' (" + text + ")");
     return;
   }
-  stack_.push_back(canonical);
+  stack_.push(canonical);
   ParseResult sub = parse_text(text, path.string(), stack_);
-  stack_.pop_back();
+  stack_.pop();
   for (const Diagnostic& d : sub.diagnostics) {
     if (d.error ? errors_++ < kErrorCap : warnings_++ < kErrorCap) diagnostics_.push_back(d);
   }

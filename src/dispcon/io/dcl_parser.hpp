@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <forward_list>
 #include <optional>
 #include <string>
@@ -73,7 +74,34 @@ struct IncludeBlock {
 };
 
 // The files being read, outermost first (canonical paths): an include of one of them is a cycle.
-using IncludeStack = std::vector<std::string>;
+// The outermost file's canonical path is asked of the system only when a file includes another
+// (a look at each folder of its path, some seven system calls a start of the command for a file
+// with no include at all).
+class IncludeStack {
+ public:
+  IncludeStack() = default;
+  // The outermost file, when it is a regular file (a text read from elsewhere has none).
+  explicit IncludeStack(std::string outermost) : outermost_(std::move(outermost)) {}
+  // The canonical paths, outermost first.
+  const std::vector<std::string>& files() {
+    if (!outermost_.empty()) {
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(outermost_, ec))
+        files_.insert(files_.begin(), std::filesystem::weakly_canonical(outermost_, ec).string());
+      outermost_.clear();
+    }
+    return files_;
+  }
+  void push(std::string canonical) {
+    files();
+    files_.push_back(std::move(canonical));
+  }
+  void pop() { files_.pop_back(); }
+
+ private:
+  std::string outermost_;  // not yet made canonical (empty: done, or none)
+  std::vector<std::string> files_;
+};
 
 // Every declared name, once: where it was declared and the body it became (none when its block
 // had an error, reported there). The names view the text, or included_names_.

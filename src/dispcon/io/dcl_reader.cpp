@@ -56,11 +56,8 @@ bool read_file(const std::string& path, std::string& text) {
 }  // namespace dcl
 
 ParseResult parse_dcl(std::string_view text, const std::string& filename) {
-  // A file's own includes of itself are cycles too.
-  dcl::IncludeStack stack;
-  std::error_code ec;
-  if (std::filesystem::is_regular_file(filename, ec))
-    stack.push_back(std::filesystem::weakly_canonical(filename, ec).string());
+  // A file's own includes of itself are cycles too (its canonical path made at the first include).
+  dcl::IncludeStack stack(filename);
   return dcl::parse_text(text, filename, stack);
 }
 
