@@ -334,18 +334,21 @@ void JsonWriter::end_array() {
 }
 
 void JsonWriter::key(std::string_view k) {
+  if (k.size() + 4 <= kBuffer && plain(k)) return plain_key(k);
   item();
-  if (k.size() + 4 <= kBuffer && plain(k)) {  // `"key": ` in one piece
-    char* const out = room(k.size() + 4);
-    out[0] = '"';
-    std::memcpy(out + 1, k.data(), k.size());
-    std::memcpy(out + 1 + k.size(), "\": ", 3);
-    size_ += k.size() + 4;
-  } else {
-    string(k);
-    std::memcpy(room(2), ": ", 2);
-    size_ += 2;
-  }
+  string(k);
+  std::memcpy(room(2), ": ", 2);
+  size_ += 2;
+  after_key_ = true;
+}
+
+void JsonWriter::plain_key(std::string_view k) {
+  item();
+  char* const out = room(k.size() + 4);  // `"key": ` in one piece
+  out[0] = '"';
+  std::memcpy(out + 1, k.data(), k.size());
+  std::memcpy(out + 1 + k.size(), "\": ", 3);
+  size_ += k.size() + 4;
   after_key_ = true;
 }
 

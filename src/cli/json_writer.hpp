@@ -32,6 +32,13 @@ class JsonWriter {
   void end_array();
   // The key of the member whose value comes next.
   void key(std::string_view k);
+  // The same for a key written in the code as a string literal holding nothing to escape
+  // ("position", "residual"): not searched for bytes to escape (12,000 keys of the 400
+  // four-bars' document, 0.6 M instructions).
+  template <size_t N>
+  void literal_key(const char (&k)[N]) {
+    plain_key(std::string_view(k, N - 1));
+  }
 
   void value(double v);
   void value(int v);
@@ -63,6 +70,7 @@ class JsonWriter {
   void flush();
 
   void item();  // the comma, new line and indent before an array's item or an object's key
+  void plain_key(std::string_view k);  // key() of a key with nothing to escape
   // A new line and the indent of the open containers. The short ones in a copy of fixed size,
   // a few moves instead of a call: the spaces copied beyond the indent lie past size_, where
   // the next bytes are written.

@@ -22,14 +22,14 @@ void write_pose(JsonWriter& w, const Pose& pose, const int* dof) {
   if (q.w() < 0) q.coeffs() = -q.coeffs();
   w.begin_object();
   if (dof) {
-    w.key("dof");
+    w.literal_key("dof");
     w.value(*dof);
   }
-  w.key("position");
+  w.literal_key("position");
   write_numbers(w, {pose.x.x(), pose.x.y(), pose.x.z()});
-  w.key("quaternion");
+  w.literal_key("quaternion");
   write_numbers(w, {q.w(), q.x(), q.y(), q.z()});
-  w.key("rotation");
+  w.literal_key("rotation");
   w.begin_array();
   for (int i = 0; i < 3; ++i) write_numbers(w, {R(i, 0), R(i, 1), R(i, 2)});
   w.end_array();
@@ -90,21 +90,21 @@ void write_constraints(JsonWriter& w, const Model& model,
   for (const ConstraintReport& c : reports) {
     const Joint& j = model.joint(c.joint);
     w.begin_object();
-    w.key("active");
+    w.literal_key("active");
     w.value(c.active);
-    w.key("at_limit");
+    w.literal_key("at_limit");
     w.value(c.at_limit);
-    w.key("index");
+    w.literal_key("index");
     w.value(c.joint.value);
-    w.key("line");
+    w.literal_key("line");
     w.value(c.line);
-    w.key("object1");
+    w.literal_key("object1");
     w.value(model.body(j.body1).name);
-    w.key("object2");
+    w.literal_key("object2");
     w.value(model.body(j.body2).name);
-    w.key("residual");
+    w.literal_key("residual");
     w.value(c.residual);
-    w.key("satisfied");
+    w.literal_key("satisfied");
     w.value(c.satisfied);
     w.end_object();
   }
