@@ -60,6 +60,48 @@ void describe_path(std::ostream& msg, const Model& model, const ReachBound::Gap&
   if (j.line) msg << " (line " << j.line << ")";
 }
 
+// The model's poses with every body that `body` reaches through joints between movable bodies
+// carried with it as one rigid body to `target`, when every active joint holds there (those to
+// the world and to fixed bodies included: a linkage free in space, or on a plane moved along
+// it), measured as reported: then a step to `target` is made at once. Else nullopt.
+std::optional<SolveResult> carried(const Model& model, BodyId body, const Pose& target,
+                                   const SolveOptions& options) {
+  const auto movable = [&](BodyId b) { return b.value > 0 && !model.body(b).fixed; };
+  std::vector<bool> carry(static_cast<size_t>(model.body_count()), false);
+  carry[static_cast<size_t>(body.value)] = true;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (int j = 0; j < model.joint_count(); ++j) {
+      const Joint& joint = model.joint(JointId{j});
+      if (!joint.active_at(options.time) || !movable(joint.body1) || !movable(joint.body2)) {
+        continue;
+      }
+      const size_t a = static_cast<size_t>(joint.body1.value);
+      const size_t b = static_cast<size_t>(joint.body2.value);
+      if (carry[a] != carry[b]) {
+        carry[a] = carry[b] = true;
+        grew = true;
+      }
+    }
+  }
+  const Pose& start = model.body(body).pose;
+  const Quat turn = (target.q * start.q.conjugate()).normalized();
+  SolveResult r;
+  r.poses = model.poses();
+  for (size_t i = 0; i < carry.size(); ++i) {
+    if (!carry[i]) continue;
+    Pose& p = r.poses[i];
+    p.x = target.x + turn * (p.x - start.x);
+    p.q = (turn * p.q).normalized();
+    if (!(p.x.cwiseAbs().maxCoeff() <= kLargest)) return std::nullopt;  // off the model's range
+  }
+  r.poses[static_cast<size_t>(body.value)] = target;
+  r.constraints = measure(model, r.poses, options);
+  r.max_residual = largest_residual(r.constraints);
+  if (!(r.max_residual <= options.tolerance) || !r.violated().empty()) return std::nullopt;
+  return r;
+}
+
 }  // namespace
 
 Puller::Puller(Model& model, BodyId body, const Vec3& point, const SolveOptions& options)
@@ -195,6 +237,17 @@ SolveResult Dragger::move_to(const Pose& target) {
     return r;
   }
   if (r.status == SolveStatus::Diverged) return r;
+  // A linkage free to move as a whole (in space, on a plane): carried rigidly with the held
+  // body, every joint may still hold; then the step is made at once, where the held Newton
+  // steps, cut short by the seed's turn, crawl (the monocycle's thigh moved 50: 400-2,000
+  // iterations).
+  if (std::optional<SolveResult> made = carried(model_, body_, at, options_)) {
+    add_spent(*made, {r});
+    made->message = solve_message(model_, *made) + ": carried with '" + model_.body(body_).name +
+                    "' as one rigid body";
+    model_.set_poses(made->poses);
+    return std::move(*made);
+  }
   // Near a path's full stretch Newton steps crawl (the first-order model sees almost no way to
   // change the path's reach); the path straightened by the factor that meets the target
   // (ReachBound::straighten) is a valid pose from which the held solve has nothing or little left.
@@ -208,99 +261,170 @@ SolveResult Dragger::move_to(const Pose& target) {
     session_.set_stuck(Session::Stuck::StopWhenSlow);
     return p;
   };
+  // That held solve from the straightened path: true when it made the step (then `r`).
+  auto from_straight = [&]() {
+    if (!straight) return false;
+    poses_ = std::move(*straight);
+    straight.reset();
+    SolveResult s = patient(poses_);
+    if (s.converged) {
+      model_.set_poses(poses_);
+      add_spent(s, {r});
+      r = std::move(s);
+      return true;
+    }
+    add_spent(r, {s});
+    return false;
+  };
+  // A step whose Newton steps ask for more turns than a few dozen steps of the seed's 0.2 rad
+  // make (Session::far): the held solve would crawl toward it for hundreds or thousands of
+  // steps, whether it is in reach or not. The pull tells which within its 40 (the straightened
+  // path first, near a full stretch).
+  if (session_.far()) {
+    if (from_straight()) return r;
+    return pull(at, std::move(r), std::nullopt);
+  }
   std::optional<SolveResult> near;
   if (session_.slowed()) {
     // Whole Newton steps that do not halve the violation: the joints settle on a misfit, as
     // where the target is out of reach, and the pull tells that sooner than the held steps would
     // give up (a four-bar held past its dead point: 5 held steps instead of 11). Not near a
     // path's full stretch, where they crawl toward a target in reach.
-    SolveResult spent = r;
+    std::optional<SolveResult> told;
     if (!straight) {
       near = puller().pull_to(at.x, false);
-      spent = pull(at, std::move(r), near, true);
-      if (spent.status == SolveStatus::OutOfReach || spent.angle_left > 0) return spent;
-      near->iterations = near->seed_iterations = near->polish_iterations = 0;  // in `spent`
+      told = fall_back(at, r, *near);
+      if (told && !told->converged) return std::move(*told);
     }
-    // Reachable after all (or not told): the held solve without that rule.
+    // Reachable after all (the turn got there), or not told: the held solve without that rule,
+    // so that a reachable step's pose is the one it always was.
     poses_ = model_.poses();
     poses_[static_cast<size_t>(body_.value)] = at;
-    r = patient(poses_);
-    add_spent(r, {spent});
-    if (r.converged) {
-      model_.set_poses(poses_);
-      return r;
+    SolveResult p = patient(poses_);
+    if (told && !p.converged && p.status != SolveStatus::Diverged) {
+      // The turn's pose: the held body at its target, every joint holding.
+      add_spent(*told, {p});
+      model_.set_poses(told->poses);
+      return std::move(*told);
     }
-    if (r.status == SolveStatus::Diverged) return r;
-  }
-  if (straight) {
-    poses_ = std::move(*straight);
-    SolveResult s = patient(poses_);
-    if (s.converged) {
-      model_.set_poses(poses_);
-      add_spent(s, {r});
-      return s;
+    if (told) {
+      add_spent(p, {*told});
+    } else {
+      add_spent(p, {r});
+      if (near) add_spent(p, {*near});
     }
-    add_spent(r, {s});
+    if (p.converged) {
+      model_.set_poses(poses_);
+      return p;
+    }
+    if (p.status == SolveStatus::Diverged) return p;
+    r = std::move(p);
+    if (near) near->iterations = near->seed_iterations = near->polish_iterations = 0;  // in `r`
   }
+  if (from_straight()) return r;
   return pull(at, std::move(r), std::move(near));
 }
 
 // The held step's Newton steps failed: the body's origin is pulled toward the target's from the
-// model's poses. Where that gets there the held step is made from the pose reached (a step too
-// long for Newton, or a nearly stretched linkage, whose Newton steps crawl); else the target is
-// out of reach and the pose reached is the nearest. `pulled`: that pull when made already. With
-// `told_only` the step is not made when in reach: the result is then not OutOfReach, and counts
-// the iterations spent (the held solve's given and the pulls').
-SolveResult Dragger::pull(const Pose& target, SolveResult held, std::optional<SolveResult> pulled,
-                          bool told_only) {
+// model's poses (`pulled`: that pull when made already), and what the pull and the turn tell is
+// the step's answer (fall_back), the turn's pose when it got there. Only where the pull could not
+// keep the joints does the held solve that persists (seed iterations between Newton's, the stall
+// rule) make the step from where it began.
+SolveResult Dragger::pull(const Pose& target, SolveResult held, std::optional<SolveResult> pulled) {
   SolveResult near = pulled ? std::move(*pulled) : puller().pull_to(target.x, false);
-  if (near.status != SolveStatus::OutOfReach) {
-    const bool reached = near.status == SolveStatus::Converged;
-    // The origin got there: the rotation is pulled toward the target's with the origin held
-    // (Dragger::turn), which tells a rotation out of reach within a few dozen iterations (the
-    // held solve below would go on to its stall rule, hundreds).
-    SolveResult turned;
-    turned.converged = false;
-    if (reached) {
-      turned = turn(target, near.poses);
-      // (A turn that ran out of steps, still getting nearer, is told as it is: the held solve
-      // would not make the step either, after hundreds of iterations.)
-      if (turned.status == SolveStatus::OutOfReach || turned.angle_left > 0) {
-        add_spent(turned, {held, near});
-        SolveResult r = nearest(target, std::move(turned));
-        // What holding the body at its target leaves open there, largest first (a lock names
-        // its couplings).
-        const std::vector<ConstraintReport> open = violated_worst_first(r.constraints);
-        for (size_t k = 0; k < open.size() && k < 3; ++k) {
-          r.message += (k ? "; " : "; held there it leaves open: ") + describe(model_, open[k]);
-        }
-        return r;
-      }
+  if (std::optional<SolveResult> told = fall_back(target, held, near)) {
+    if (told->converged) model_.set_poses(told->poses);
+    return std::move(*told);
+  }
+  poses_ = model_.poses();
+  poses_[static_cast<size_t>(body_.value)] = target;
+  if (!persist_) persist_ = std::make_unique<Session>(model_, options_, held_only(model_, body_));
+  SolveResult r = persist_->solve(poses_);
+  if (r.converged) model_.set_poses(poses_);
+  add_spent(r, {held, near});
+  return r;
+}
+
+// What the origin's pull `near` (from the model's poses) and then the turn tell of a step whose
+// held solve failed (`spent`: its iterations, counted in the answer), each within its cap where
+// the held solve that persists crawls to its stall rule (hundreds of iterations, no pose):
+// - the pull ends out of reach: the nearest pose (OutOfReach);
+// - the pull runs out of its steps still getting nearer (IterationLimit): the pose it reached,
+//   valid and no farther from the target than the start, not called the nearest (a step in
+//   reach but too long for them, as the vice's jaw moved 50: its screw would turn 250 times);
+// - the pull gets there and the turn (Dragger::turn) ends out of reach or runs out of its steps:
+//   its pose, as it says; the turn fails: that failure, with no pose;
+// - the turn gets there: Converged, the held body at its target and every joint holding (the
+//   model is not moved here).
+// nullopt when the pull could not keep the joints: it tells nothing.
+std::optional<SolveResult> Dragger::fall_back(const Pose& target, const SolveResult& spent,
+                                              const SolveResult& near) {
+  if (near.status == SolveStatus::OutOfReach) {
+    SolveResult r = near;
+    add_spent(r, {spent});
+    return nearest(target, std::move(r));
+  }
+  if (near.status == SolveStatus::IterationLimit && near.violated().empty()) {
+    return still_nearer(target, spent, near);
+  }
+  if (near.status != SolveStatus::Converged) return std::nullopt;
+  // The origin got there: the rotation is pulled toward the target's with the origin held.
+  SolveResult turned = turn(target, near.poses);
+  add_spent(turned, {spent, near});
+  // (A turn that ran out of steps, still getting nearer, is told as it is.)
+  if (turned.status == SolveStatus::OutOfReach || turned.angle_left > 0) {
+    SolveResult r = nearest(target, std::move(turned));
+    // What holding the body at its target leaves open there, largest first (a lock names its
+    // couplings).
+    const std::vector<ConstraintReport> open = violated_worst_first(r.constraints);
+    for (size_t k = 0; k < open.size() && k < 3; ++k) {
+      r.message += (k ? "; " : "; held there it leaves open: ") + describe(model_, open[k]);
     }
-    if (told_only) {
-      held.status = SolveStatus::Stalled;
-      add_spent(held, {near, turned});
-      return held;
-    }
-    // The held solve that persists (seed iterations between Newton's, the stall rule): from the
-    // pose the pull reached when it got there, else from where the step began (a pull that
-    // crawls: a nearly stretched linkage; or a step the pull does not describe: a turn).
-    poses_ = reached ? near.poses : model_.poses();
-    poses_[static_cast<size_t>(body_.value)] = target;
-    if (!persist_) persist_ = std::make_unique<Session>(model_, options_, held_only(model_, body_));
-    SolveResult r = persist_->solve(poses_);
-    if (r.converged) model_.set_poses(poses_);
-    if (!r.converged && turned.converged) {
-      // The turn got the held body to its target with every joint holding: that pose is the
-      // step's.
-      model_.set_poses(turned.poses);
-      std::swap(r, turned);
-    }
-    add_spent(r, {held, near, turned});
     return r;
   }
-  add_spent(near, {held});
-  return nearest(target, std::move(near));
+  if (!turned.converged) {
+    // The turn could not keep the joints: no pose, what holding the body at its target leaves
+    // open measured where the step began.
+    const std::string why = turned.message;
+    turned.status =
+        turned.status == SolveStatus::Diverged ? SolveStatus::Diverged : SolveStatus::Stalled;
+    turned.poses = model_.poses();
+    turned.distance_left = turned.angle_left = 0;
+    turned = nearest(target, std::move(turned));
+    turned.message = "turn: '" + model_.body(body_).name +
+                     "' could not be turned toward its target's rotation with its joints holding "
+                     "(no pose is claimed): " +
+                     why;
+  }
+  return turned;
+}
+
+// A pull that ran out of its steps while still getting nearer, as a drag step's result
+// (IterationLimit): the pose it reached (its joints hold there), unless that is farther from the
+// target than where the step began (the pull keeps only steps that get nearer; its last
+// correction could move it by the tolerance), then the start. Not called the nearest.
+SolveResult Dragger::still_nearer(const Pose& target, const SolveResult& spent,
+                                  const SolveResult& near) const {
+  SolveResult r = near;
+  add_spent(r, {spent});
+  r.status = SolveStatus::IterationLimit;
+  r.converged = false;
+  r.held = body_;
+  const size_t held = static_cast<size_t>(body_.value);
+  const double began = (model_.body(body_).pose.x - target.x).norm();
+  r.distance_left = (r.poses[held].x - target.x).norm();
+  if (r.distance_left > began) {
+    r.poses = model_.poses();
+    r.distance_left = began;
+  }
+  r = nearest(target, std::move(r));
+  std::ostringstream msg;
+  msg << "pull: '" << model_.body(body_).name << "' is still " << r.distance_left
+      << " from its target after " << r.iterations
+      << " iterations, getting nearer when they ran out (no nearest pose is claimed: the target "
+         "may be in reach, farther than these iterations go)";
+  r.message = msg.str();
+  return r;
 }
 
 // The held body's rotation pulled toward the target's with its origin held where the target

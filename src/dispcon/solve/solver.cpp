@@ -51,6 +51,16 @@ constexpr double kStopDamping = 1e-11;
 // that do not halve the violation are a least-squares misfit settling (a target out of reach).
 constexpr double kSlowStep = 0.5;
 constexpr int kSlowSteps = 2;
+// With Session::Stuck::StopWhenSlow, the solve also stops after kSlowSteps Newton steps in a row
+// each cut short to 1/N of itself (the turn a body may make, max_rotation_step a step) with the
+// steps taken and N past kFarSteps: the first-order model asks for more turns of 0.2 rad than a
+// few dozen steps make, so the held solve would crawl for at least that long (the vice's jaw
+// moved 50 in one step: its screw asked to turn 7,854 times 0.2 rad, 5,451 Newton steps to a
+// stall; the otary's ball held 50 away, out of reach: 2,837), and the pull (Dragger::move_to)
+// tells sooner. One such step alone is not enough: the first steps of a far turn in reach can
+// ask for many more than they end up needing (the monocycle's thigh turned 2.5 rad: 67 asked at
+// its second step, made in 25).
+constexpr int kFarSteps = 60;
 
 // One group's run through the loop.
 struct GroupRun {
@@ -69,7 +79,10 @@ struct GroupRun {
   double progress_mark = 0;  // the best violation then
   bool stalled = false;
   bool slowed = false;  // stalled by slow whole steps (Session::Stuck::StopWhenSlow)
+  bool far = false;     // stalled by a step cut short too far from its end (likewise)
   int slow = 0;         // whole steps in a row that did not halve the violation
+  int far_steps = 0;    // steps in a row cut short too far from their end
+  double asked = kInf;  // the fewest steps a step cut short asked for since the last whole one
   bool done = false;
   std::vector<double> history;  // r after each iteration (record_history)
 
@@ -77,8 +90,9 @@ struct GroupRun {
   void reset() {
     lambda = 1e-12;
     iterations = seed = polish = seed_only_until = last_progress = 0;
-    stalled = slowed = false;
-    slow = 0;
+    stalled = slowed = far = false;
+    slow = far_steps = 0;
+    asked = kInf;
     measured = false;
     done = false;
     history.clear();
@@ -132,6 +146,16 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
       const bool slow = !chord && next > kSlowStep * p.r && !p.polisher.cut_short();
       p.slow = slow ? p.slow + 1 : 0;
       p.slowed = p.stalled = p.slow >= kSlowSteps;
+      // Steps asked for: this one's 1/N of itself. Where each ask is half a step or more below
+      // every one before it, the steps close in on the target as the first order says (the
+      // vice's jaw moved 0.5: 79 steps), and only the stall rule's count is too many.
+      const double asked = p.polisher.cut_short() ? 1 / p.polisher.step_scale() : 0;
+      const bool closing = asked <= p.asked - 0.5 && p.iterations + asked <= kStallIterations;
+      const bool far = p.polisher.cut_short() && p.iterations + asked > kFarSteps && !closing;
+      p.asked = p.polisher.cut_short() ? std::min(p.asked, asked) : kInf;
+      p.far_steps = far ? p.far_steps + 1 : 0;
+      p.far = p.far_steps >= kSlowSteps;
+      p.stalled = p.stalled || p.far;
     }
     p.r = next;
     p.lambda = std::max(1e-12, p.lambda * 0.1);
@@ -273,6 +297,13 @@ SolveResult Session::solve(std::vector<Pose>& poses) {
 bool Session::slowed() const {
   for (const GroupRun& p : impl_->runs) {
     if (p.slowed) return true;
+  }
+  return false;
+}
+
+bool Session::far() const {
+  for (const GroupRun& p : impl_->runs) {
+    if (p.far) return true;
   }
   return false;
 }

@@ -103,7 +103,9 @@ class Session {
   // What a solve does when its damped Newton steps keep failing: Persist (seed iterations a
   // while, then Newton again, until the stall rule or the cap) or Stop at once, status Stalled
   // (a drag step's held solve, which then pulls instead: Dragger::move_to), or StopWhenSlow: as
-  // Stop, and also after a whole Newton step that does not halve the violation (slowed()).
+  // Stop, and also after two whole Newton steps in a row that each leave more than half the
+  // violation (slowed()), or after two steps in a row cut short so far from their end that the
+  // seed's turn a step would take more than 60 steps in all to make it (far()).
   enum class Stuck { Persist, Stop, StopWhenSlow };
   Session(const Model& model, const SolveOptions& options, const std::vector<bool>& held = {},
           Stuck stuck = Stuck::Persist);
@@ -121,8 +123,10 @@ class Session {
   // place in the first two cases; the result's poses are those reached. Throws
   // std::invalid_argument for an unknown or inactive joint.
   SolveResult pull(std::vector<Pose>& poses, JointId joint);
-  // Whether the last solve stopped at a slow whole step (Stuck::StopWhenSlow).
+  // Whether the last solve stopped at slow whole steps (Stuck::StopWhenSlow).
   bool slowed() const;
+  // Whether the last solve stopped at steps cut short too far from their end (likewise).
+  bool far() const;
   // What the next solves do when stuck.
   void set_stuck(Stuck stuck);
 
@@ -194,9 +198,17 @@ class Dragger {
   //   body at its target.
   // - The held solve: Newton steps, stopped at the first that fails, or after two whole steps in
   //   a row that each leave more than half the violation (a least-squares misfit settling, as
-  //   where the target is out of reach; not near a path's full stretch, below): then the pull
-  //   (below) comes first, and only where it does not end out of reach (nor the turn) is the
-  //   held solve made again without that rule, so a step in reach keeps its pose.
+  //   where the target is out of reach; not near a path's full stretch, below), or after two
+  //   steps in a row cut short so far from their end that the seed's 0.2 rad a step would take
+  //   more than 60 steps in all (a target far out of reach, or in reach only by turning a long
+  //   way: the vice's jaw moved 50, its screw turned 250 times).
+  // - A linkage that can move as a whole (free in space, or on a plane along it): every body the
+  //   held one reaches through joints between movable bodies carried with it rigidly, the step
+  //   made at once when every joint holds there.
+  // - After two slow whole steps, the pull (below) comes first, and only where it does not tell
+  //   (it gets there, and the turn too) is the held solve made again without that rule, so a
+  //   step in reach keeps its pose (the turn's pose when that solve fails). After far steps the
+  //   pull and the turn alone.
   // - Near a path's full stretch (where those steps crawl) the path straightened by the one
   //   factor that meets the target (every body's direction across the line from the anchor
   //   scaled alike, the linkage kept on its branch), what hangs off it carried along, then the
@@ -208,23 +220,27 @@ class Dragger {
   //   turn is corrected only as far as its gain needs, the nearest pose to the tolerance. When
   //   it cannot get there the status is OutOfReach: the result's poses are the nearest valid
   //   pose, distance_left how far the body's origin stays from the target's there, and its
-  //   constraints what holding the body at its target leaves open.
+  //   constraints what holding the body at its target leaves open. When its 40 steps run out
+  //   while it still gets nearer: IterationLimit with the pose it reached (valid, no farther
+  //   than the start) and distance_left there, not called the nearest.
   // - When the origin got there, the body's rotation is pulled toward the target's with the
   //   origin held (a turn past a limit), the angle between the rotations made least:
   //   OutOfReach at the nearest pose, angle_left the angle left, no more than at the start;
   //   IterationLimit with angle_left set when its 80 steps ran out still getting nearer (no
-  //   nearest claimed, the held solve not run); else the held solve that persists (seed
-  //   iterations, the stall rule) from the pose the pull reached (from where the step began
-  //   when a pull was still getting nearer after 40 iterations, a nearly stretched linkage),
-  //   the turn's pose if that one does not converge.
+  //   nearest claimed); Converged with the turn's pose when it got there; Stalled, no pose, when
+  //   it could not keep the joints. Only when the pull could not keep the joints does the held
+  //   solve that persists (seed iterations, the stall rule) go on from where the step began.
   SolveResult move_to(const Pose& target);
 
  private:
   struct Turn;
   Puller& puller();
   SolveResult out_of_reach(const Pose& target);
-  SolveResult pull(const Pose& target, SolveResult held, std::optional<SolveResult> pulled,
-                   bool told_only = false);
+  SolveResult pull(const Pose& target, SolveResult held, std::optional<SolveResult> pulled);
+  std::optional<SolveResult> fall_back(const Pose& target, const SolveResult& spent,
+                                       const SolveResult& near);
+  SolveResult still_nearer(const Pose& target, const SolveResult& spent,
+                           const SolveResult& near) const;
   SolveResult turn(const Pose& target, const std::vector<Pose>& from);
   SolveResult nearest(const Pose& target, SolveResult near) const;
 
@@ -234,7 +250,7 @@ class Dragger {
   Session session_;
   std::unique_ptr<ReachBound> reach_;  // built at the first move, again when the model changed
   std::unique_ptr<Puller> puller_;     // built at the first step that fails
-  std::unique_ptr<Session> persist_;   // the held solve that persists: after a pull that crawls
+  std::unique_ptr<Session> persist_;   // the held solve that persists: after a pull that fails
   std::unique_ptr<Turn> turn_;         // built at the first step whose rotation is pulled
   std::vector<Pose> poses_;
 };

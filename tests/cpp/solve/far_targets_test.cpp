@@ -42,21 +42,23 @@ const Far kTargets[] = {
 
 // Steps that still break a rule, by sample, body and target, with the rule they break: each is
 // checked to still break it (a case that passes must leave the list). Not hidden: counted in
-// docs/performance.md ("Issue 14, eighth round: long failing drags"). What they are (the status
-// and iterations in each line's comment, as measured when it was listed):
+// docs/performance.md ("Issue 14, ninth round: far drags told sooner"). What they are (the status
+// and iterations in each line's comment, as measured when it was listed or last changed):
 // - Farther: a turn whose nearest pose is farther from the target's rotation than the start. None
 //   is listed since Dragger::turn measures the angle between the rotations (it measured a tilt by
 //   its sine, which falls again past a right angle); the rule is still checked for every step.
 // - Iterations, "iteration-limit": a turn that runs out of its 80 steps while still getting nearer,
 //   said as such with no nearest pose claimed (turns that slide along a cone's or a twist's edge
-//   converge slowly; the vice's screw likewise).
-// - Iterations, "stalled": the held Newton steps, cut short by the seed's 0.2 rad turn a step,
-//   crawl toward a target they never meet; the pull stops at its 40 steps still getting nearer;
-//   then the held solve that persists crawls to its stall rule and ends with no pose. The
-//   monocycles' and the otary's free parts; the vice's jaw is in reach only by turning its screw
-//   250 times (its pitch 0.2), at 0.2 rad a step.
-// - Iterations, "out-of-reach": a pull or a turn that ends at the nearest pose, but converging
-//   linearly (the pull's one damping for modes of different stiffness, performance.md).
+//   converge slowly).
+// - Iterations, "out-of-reach": a turn that ends at the nearest pose, but converging linearly
+//   along a cone's rim (the robot arm's hand, the steering knuckle, the otary's body).
+// - Iterations, "stalled": the otary's head turned about x, whose turn cannot keep its joints
+//   (89 iterations), then said with no pose.
+// Since the ninth round none is the held solve's crawl or the pull's: a held solve whose Newton
+// steps, cut short by the seed's turn, ask for more than a few dozen of them stops (two in a
+// row), a linkage free to move as a whole is carried rigidly, and a pull that runs out of its 40
+// steps is told as such (the otary's ball, the vice's jaw moved 50: its screw would turn 250
+// times) instead of the held solve that persisted to its stall rule (493-5,893 iterations).
 enum class Breaks { Iterations, Farther };
 struct Known {
   const char* sample;
@@ -67,68 +69,40 @@ struct Known {
 const Known kKnown[] = {
     {"bennett.dcl", "link2", "rz", Breaks::Iterations},               // iteration-limit after 87
     {"bricard.dcl", "link2", "ry", Breaks::Iterations},               // iteration-limit after 83
-    {"monocycle-push.dcl", "body", "ry", Breaks::Iterations},         // iteration-limit after 86
     {"monocycle-push.dcl", "wheel", "rx", Breaks::Iterations},        // iteration-limit after 94
-    {"monocycle-push.dcl", "wheel", "ry", Breaks::Iterations},        // iteration-limit after 85
     {"monocycle-push.dcl", "wheel", "rz", Breaks::Iterations},        // iteration-limit after 84
-    {"monocycle-push.dcl", "left-thigh", "rx", Breaks::Iterations},   // iteration-limit after 151
-    {"monocycle-push.dcl", "left-thigh", "ry", Breaks::Iterations},   // iteration-limit after 84
+    {"monocycle-push.dcl", "left-thigh", "rx", Breaks::Iterations},   // iteration-limit after 86
     {"monocycle-push.dcl", "left-thigh", "rz", Breaks::Iterations},   // iteration-limit after 84
-    {"monocycle-push.dcl", "right-thigh", "+z", Breaks::Iterations},  // stalled after 1391
-    {"monocycle-push.dcl", "right-thigh", "rx", Breaks::Iterations},  // iteration-limit after 228
+    {"monocycle-push.dcl", "right-thigh", "rx", Breaks::Iterations},  // iteration-limit after 86
     {"monocycle-push.dcl", "right-thigh", "rz", Breaks::Iterations},  // iteration-limit after 84
-    {"monocycle-push.dcl", "left-leg", "ry", Breaks::Iterations},     // out-of-reach after 65
-    {"monocycle-push.dcl", "right-leg", "ry", Breaks::Iterations},    // iteration-limit after 87
     {"monocycle-push.dcl", "left-foot", "rx", Breaks::Iterations},    // iteration-limit after 101
-    {"monocycle-push.dcl", "left-foot", "ry", Breaks::Iterations},    // iteration-limit after 86
     {"monocycle-push.dcl", "left-foot", "rz", Breaks::Iterations},    // iteration-limit after 83
-    {"monocycle-push.dcl", "right-foot", "+x", Breaks::Iterations},   // stalled after 801
-    {"monocycle-push.dcl", "right-foot", "-z", Breaks::Iterations},   // stalled after 1261
     {"monocycle-push.dcl", "right-foot", "rx", Breaks::Iterations},   // iteration-limit after 100
-    {"monocycle-push.dcl", "right-foot", "ry", Breaks::Iterations},   // iteration-limit after 113
     {"monocycle-push.dcl", "right-foot", "rz", Breaks::Iterations},   // iteration-limit after 90
-    {"monocycle.dcl", "body", "rx", Breaks::Iterations},              // iteration-limit after 437
-    {"monocycle.dcl", "body", "ry", Breaks::Iterations},              // iteration-limit after 83
-    {"monocycle.dcl", "body", "rz", Breaks::Iterations},              // iteration-limit after 457
+    {"monocycle.dcl", "body", "rx", Breaks::Iterations},              // iteration-limit after 85
+    {"monocycle.dcl", "body", "rz", Breaks::Iterations},              // iteration-limit after 86
     {"monocycle.dcl", "wheel", "rz", Breaks::Iterations},             // iteration-limit after 85
     {"monocycle.dcl", "left-thigh", "rz", Breaks::Iterations},        // iteration-limit after 83
-    {"monocycle.dcl", "right-thigh", "-y", Breaks::Iterations},       // stalled after 708
     {"monocycle.dcl", "right-thigh", "rz", Breaks::Iterations},       // iteration-limit after 84
-    {"monocycle.dcl", "left-leg", "rx", Breaks::Iterations},          // iteration-limit after 166
+    {"monocycle.dcl", "left-leg", "rx", Breaks::Iterations},          // iteration-limit after 84
     {"monocycle.dcl", "left-leg", "rz", Breaks::Iterations},          // iteration-limit after 84
-    {"monocycle.dcl", "right-leg", "rx", Breaks::Iterations},         // iteration-limit after 172
+    {"monocycle.dcl", "right-leg", "rx", Breaks::Iterations},         // iteration-limit after 97
     {"monocycle.dcl", "right-leg", "rz", Breaks::Iterations},         // iteration-limit after 85
-    {"monocycle.dcl", "left-foot", "rx", Breaks::Iterations},         // iteration-limit after 323
-    {"monocycle.dcl", "left-foot", "ry", Breaks::Iterations},         // out-of-reach after 68
+    {"monocycle.dcl", "left-foot", "rx", Breaks::Iterations},         // iteration-limit after 85
     {"monocycle.dcl", "left-foot", "rz", Breaks::Iterations},         // iteration-limit after 83
-    {"monocycle.dcl", "right-foot", "rx", Breaks::Iterations},        // iteration-limit after 109
-    {"monocycle.dcl", "right-foot", "ry", Breaks::Iterations},        // iteration-limit after 159
+    {"monocycle.dcl", "right-foot", "rx", Breaks::Iterations},        // iteration-limit after 90
     {"otary.dcl", "body", "rx", Breaks::Iterations},                  // out-of-reach after 65
     {"otary.dcl", "body", "ry", Breaks::Iterations},                  // iteration-limit after 95
-    {"otary.dcl", "head", "rx", Breaks::Iterations},                  // stalled after 621
+    {"otary.dcl", "head", "rx", Breaks::Iterations},                  // stalled after 98
     {"otary.dcl", "head", "ry", Breaks::Iterations},                  // iteration-limit after 93
-    {"otary.dcl", "tail", "rx", Breaks::Iterations},                  // iteration-limit after 146
-    {"otary.dcl", "tail", "ry", Breaks::Iterations},                  // iteration-limit after 135
+    {"otary.dcl", "tail", "rx", Breaks::Iterations},                  // iteration-limit after 84
+    {"otary.dcl", "tail", "ry", Breaks::Iterations},                  // iteration-limit after 87
     {"otary.dcl", "tail", "rz", Breaks::Iterations},                  // iteration-limit after 92
     {"otary.dcl", "tray", "rx", Breaks::Iterations},                  // iteration-limit after 85
-    {"otary.dcl", "ball", "+x", Breaks::Iterations},                  // stalled after 3315
-    {"otary.dcl", "ball", "-x", Breaks::Iterations},                  // stalled after 693
-    {"otary.dcl", "ball", "+y", Breaks::Iterations},                  // out-of-reach after 130
-    {"otary.dcl", "ball", "-y", Breaks::Iterations},                  // stalled after 663
-    {"otary.dcl", "ball", "+z", Breaks::Iterations},                  // stalled after 493
-    {"otary.dcl", "ball", "-z", Breaks::Iterations},                  // stalled after 493
-    {"peaucellier.dcl", "crank", "rz", Breaks::Iterations},           // out-of-reach after 69
-    {"planetary.dcl", "sun", "rx", Breaks::Iterations},               // out-of-reach after 104
-    {"planetary.dcl", "sun", "ry", Breaks::Iterations},               // out-of-reach after 61
-    {"planetary.dcl", "ring", "ry", Breaks::Iterations},              // out-of-reach after 167
     {"robot-arm.dcl", "hand", "rz", Breaks::Iterations},              // out-of-reach after 81
-    {"steering.dcl", "knuckle_r", "rz", Breaks::Iterations},          // out-of-reach after 71
+    {"steering.dcl", "knuckle_r", "rz", Breaks::Iterations},          // out-of-reach after 65
     {"three-gears.dcl", "g2", "rz", Breaks::Iterations},              // iteration-limit after 98
     {"three-gears.dcl", "g3", "rz", Breaks::Iterations},              // iteration-limit after 98
-    {"vice.dcl", "screw", "+x", Breaks::Iterations},                  // iteration-limit after 71
-    {"vice.dcl", "screw", "-x", Breaks::Iterations},                  // iteration-limit after 71
-    {"vice.dcl", "jaw", "+x", Breaks::Iterations},                    // stalled after 5893
-    {"vice.dcl", "jaw", "-x", Breaks::Iterations},                    // stalled after 5893
 };
 
 bool known(const std::string& sample, const std::string& body, const std::string& target,
@@ -231,6 +205,67 @@ TEST(FarTargets, EverySamplesBodiesStopWithinAFewDozenIterations) {
   EXPECT_GT(out_of_reach, 250);
   std::printf("%d steps failed, %d out of reach, %d of them the bound alone\n", failed_steps,
               out_of_reach, bound_only);
+}
+
+// The vice's jaw moved 50 along its slide in one step: in reach, but only by turning the screw
+// 250 times (pitch 0.2), 7,854 of the seed's 0.2 rad turns. The held solve stops after two Newton
+// steps that ask for that many, and the pull runs out of its 40 steps still getting nearer: the
+// step says so (IterationLimit, no nearest pose claimed) within a few dozen iterations, with the
+// valid pose it reached. The screw turns at most 0.2 rad a Newton step, so the jaw cannot have
+// travelled more than iterations x 0.2 x 0.2 / (2 pi). Moved 0.1 (half a turn), the step is
+// made. (Before, moved 0.2 or more in one step, the held solve ended stalled, no pose, after
+// 457-5,893 iterations.)
+TEST(FarTargets, ViceJawMovedFarIsToldStillGettingNearer) {
+  const SolveOptions o;
+  Model m = test_support::sample("vice.dcl");
+  ASSERT_TRUE(assemble(m, o).converged);
+  const BodyId jaw = test_support::id(m, "jaw");
+  const std::vector<Pose> before = m.poses();
+  Pose target = m.body(jaw).pose;
+  target.x.x() += 50;
+  Dragger drag(m, jaw, o);
+  const SolveResult r = drag.move_to(target);
+  ASSERT_EQ(r.status, SolveStatus::IterationLimit) << r.message;
+  EXPECT_LE(r.iterations, kFewDozen);
+  EXPECT_TRUE(same_bits(before, m.poses()));
+  EXPECT_NE(r.message.find("no nearest pose is claimed"), std::string::npos) << r.message;
+  for (const ConstraintReport& c : measure(m, r.poses, o)) EXPECT_TRUE(c.satisfied);
+  const double left = (r.poses[static_cast<size_t>(jaw.value)].x - target.x).norm();
+  EXPECT_NEAR(r.distance_left, left, 1e-9);
+  EXPECT_LT(left, 50);
+  EXPECT_GE(left, 50 - r.iterations * 0.2 * 0.2 / (2 * kPi) - 1e-9);
+
+  Pose near = m.body(jaw).pose;
+  near.x.x() += 0.1;
+  const SolveResult made = drag.move_to(near);
+  ASSERT_TRUE(made.converged) << made.message;
+  EXPECT_LT((m.body(jaw).pose.x - near.x).norm(), 1e-9);
+  for (const ConstraintReport& c : measure(m, m.poses(), o)) EXPECT_TRUE(c.satisfied);
+}
+
+// The monocycle is free in space but for its body's tilt: its right thigh moved 50 down, which
+// the held solve crawled toward and then ended stalled after 708 iterations, is made at once by
+// carrying the whole monocycle with it: every body moved by the same 50, the rotations kept.
+TEST(FarTargets, FreeLinkageIsCarriedAsOneBody) {
+  const SolveOptions o;
+  Model m = test_support::sample("monocycle.dcl");
+  ASSERT_TRUE(assemble(m, o).converged);
+  const BodyId thigh = test_support::id(m, "right-thigh");
+  const std::vector<Pose> before = m.poses();
+  const Vec3 move(0, -50, 0);
+  Pose target = m.body(thigh).pose;
+  target.x += move;
+  Dragger drag(m, thigh, o);
+  const SolveResult r = drag.move_to(target);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LE(r.iterations, kFewDozen);
+  for (int b = 1; b < m.body_count(); ++b) {
+    const Pose& p = m.body(BodyId{b}).pose;
+    const Pose& was = before[static_cast<size_t>(b)];
+    EXPECT_LT((p.x - (was.x + move)).norm(), 1e-12) << b;
+    EXPECT_LT(p.q.angularDistance(was.q), 1e-12) << b;
+  }
+  for (const ConstraintReport& c : measure(m, m.poses(), o)) EXPECT_TRUE(c.satisfied);
 }
 
 }  // namespace
