@@ -451,10 +451,11 @@ SolveResult Dragger::turn(const Pose& target, const std::vector<Pose>& from) {
   r.held = body_;
   const size_t held = static_cast<size_t>(body_.value);
   r.distance_left = (r.poses[held].x - target.x).norm();
-  if (r.status == SolveStatus::Converged) {
-    r.poses[held] = target;
-    return r;
-  }
+  // Got there: the poses as the pull left them and measured them, the held body within the
+  // tolerance of its target (set at the target, its joints would be measured elsewhere: one
+  // turn that got within 8.8e-10 rad of its target then left a joint 1.2e-9 open, over the
+  // tolerance, and the step said it converged).
+  if (r.status == SolveStatus::Converged) return r;
   if (r.status != SolveStatus::OutOfReach && r.status != SolveStatus::IterationLimit) return r;
   r.angle_left = r.poses[held].q.angularDistance(target.q);
   // Never farther than where it began (the pull keeps only steps that get nearer; its last

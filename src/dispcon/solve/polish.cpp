@@ -9,10 +9,11 @@ namespace dispcon {
 
 bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>& band,
                     double lambda, double max_rotation, bool reuse, bool measured,
-                    const std::vector<double>* soft) {
+                    const std::vector<double>* soft, const LetGo* let_go) {
   w_ = &work;
   s_ = &s;
   reused_ = false;
+  has_multipliers_ = false;
   kept_ = false;  // the poses move below
   w_->dq_.resize(static_cast<size_t>(nv_));
   for (int v = 0; v < nv_; ++v)
@@ -36,7 +37,7 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   if (!reused_) {
     small_factored_ = false;
     work.chord_of_ = nullptr;  // the dense factor and the row lists are rewritten below
-    gather(s, band, soft);
+    gather(s, band, soft, let_go);
   }
   const int m = reused_ && !small ? chord_.rows : static_cast<int>(w_->rows_.size());
   if (m == 0 || nv_ == 0) return false;
@@ -51,6 +52,7 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
     return false;
   }
   if ((!reused_ || small) && (dense() || !kkt_)) {
+    has_multipliers_ = !reused_;
     // dq = M^-1 J^T y, each body's terms summed in the order of its rows
     for (Vec6& d : w_->dq_) d.setZero();
     if (dense()) {  // with the M^-1 J^T that couplings() kept
@@ -97,10 +99,11 @@ namespace {
 // keep different things of each row (the chord step's, without `jacobian`, the residuals
 // alone). With `joint_r`, each joint's residual is measured in the same look at its geometry
 // (as max_residual() does) and the largest returned.
+// `let_go`: the bounds a pull has let go, or null.
 template <typename Row, typename After>
 double for_each_row(const SolverState& s, const int* first, const int* last,
-                    const std::vector<double>& band, bool jacobian, std::vector<double>* joint_r,
-                    Row&& row, After&& after) {
+                    const std::vector<double>& band, const LetGo* let_go, bool jacobian,
+                    std::vector<double>* joint_r, Row&& row, After&& after) {
   PartRows parts[kPartSlots];
   double largest = 0;
   for (const int* joint = first; joint != last; ++joint) {
@@ -110,7 +113,11 @@ double for_each_row(const SolverState& s, const int* first, const int* last,
     const BodyState& s2 = s.bodies[static_cast<size_t>(js.b2)];
     const int v1 = s1.movable ? s1.n_var : -1;
     const int v2 = s2.movable ? s2.n_var : -1;
-    const BoundTest bound{band[static_cast<size_t>(c)]};
+    BoundTest bound{band[static_cast<size_t>(c)]};
+    if (let_go && !let_go->parts.empty()) {
+      bound.let_go_parts = let_go->parts[static_cast<size_t>(c)];
+      bound.let_go = let_go->band;
+    }
     if (joint_r) {
       const double rc = s.rows_and_residual(js, bound, parts, jacobian);
       (*joint_r)[static_cast<size_t>(c)] = rc;
@@ -129,7 +136,7 @@ double for_each_row(const SolverState& s, const int* first, const int* last,
 }  // namespace
 
 void Polisher::gather(const SolverState& s, const std::vector<double>& band,
-                      const std::vector<double>* soft) {
+                      const std::vector<double>* soft, const LetGo* let_go) {
   w_->rows_.clear();
   w_->residual_.clear();
   w_->soft_.clear();
@@ -149,7 +156,7 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band,
   int last = -1;
   const std::vector<int>& joints = group_->joints;
   for_each_row(
-      s, joints.data(), joints.data() + joints.size(), band, true, nullptr,
+      s, joints.data(), joints.data() + joints.size(), band, let_go, true, nullptr,
       [&](int c, int v1, int v2, const PartRows& p, int k) {
         if (c != last) {
           mark_boundary();
@@ -178,7 +185,7 @@ bool Polisher::small_residuals(const SolverState& s, const std::vector<double>& 
   size_t a = 0;
   bool same = true;
   for_each_row(
-      s, joints.data(), joints.data() + joints.size(), band, false, nullptr,
+      s, joints.data(), joints.data() + joints.size(), band, nullptr, false, nullptr,
       [&](int, int v1, int v2, const PartRows& p, int k) {
         if (a < m && w_->rows_[a].v1 == v1 && w_->rows_[a].v2 == v2) {
           w_->residual_[a] = p.residual[k];
@@ -199,7 +206,7 @@ double Polisher::gather_residuals(const SolverState& s, const std::vector<double
   chord_.start(joints.size());
   int i = 0;
   return for_each_row(
-      s, joints.data(), joints.data() + joints.size(), band, false, joint_r,
+      s, joints.data(), joints.data() + joints.size(), band, nullptr, false, joint_r,
       [&](int, int v1, int v2, const PartRows& p, int k) { chord_.add(p.residual[k], v1, v2); },
       [&] { chord_.joint[static_cast<size_t>(++i)] = chord_.rows; });
 }
@@ -297,7 +304,7 @@ double Polisher::measure_moved(const SolverState& s, const std::vector<double>& 
       spare_.rows += count;
     } else {
       rc = for_each_row(
-          s, &joints[i], &joints[i] + 1, band, false, &joint_r,
+          s, &joints[i], &joints[i] + 1, band, nullptr, false, &joint_r,
           [&](int, int v1, int v2, const PartRows& p, int row) {
             spare_.add(p.residual[row], v1, v2);
           },

@@ -53,6 +53,14 @@ struct PolishWork {
   const void* chord_of_ = nullptr;
 };
 
+// The bounds a pull has let go (pull.cpp): bit p of parts[c] for joint c's p-th part (as
+// BoundTest::part numbers them); such a bound has rows in a step only when passed by more than
+// -band, whatever the joint's band. Empty: none.
+struct LetGo {
+  std::vector<unsigned char> parts;
+  double band = 0;
+};
+
 // Newton polish. The step is dq = M^-1 J^T y with (J M^-1 J^T + lambda I) y = -r: the
 // displacement produced by constraint impulses J^T y, opposite on the two bodies of each joint,
 // so it conserves first-order momenta like the seed's corrections; lambda regularises redundant
@@ -74,10 +82,15 @@ class Polisher {
   // pull's rows, which the step then meets only as far as the other joints let it (the step
   // minimises |dq|_M^2 + |J_soft dq + r_soft|^2 / soft while it meets the other rows). No chord
   // step then.
+  // `let_go`, when given (a pull's), the bounds it has let go.
   bool step(SolverState& s, PolishWork& work, const std::vector<double>& band, double lambda,
             double max_rotation, bool reuse, bool measured,
-            const std::vector<double>* soft = nullptr);
+            const std::vector<double>* soft = nullptr, const LetGo* let_go = nullptr);
   bool reused() const { return reused_; }
+  // Whether the last step left its rows' impulses y (dq = M^-1 J^T y) in the work's y_, one a
+  // row in the order of the group's joints and each joint's parts: a dense or rows-form step
+  // (the saddle-point form solves for dq directly).
+  bool has_multipliers() const { return has_multipliers_; }
   // Whether a small group (a dense system) may take chord steps too: only where its rows leave
   // no free motion (see no_free_motion()), and only within one solve. Off unless set (a drag's
   // held solve keeps its Newton steps).
@@ -108,7 +121,7 @@ class Polisher {
   using Entry = PolishWork::Entry;
 
   void gather(const SolverState& s, const std::vector<double>& band,
-              const std::vector<double>* soft);
+              const std::vector<double>* soft, const LetGo* let_go);
   // Row a's own damping beyond lambda (a pull's), in the units of the diagonal's scale.
   double soft(int a) const { return w_->soft_.empty() ? 0 : w_->soft_[static_cast<size_t>(a)]; }
   double gather_residuals(const SolverState& s, const std::vector<double>& band,
@@ -195,6 +208,7 @@ class Polisher {
   bool kkt_ = false;                // the sparse system is the saddle-point form
   bool factored_ = false;           // ... and its factorisation can serve a chord step
   bool reused_ = false;             // the last step was a chord step
+  bool has_multipliers_ = false;    // see has_multipliers()
   double step_scale_ = 1.0;         // see step_scale()
   bool cut_short_ = false;          // see cut_short()
   bool measured_ = false;           // measure() kept the rows' residuals in chord_

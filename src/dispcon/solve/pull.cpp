@@ -94,17 +94,133 @@ Measure measure(const SolverState& s, const Group& group, int joint, std::vector
   return m;
 }
 
+// The bounds a pull holds as rows, and those it has let go. A bound a step went past is held
+// from then on (widen(): its joint's band widened, so the linkage slides along it rather than the
+// corrections undoing most of each step). A held bound is let go when the step's impulse on its
+// rows pushes it out past the bound (release()): the rest of the step would take it back inside,
+// so leaving it gets nearer (the multiplier of an active-set step with the wrong sign: for one
+// bound, the step without its rows stays inside it to first order). Held for good, the robot
+// arm's hand turned 2 rad about (0, 1, 1) stopped with its wrist's twist at its limit, 4.8e-4 rad
+// farther than the nearest pose, which leaves it; a pull along a guide stopped at the guide's end.
+// Only after a whole step (one cut short by the seed's turn is far from the nearest pose, where
+// the bounds' curvature outweighs their first order), and once a kept step.
+class Holds {
+ public:
+  Holds(double tolerance, size_t joints) : joints_(joints) { let_go.band = -0.5 * tolerance; }
+
+  // Before a step from the current poses: the rows each held bound will have in it (the step's
+  // rows come joint by joint, part by part, as the polisher gathers them).
+  void find(const SolverState& s, const Group& group, int joint, const std::vector<double>& band) {
+    held_.clear();
+    bool any = false;
+    for (int c : group.joints) any = any || (c != joint && band[static_cast<size_t>(c)] > 0);
+    if (!any) return;
+    PartRows parts[kPartSlots];
+    double out[kPartSlots][3];
+    int row = 0;
+    for (int c : group.joints) {
+      const JointState& js = s.joints[static_cast<size_t>(c)];
+      const BoundTest bound = test(c, band);
+      s.rows(js, bound, parts, false);
+      if (c != joint && bound.band > 0 && js.bounded) s.outward(js, bound, out);
+      for (int p = 0; p < kPartSlots; ++p) {
+        const PartRows& rows = parts[p];
+        // (A bound let go that has rows is passed, by rounding or more: not held.)
+        if (c != joint && bound.band > 0 && js.bounded && rows.at_limit &&
+            (bound.let_go_parts >> p & 1u) == 0 &&
+            (out[p][0] != 0 || out[p][1] != 0 || out[p][2] != 0)) {
+          held_.push_back({c, p, row, rows.count, {out[p][0], out[p][1], out[p][2]}});
+        }
+        row += rows.count;
+      }
+    }
+    rows_ = row;
+  }
+
+  // After the step: lets go of each held bound whose rows' impulses (y, the step's) push it out
+  // past the bound, by more than rounding; true when one was.
+  bool release(const std::vector<double>& y) {
+    if (held_.empty() || y.size() != static_cast<size_t>(rows_)) return false;
+    double largest = 0;
+    for (double v : y) largest = std::max(largest, std::abs(v));
+    bool released = false;
+    for (const Held& h : held_) {
+      double push = 0;
+      for (int k = 0; k < h.count && k < 3; ++k)
+        push += y[static_cast<size_t>(h.row + k)] * h.out[k];
+      if (push > 1e-9 * largest && (wait_.empty() || wait_[static_cast<size_t>(h.joint)] == 0)) {
+        if (let_go.parts.empty()) let_go.parts.resize(joints_, 0);
+        let_go.parts[static_cast<size_t>(h.joint)] |= static_cast<unsigned char>(1u << h.part);
+        released = true;
+      }
+    }
+    return released;
+  }
+
+  // A step went past a bound it had let go (by more than the tolerance): held again.
+  bool hold_again(const SolverState& s, const JointState& js, int c, double tolerance) {
+    if (let_go.parts.empty() || let_go.parts[static_cast<size_t>(c)] == 0) return false;
+    PartRows parts[kPartSlots];
+    s.rows(js, BoundTest{-0.5 * tolerance}, parts, false);
+    unsigned char& mine = let_go.parts[static_cast<size_t>(c)];
+    const unsigned char before = mine;
+    for (int p = 0; p < kPartSlots; ++p) {
+      if (parts[p].at_limit) mine = static_cast<unsigned char>(mine & ~(1u << p));
+    }
+    if (mine == before) return false;
+    // The step that passed it went further than its first order said (by the bound's curvature:
+    // the monocycle's hip, a cone of 0.04 rad, was let go and passed again at every other step,
+    // each a step made twice): the joint's bounds are not let go again for 2, 4, 8, ... kept
+    // steps.
+    if (wait_.empty()) wait_.resize(joints_, 0), times_.resize(joints_, 0);
+    const auto k = static_cast<size_t>(c);
+    wait_[k] = 2 << std::min(times_[k]++, 10);
+    return true;
+  }
+
+  // A step was kept.
+  void kept() {
+    for (int& w : wait_) w = std::max(0, w - 1);
+  }
+  // The bound test of joint c's rows in a step.
+  BoundTest test(int c, const std::vector<double>& band) const {
+    BoundTest t{band[static_cast<size_t>(c)]};
+    if (!let_go.parts.empty()) {
+      t.let_go_parts = let_go.parts[static_cast<size_t>(c)];
+      t.let_go = let_go.band;
+    }
+    return t;
+  }
+
+  LetGo let_go;
+
+ private:
+  struct Held {
+    int joint, part, row, count;
+    double out[3];
+  };
+  std::vector<Held> held_;
+  // Per joint: the kept steps before its bounds may be let go again, and how often they were
+  // held again.
+  std::vector<int> wait_, times_;
+  int rows_ = 0;
+  size_t joints_ = 0;
+};
+
 // Widens the band of each bounded joint the step pushed past its bound (the solver's rule for
-// Newton steps, solver.cpp): true when one was.
+// Newton steps, solver.cpp), and holds again a bound let go that it passed: true when one was.
 bool widen(const SolverState& s, const Group& group, int joint, const std::vector<double>& joint_r,
-           double tolerance, std::vector<double>& band) {
+           double tolerance, std::vector<double>& band, Holds& holds) {
   bool widened = false;
   for (int c : group.joints) {
     const JointState& js = s.joints[static_cast<size_t>(c)];
     const double rc = joint_r[static_cast<size_t>(c)];
     double& b = band[static_cast<size_t>(c)];
-    if (c != joint && js.bounded && rc > tolerance && b < 2 * rc &&
-        s.at_limit(js, -0.5 * tolerance)) {
+    if (c == joint || !js.bounded || !(rc > tolerance) || !s.at_limit(js, -0.5 * tolerance)) {
+      continue;
+    }
+    const bool again = holds.hold_again(s, js, c, tolerance);
+    if (b < 2 * rc || again) {
       b = std::max(4 * b, 2 * rc + tolerance);
       widened = true;
     }
@@ -167,6 +283,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   double& damping = soft[static_cast<size_t>(joint)];
   // Newton on the hard joints until they hold; false when they do not within kCorrections.
   Measure now = measure(s, group, joint, joint_r);
+  Holds holds(o.tolerance, s.joints.size());
   // (Past the cap too: the poses a pull leaves must be valid whenever they can be.)
   // To well within the tolerance by default, so that the distances compared are of valid poses
   // alike; to `within` where what is compared is larger.
@@ -175,7 +292,8 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     double lambda = kRegularised;
     for (int k = 0; k < kCorrections && now.hard > within; ++k) {
       ++out.iterations;
-      if (!polisher.step(s, work, band, lambda, o.max_rotation_step, false, false, &soft))
+      if (!polisher.step(s, work, band, lambda, o.max_rotation_step, false, false, &soft,
+                         &holds.let_go))
         return false;
       const Measure next = measure(s, group, joint, joint_r);
       if (!std::isfinite(next.hard)) return false;
@@ -229,18 +347,30 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   double gained = 0;        // the last kept step's gain (0: none yet)
   bool calibrated = false;  // mu was set by the secant: the step's model has the curvature found
   bool moved = false;       // a step was kept
+  bool may_release = true;  // no bound let go since the last kept step
   while (now.distance > o.tolerance && out.iterations < o.max_iterations) {
     const Measure kept = now;
     const double h0 = h;
     save_poses(s, group, before);
     damping = mu;
     ++out.iterations;
-    const bool stepped =
-        polisher.step(s, work, band, kRegularised, o.max_rotation_step, false, false, &soft);
+    holds.find(s, group, joint, band);
+    const bool stepped = polisher.step(s, work, band, kRegularised, o.max_rotation_step, false,
+                                       false, &soft, &holds.let_go);
     if (stepped) now = measure(s, group, joint, joint_r);
-    if (stepped && widen(s, group, joint, joint_r, o.tolerance, band)) {
+    if (stepped && widen(s, group, joint, joint_r, o.tolerance, band, holds)) {
       // A bound the step went past is met as a row from now on (the linkage slides along it
       // rather than the corrections undoing most of each step): the step is made again.
+      load_poses(s, group, before);
+      now = kept;
+      rows.read(s, pulled, band_soft, true);
+      continue;
+    }
+    if (stepped && may_release && !polisher.cut_short() && polisher.has_multipliers() &&
+        holds.release(work.y_)) {
+      // A bound held that this step's impulses push outward is let go, and the step made again
+      // without it (once a kept step: a bound let go that the step then passes is held again).
+      may_release = false;
       load_poses(s, group, before);
       now = kept;
       rows.read(s, pulled, band_soft, true);
@@ -399,6 +529,8 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     }
     load_poses(s, group, spare);
     moved = true;
+    may_release = true;
+    holds.kept();
     now = best;
     h = rows.read(s, pulled, band_soft, true);
     // The next step's damping: the curvature found along this one less the Gauss-Newton share

@@ -212,7 +212,7 @@ JointGeometry SolverState::geometry(const JointState& js, BoundTest bound) const
       g.Q = s1.R * j.p1 + s1.x;
     } else {
       const Vec3 local = s1.R.transpose() * (g.P2 - s1.x);
-      g.nearest = nearest_on_guide(j.p1, &*j.guide, local, bound);
+      g.nearest = nearest_on_guide(j.p1, &*j.guide, local, bound.part(0));
       g.Q = s1.R * g.nearest.q + s1.x;
       for (int k = 0; k < g.nearest.rows; ++k) {
         Vec3& n = g.nearest.normals[static_cast<size_t>(k)];
@@ -289,17 +289,92 @@ void SolverState::rows_at(const JointState& js, const JointGeometry& g, BoundTes
                                       bodies[static_cast<size_t>(js.b2)].G, g.nearest, jacobian));
   }
   if (j.angle) {
-    new (&out[1]) PartRows(angle_rows(g.a1, g.a2, j.angle->min, j.angle->max, bound, jacobian));
+    new (&out[1])
+        PartRows(angle_rows(g.a1, g.a2, j.angle->min, j.angle->max, bound.part(1), jacobian));
   }
   if (j.twist) {
-    new (&out[2]) PartRows(twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max, bound,
-                                      jacobian, j.angle->max > 0));
+    new (&out[2]) PartRows(twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max,
+                                      bound.part(2), jacobian, j.angle->max > 0));
   }
   if (j.coupling) new (&out[3]) PartRows(coupling_rows(coupling(js, true), js.last, js.phase));
   // (In the angle's slot: a same rotation has none.)
   if (j.same_rotation) {
     new (&out[1]) PartRows(same_rotation_rows(bodies[static_cast<size_t>(js.b1)].q,
                                               bodies[static_cast<size_t>(js.b2)].q, jacobian));
+  }
+}
+
+namespace {
+
+// The way out of a guide's set at the bound the point p (object1's frame) rests on, as the
+// guide's nearest point finds that bound with the same test (object1's frame); zero at none.
+Vec3 guide_outward(const Guide& g, const Vec3& p1, const Vec3& p, BoundTest bound) {
+  const Vec3 d = p - p1;
+  switch (g.kind) {
+    case GuideKind::Axial:
+    case GuideKind::Cylinder: {
+      const double lambda = d.dot(g.dir);
+      if (bound.above(lambda, g.min, g.max)) return g.dir;
+      if (bound.below(lambda, g.min, g.max)) return -g.dir;
+      return Vec3::Zero();
+    }
+    case GuideKind::Planar:
+    case GuideKind::Sphere: {
+      const Vec3 across = g.kind == GuideKind::Planar ? Vec3(d - d.dot(g.dir) * g.dir) : d;
+      const double r = across.norm();
+      const Vec3 radial =
+          unit_or(across, g.kind == GuideKind::Planar ? any_perpendicular(g.dir) : Vec3::UnitX());
+      if (bound.above(r, g.min, g.max)) return radial;
+      if (g.min > 0 && bound.below(r, g.min, g.max)) return -radial;
+      return Vec3::Zero();
+    }
+    case GuideKind::Polyline: {
+      const Nearest n = nearest_on_polyline(g.points, p, bound);
+      if (!n.at_limit || g.points.size() < 2) return Vec3::Zero();
+      const size_t last = g.points.size() - 1;
+      return n.q == g.points.front() ? unit_or(g.points[0] - g.points[1], Vec3::UnitX())
+                                     : unit_or(g.points[last] - g.points[last - 1], Vec3::UnitX());
+    }
+    case GuideKind::Point:
+    case GuideKind::Circle:
+      return Vec3::Zero();
+  }
+  return Vec3::Zero();
+}
+
+}  // namespace
+
+void SolverState::outward(const JointState& js, BoundTest bound, double out[kPartSlots][3]) const {
+  for (int p = 0; p < kPartSlots; ++p) out[p][0] = out[p][1] = out[p][2] = 0;
+  const Joint& j = *js.joint;
+  const JointGeometry g = geometry(js, bound);
+  const BodyState& s1 = bodies[static_cast<size_t>(js.b1)];
+  if (g.translation && g.nearest.at_limit && j.guide) {
+    const Vec3 local = s1.R.transpose() * (g.P2 - s1.x);
+    const Vec3 way = s1.R * guide_outward(*j.guide, j.p1, local, bound.part(0));
+    for (int k = 0; k < g.nearest.rows; ++k) out[0][k] = g.nearest.normals[k].dot(way);
+  }
+  // An angle's or a twist's bound as their rows take it (angle.cpp, twist.cpp): the upper one
+  // first.
+  if (j.angle && j.angle->min != j.angle->max) {
+    const BoundTest b = bound.part(1);
+    const double theta = angle_between(g.a1, g.a2);
+    const double max = j.angle->max, min = j.angle->min;
+    if (max < kPi && max > 1e-6 && theta >= max - b.band) {
+      out[1][0] = 1;
+    } else if (min > 1e-6 && min < kPi - 1e-6 && theta <= min + b.band) {
+      out[1][0] = -1;
+    }
+  }
+  if (j.twist && j.twist->min != j.twist->max) {
+    const BoundTest b = bound.part(2);
+    const double twist = twist_angle(g.a1, g.a2, g.b1, g.b2);
+    const double violation = twist_violation(twist, j.twist->min, j.twist->max);
+    const bool upper = j.twist->max < kPi && twist >= j.twist->max - b.band;
+    const bool lower = !upper && j.twist->min > -kPi && twist <= j.twist->min + b.band;
+    if (upper || lower || violation != 0) {
+      out[2][0] = upper || (!lower && violation > 0) ? 1 : -1;
+    }
   }
 }
 

@@ -111,6 +111,13 @@ class SolverState {
   // same (the nearest point of a guide without ends does not depend on the bound test).
   double rows_and_residual(const JointState& js, BoundTest bound, PartRows out[kPartSlots],
                            bool jacobian) const;
+  // For each row rows() gives a joint (the same test), the component along it of the way out of
+  // the bound its part rests on, the direction that passes that bound: +1 for an angle's or a
+  // twist's upper bound, -1 for a lower one; a guide's rows' normals dotted with the way out of
+  // its set at the end the point rests on. 0 for the rows of parts at no bound. An impulse y on
+  // the rows moves them by a positive multiple of y, so sum_k y_k out[p][k] > 0 says the part's
+  // rows push it out past its bound: the rest of the step would take it back inside.
+  void outward(const JointState& js, BoundTest bound, double out[kPartSlots][3]) const;
   // A coupling's equation at the current poses (the joint must have one).
   CouplingMeasure coupling(const JointState& js, bool with_rows) const;
 
