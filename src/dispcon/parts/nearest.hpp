@@ -42,14 +42,6 @@ Vec3 unit_or(const Vec3& v, const Vec3& fallback);
 // min = max is an equality and always in contact.
 struct BoundTest {
   double band = 0;
-  // The parts whose bound a pull has let go (bit p for a joint's p-th part, in the order its rows
-  // come: translation, angle, twist, coupling): theirs counts only when passed by more than
-  // -let_go (pull.cpp; the others' by `band`).
-  unsigned let_go_parts = 0;
-  double let_go = 0;
-  BoundTest part(int p) const {
-    return (let_go_parts >> p & 1u) != 0 ? BoundTest{let_go} : BoundTest{band};
-  }
   bool above(double value, double min, double max) const {
     return max < kHuge && (value >= max - band || min == max);
   }

@@ -113,15 +113,14 @@ double for_each_row(const SolverState& s, const int* first, const int* last,
     const BodyState& s2 = s.bodies[static_cast<size_t>(js.b2)];
     const int v1 = s1.movable ? s1.n_var : -1;
     const int v2 = s2.movable ? s2.n_var : -1;
-    BoundTest bound{band[static_cast<size_t>(c)]};
-    if (let_go && !let_go->parts.empty()) {
-      bound.let_go_parts = let_go->parts[static_cast<size_t>(c)];
-      bound.let_go = let_go->band;
-    }
+    const BoundTest bound{band[static_cast<size_t>(c)]};
     if (joint_r) {
       const double rc = s.rows_and_residual(js, bound, parts, jacobian);
       (*joint_r)[static_cast<size_t>(c)] = rc;
       largest = larger_residual(largest, rc);
+    } else if (let_go && !let_go->parts.empty()) {
+      s.rows(js, JointBounds{bound, let_go->parts[static_cast<size_t>(c)], let_go->band}, parts,
+             jacobian);
     } else {
       s.rows(js, bound, parts, jacobian);
     }

@@ -120,13 +120,24 @@ class Holds {
     int row = 0;
     for (int c : group.joints) {
       const JointState& js = s.joints[static_cast<size_t>(c)];
-      const BoundTest bound = test(c, band);
+      if (!js.bounded) {
+        // A joint without bounds has as many rows at every pose: counted once.
+        if (fixed_rows_.empty()) fixed_rows_.assign(joints_, -1);
+        int& count = fixed_rows_[static_cast<size_t>(c)];
+        if (count < 0) {
+          s.rows(js, BoundTest{band[static_cast<size_t>(c)]}, parts, false);
+          count = parts[0].count + parts[1].count + parts[2].count + parts[3].count;
+        }
+        row += count;
+        continue;
+      }
+      const JointBounds bound = test(c, band);
       s.rows(js, bound, parts, false);
-      if (c != joint && bound.band > 0 && js.bounded) s.outward(js, bound, out);
+      if (c != joint && bound.bound.band > 0 && js.bounded) s.outward(js, bound, out);
       for (int p = 0; p < kPartSlots; ++p) {
         const PartRows& rows = parts[p];
         // (A bound let go that has rows is passed, by rounding or more: not held.)
-        if (c != joint && bound.band > 0 && js.bounded && rows.at_limit &&
+        if (c != joint && bound.bound.band > 0 && js.bounded && rows.at_limit &&
             (bound.let_go_parts >> p & 1u) == 0 &&
             (out[p][0] != 0 || out[p][1] != 0 || out[p][2] != 0)) {
           held_.push_back({c, p, row, rows.count, {out[p][0], out[p][1], out[p][2]}});
@@ -138,7 +149,8 @@ class Holds {
   }
 
   // After the step: lets go of each held bound whose rows' impulses (y, the step's) push it out
-  // past the bound, by more than rounding; true when one was.
+  // past the bound, by more than rounding; true when one was. (Nothing when the step's rows are
+  // not those counted: a twist whose axes turned opposite has none.)
   bool release(const std::vector<double>& y) {
     if (held_.empty() || y.size() != static_cast<size_t>(rows_)) return false;
     double largest = 0;
@@ -183,8 +195,8 @@ class Holds {
     for (int& w : wait_) w = std::max(0, w - 1);
   }
   // The bound test of joint c's rows in a step.
-  BoundTest test(int c, const std::vector<double>& band) const {
-    BoundTest t{band[static_cast<size_t>(c)]};
+  JointBounds test(int c, const std::vector<double>& band) const {
+    JointBounds t{BoundTest{band[static_cast<size_t>(c)]}};
     if (!let_go.parts.empty()) {
       t.let_go_parts = let_go.parts[static_cast<size_t>(c)];
       t.let_go = let_go.band;
@@ -200,6 +212,7 @@ class Holds {
     double out[3];
   };
   std::vector<Held> held_;
+  std::vector<int> fixed_rows_;  // the rows of each joint without bounds (-1: not yet counted)
   // Per joint: the kept steps before its bounds may be let go again, and how often they were
   // held again.
   std::vector<int> wait_, times_;

@@ -212,7 +212,7 @@ JointGeometry SolverState::geometry(const JointState& js, BoundTest bound) const
       g.Q = s1.R * j.p1 + s1.x;
     } else {
       const Vec3 local = s1.R.transpose() * (g.P2 - s1.x);
-      g.nearest = nearest_on_guide(j.p1, &*j.guide, local, bound.part(0));
+      g.nearest = nearest_on_guide(j.p1, &*j.guide, local, bound);
       g.Q = s1.R * g.nearest.q + s1.x;
       for (int k = 0; k < g.nearest.rows; ++k) {
         Vec3& n = g.nearest.normals[static_cast<size_t>(k)];
@@ -260,9 +260,9 @@ bool SolverState::at_limit(const JointState& js, double band) const {
   return parts[0].at_limit || parts[1].at_limit || parts[2].at_limit;
 }
 
-void SolverState::rows(const JointState& js, BoundTest bound, PartRows out[kPartSlots],
+void SolverState::rows(const JointState& js, const JointBounds& bounds, PartRows out[kPartSlots],
                        bool jacobian) const {
-  rows_at(js, geometry(js, bound), bound, out, jacobian);
+  rows_at(js, geometry(js, bounds.part(0)), bounds, out, jacobian);
 }
 
 double SolverState::rows_and_residual(const JointState& js, BoundTest bound,
@@ -273,11 +273,11 @@ double SolverState::rows_and_residual(const JointState& js, BoundTest bound,
     return residual(js);
   }
   const JointGeometry g = geometry(js);
-  rows_at(js, g, bound, out, jacobian);
+  rows_at(js, g, JointBounds{bound}, out, jacobian);
   return js.active ? residual_at(js, g) : 0.0;
 }
 
-void SolverState::rows_at(const JointState& js, const JointGeometry& g, BoundTest bound,
+void SolverState::rows_at(const JointState& js, const JointGeometry& g, const JointBounds& bounds,
                           PartRows out[kPartSlots], bool jacobian) const {
   const Joint& j = *js.joint;
   for (int p = 0; p < kPartSlots; ++p) out[p].count = 0, out[p].at_limit = false;
@@ -290,11 +290,11 @@ void SolverState::rows_at(const JointState& js, const JointGeometry& g, BoundTes
   }
   if (j.angle) {
     new (&out[1])
-        PartRows(angle_rows(g.a1, g.a2, j.angle->min, j.angle->max, bound.part(1), jacobian));
+        PartRows(angle_rows(g.a1, g.a2, j.angle->min, j.angle->max, bounds.part(1), jacobian));
   }
   if (j.twist) {
     new (&out[2]) PartRows(twist_rows(g.a1, g.a2, g.b1, g.b2, j.twist->min, j.twist->max,
-                                      bound.part(2), jacobian, j.angle->max > 0));
+                                      bounds.part(2), jacobian, j.angle->max > 0));
   }
   if (j.coupling) new (&out[3]) PartRows(coupling_rows(coupling(js, true), js.last, js.phase));
   // (In the angle's slot: a same rotation has none.)
@@ -344,20 +344,21 @@ Vec3 guide_outward(const Guide& g, const Vec3& p1, const Vec3& p, BoundTest boun
 
 }  // namespace
 
-void SolverState::outward(const JointState& js, BoundTest bound, double out[kPartSlots][3]) const {
+void SolverState::outward(const JointState& js, const JointBounds& bounds,
+                          double out[kPartSlots][3]) const {
   for (int p = 0; p < kPartSlots; ++p) out[p][0] = out[p][1] = out[p][2] = 0;
   const Joint& j = *js.joint;
-  const JointGeometry g = geometry(js, bound);
+  const JointGeometry g = geometry(js, bounds.part(0));
   const BodyState& s1 = bodies[static_cast<size_t>(js.b1)];
   if (g.translation && g.nearest.at_limit && j.guide) {
     const Vec3 local = s1.R.transpose() * (g.P2 - s1.x);
-    const Vec3 way = s1.R * guide_outward(*j.guide, j.p1, local, bound.part(0));
+    const Vec3 way = s1.R * guide_outward(*j.guide, j.p1, local, bounds.part(0));
     for (int k = 0; k < g.nearest.rows; ++k) out[0][k] = g.nearest.normals[k].dot(way);
   }
   // An angle's or a twist's bound as their rows take it (angle.cpp, twist.cpp): the upper one
   // first.
   if (j.angle && j.angle->min != j.angle->max) {
-    const BoundTest b = bound.part(1);
+    const BoundTest b = bounds.part(1);
     const double theta = angle_between(g.a1, g.a2);
     const double max = j.angle->max, min = j.angle->min;
     if (max < kPi && max > 1e-6 && theta >= max - b.band) {
@@ -367,7 +368,7 @@ void SolverState::outward(const JointState& js, BoundTest bound, double out[kPar
     }
   }
   if (j.twist && j.twist->min != j.twist->max) {
-    const BoundTest b = bound.part(2);
+    const BoundTest b = bounds.part(2);
     const double twist = twist_angle(g.a1, g.a2, g.b1, g.b2);
     const double violation = twist_violation(twist, j.twist->min, j.twist->max);
     const bool upper = j.twist->max < kPi && twist >= j.twist->max - b.band;

@@ -63,6 +63,17 @@ struct JointState {
 // The parts of a joint, in the order they give rows: translation, angle, twist, coupling.
 constexpr int kPartSlots = 4;
 
+// A joint's bound test part by part: `bound` for every part but those a pull has let go (bit p
+// for its p-th part, in the order its rows come: translation, angle, twist, coupling), whose
+// bounds count only when passed by more than -let_go (pull.cpp). The parts take the one
+// BoundTest meant for them (a double, in a register).
+struct JointBounds {
+  BoundTest bound;
+  unsigned let_go_parts = 0;
+  double let_go = 0;
+  BoundTest part(int p) const { return (let_go_parts >> p & 1u) != 0 ? BoundTest{let_go} : bound; }
+};
+
 // A joint's geometry at the current poses, world frame.
 struct JointGeometry {
   bool translation = false;
@@ -106,6 +117,11 @@ class SolverState {
   // Appends the rows of one joint (translation part, angle, twist, coupling) to `out`; without
   // J when `jacobian` is false (the rows' residuals alone).
   void rows(const JointState& js, BoundTest bound, PartRows out[kPartSlots],
+            bool jacobian = true) const {
+    rows(js, JointBounds{bound}, out, jacobian);
+  }
+  // The same, with bounds a pull has let go.
+  void rows(const JointState& js, const JointBounds& bounds, PartRows out[kPartSlots],
             bool jacobian = true) const;
   // rows() and residual() together, from one look at the joint's geometry where both see the
   // same (the nearest point of a guide without ends does not depend on the bound test).
@@ -117,14 +133,14 @@ class SolverState {
   // its set at the end the point rests on. 0 for the rows of parts at no bound. An impulse y on
   // the rows moves them by a positive multiple of y, so sum_k y_k out[p][k] > 0 says the part's
   // rows push it out past its bound: the rest of the step would take it back inside.
-  void outward(const JointState& js, BoundTest bound, double out[kPartSlots][3]) const;
+  void outward(const JointState& js, const JointBounds& bounds, double out[kPartSlots][3]) const;
   // A coupling's equation at the current poses (the joint must have one).
   CouplingMeasure coupling(const JointState& js, bool with_rows) const;
 
  private:
   void unwrap_couplings();
   double residual_at(const JointState& js, const JointGeometry& g) const;
-  void rows_at(const JointState& js, const JointGeometry& g, BoundTest bound,
+  void rows_at(const JointState& js, const JointGeometry& g, const JointBounds& bounds,
                PartRows out[kPartSlots], bool jacobian) const;
 };
 
