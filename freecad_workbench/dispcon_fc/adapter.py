@@ -508,6 +508,14 @@ class Adapter:
             j.Violated = not report.satisfied
 
 
+ALREADY_HELD = "every joint already holds; nothing moved"
+
+
+def plural(n, word):
+    """`n` and `word`, with an s unless n is one ("1 iteration", "3 iterations", "0 joints")."""
+    return "%d %s%s" % (n, word, "" if n == 1 else "s")
+
+
 class Result:
     """What a solve said, with the joints still violated named as the user knows them."""
 
@@ -518,8 +526,12 @@ class Result:
         self.violated = [adapter.joints[i] for i in r.violated]
         names = ", ".join("%s (residual %.3g)" % (adapter.joints[i].Label, r.constraints[i].residual) for i in r.violated)
         self.skipped = [j for j, _ in adapter.skipped]
-        self.message = ("solved in %d iterations" % r.iterations) if r.converged else (
-            "could not make every joint hold; still violated: " + names)
+        if not r.converged:
+            self.message = "could not make every joint hold; still violated: " + names
+        elif r.iterations == 0:
+            self.message = ALREADY_HELD
+        else:
+            self.message = "solved in %s" % plural(r.iterations, "iteration")
         if not adapter.joints:
             self.message = "nothing to solve: %s has no joint" % adapter.asm.Label
         if adapter.skipped:

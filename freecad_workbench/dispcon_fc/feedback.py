@@ -42,7 +42,7 @@ def solve_outcome(asm, result):
     if result.converged:
         mark(asm, [])
         status("%s: %s" % (asm.Label, result.message), 8000)
-        report(result.message)
+        report("%s: %s" % (asm.Label, result.message))
         return None
     from . import operations, panels
     from .panels.check import CheckPanel

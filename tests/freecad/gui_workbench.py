@@ -1136,6 +1136,25 @@ class TestCheckPanel(Documents):
             self.assertGreater(len(f.readlines()), 100)
         shot("check-exports")
 
+    def test_the_check_is_a_report_closed_by_one_button_and_counts_in_words(self):
+        asm, g, crank, coupler, rocker = self.fourbar()
+        from dispcon_fc import operations
+
+        operations.solve(asm)
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        Gui.runCommand("Dispcon_Check")
+        settle()
+        # One degree of freedom (the four-bar's crank), said as a person says it.
+        self.assertEqual(mw().statusBar().currentMessage(), "Check: 1 degree of freedom")
+        boxes = [b for b in mw().findChildren(QtWidgets.QDialogButtonBox) if b.isVisible()]
+        self.assertEqual([int(b.standardButtons()) for b in boxes], [int(QtWidgets.QDialogButtonBox.Close)])
+        shot("check-close")
+        boxes[0].button(QtWidgets.QDialogButtonBox.Close).click()
+        settle()
+        self.assertFalse(Gui.Control.activeDialog())
+        self.assertFalse(any(b.isVisible() for b in mw().findChildren(QtWidgets.QDialogButtonBox)))
+
 
 def gui_text(widget):
     """Every label's and text box's text under the task view."""

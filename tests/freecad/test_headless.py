@@ -572,6 +572,43 @@ def pin(obj, local):
     return (obj, parts.circle_edge(da.shape_of(obj), App.Vector(*local)))
 
 
+class Messages(unittest.TestCase):
+    """What Solve says in the status bar and the joint panel, in a person's grammar: one
+    iteration is not "1 iterations", and a solve that moved nothing does not say "0 iterations"."""
+
+    def setUp(self):
+        self.doc = App.newDocument("messages")
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def test_plural(self):
+        from dispcon_fc.adapter import plural
+        self.assertEqual([plural(n, "iteration") for n in (0, 1, 2, 31)],
+                         ["0 iterations", "1 iteration", "2 iterations", "31 iterations"])
+
+    def test_solve_counts_its_iterations_in_words(self):
+        import types
+        from dispcon_fc.adapter import Adapter, ALREADY_HELD, Result
+        asm, base, arm = arm_on_base(self.doc)
+        da.add_joint(asm, "Revolute", pin(arm, (0, 0, 0)), pin(base, (0, 0, 0)))
+        arm.Placement = App.Placement(App.Vector(0.3, -0.2, 0.1), App.Rotation(App.Vector(0, 0, 1), 20))
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        self.assertGreater(r.iterations, 0)
+        self.assertEqual(r.message, "solved in %d iteration%s" % (r.iterations, "" if r.iterations == 1 else "s"))
+        self.assertEqual(asm.LastSolve, r.message)
+        # Solved again where every joint holds: nothing moved, and it says so.
+        again = da.solve(asm)
+        self.assertEqual((again.converged, again.iterations, again.message), (True, 0, ALREADY_HELD))
+        # The engine's answer of one and of two iterations, worded by the same Result.
+        adapter = Adapter(asm)
+        for n, text in ((1, "solved in 1 iteration"), (2, "solved in 2 iterations")):
+            engine_says = types.SimpleNamespace(converged=True, iterations=n, max_residual=0.0, violated=[],
+                                                constraints=[])
+            self.assertEqual(Result(adapter, engine_says).message, text)
+
+
 class RobustOperations(unittest.TestCase):
     def setUp(self):
         self.doc = App.newDocument("robust")
@@ -1050,7 +1087,7 @@ class MarkerLayout(unittest.TestCase):
 
 
 UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles,
-              MarkerLayout, FrameRotation)
+              MarkerLayout, FrameRotation, Messages)
 
 
 def run_unit_tests():

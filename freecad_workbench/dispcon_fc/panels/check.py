@@ -3,9 +3,11 @@ also shown by a Solve that failed, headed by what went wrong."""
 import FreeCADGui as Gui
 
 from .. import operations
+from ..adapter import plural
 from ..feedback import labels, mark, report, status
 from ..commands.motion import export_motion_study, save_path, study_joint
 from ..objects import joints as joints_of
+from ..qt import QtWidgets
 from . import load_ui
 
 
@@ -41,7 +43,7 @@ class CheckPanel:
         mark(asm, c["conflicting"])
         if headline is None:
             report(c["message"], error=not c["converged"])
-            status("Check: %d degree(s) of freedom%s" % (c["dof"], "; conflicting: " + labels(c["conflicting"])
+            status("Check: %s of freedom%s" % (plural(c["dof"], "degree"), "; conflicting: " + labels(c["conflicting"])
                                                         if c["conflicting"] else ""))
 
     def _export_report(self):
@@ -69,6 +71,11 @@ class CheckPanel:
     def _said(self, text):
         self.form.report.appendPlainText(text)
         status(text)
+
+    def getStandardButtons(self):
+        # A report, not an edit: one Close button (FreeCAD's own report panels have the same), not
+        # an OK and a Cancel that would both only close it.
+        return int(QtWidgets.QDialogButtonBox.Close)
 
     def accept(self):
         Gui.Control.closeDialog()

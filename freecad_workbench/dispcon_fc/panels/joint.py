@@ -12,7 +12,7 @@ import FreeCADGui as Gui
 
 from .. import engine, geometry, markers, operations, panels
 from ..guide import PICK
-from ..adapter import offered_types
+from ..adapter import ALREADY_HELD, offered_types
 from ..objects import COUPLINGS, LENGTH_PHASE, mesh_offset, phase_value
 
 from ..qt import QtCore, QtGui, QtWidgets
@@ -470,7 +470,7 @@ class JointPanel(TransactionPanel):
         self._set_ok(True)
         self._load_values()  # the offset and phase the solve kept (made at the poses, or the one typed)
         if r.converged:
-            self._say("%s holds (%s)." % (self.joint.Label, r.message))
+            self._say("%s holds%s." % (self.joint.Label, "" if r.message == ALREADY_HELD else " (%s)" % r.message))
         else:
             self._say("The parts cannot be placed so: %s. OK keeps the joint anyway." % r.message, True)
         Gui.updateGui()
