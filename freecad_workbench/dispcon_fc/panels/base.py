@@ -1,7 +1,7 @@
 """What the task panels that hold one transaction share: the message line, the OK button, the
 dialog's buttons, Cancel, and knowing when their document or form is gone."""
 from . import ok_button
-from ..qt import QtWidgets, is_alive
+from ..qt import QtCore, QtWidgets, is_alive
 
 
 class TransactionPanel:
@@ -18,10 +18,16 @@ class TransactionPanel:
     def ok_button(self):
         return ok_button(self.form)
 
-    def _set_ok(self, enabled):
+    def _set_ok(self, enabled, tries=5):
+        self.ok_enabled = enabled
         button = self.ok_button()
         if button is not None:
             button.setEnabled(enabled)
+        elif tries > 0 and not self.closed:
+            # The task view shows its buttons only once the event loop has run after
+            # showDialog: a panel that opens refusing OK (a joint still to pick) says so then,
+            # or the OK of a joint not made yet stayed enabled.
+            QtCore.QTimer.singleShot(0, lambda: self._gone() or self._set_ok(self.ok_enabled, tries - 1))
 
     def _gone(self):
         """True, and the panel lets go of what it holds, once its document or its form is gone

@@ -280,6 +280,7 @@ class JointPanel(TransactionPanel):
         self.ref_list.clear()
         for k, (o, sub) in enumerate(self.refs):
             self.ref_list.addItem("%d. %s: %s" % (k + 1, o.Label, sub or "(whole part)"))
+        self.pick_button.setEnabled(bool(self.refs))  # nothing picked yet: nothing to pick again
 
     def _show_fields(self):
         kind = self.type_box.currentText()
