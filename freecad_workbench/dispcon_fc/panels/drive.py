@@ -109,7 +109,8 @@ class DrivePanel(TransactionPanel):
         self._set_ok(True)
 
     def _show_now(self):
-        self.now.setText("%.3f%s" % (operations.drive_value(self.joint()), UNIT_TEXT[self.unit()]))
+        # As the limits and the message write it ("-5.02°"), not "-5.020°" beside "-5.02 °".
+        self.now.setText("%g%s" % (operations.drive_value(self.joint()), UNIT_TEXT[self.unit()]))
 
     # -- validation and the preview -------------------------------------------------------------
     def problem(self):
