@@ -19,6 +19,7 @@ import zipfile
 import FreeCAD as App
 
 from . import assembly as da
+from .adapter import plural
 
 
 class StudyError(ValueError):
@@ -667,7 +668,7 @@ def drag(asm, part_label, position, rotation=None, steps=50, **options):
                      "converged": r.converged} for r in study.steps]
     out["failed_step"] = study.failed_step
     if study.converged:
-        out["message"] = "dragged '%s' in %d steps, %d iterations" % (part.Label, steps, total)
+        out["message"] = "dragged '%s' in %s, %s" % (part.Label, plural(steps, "step"), plural(total, "iteration"))
         s.adapter.write_back()
         asm.Document.recompute()
     else:

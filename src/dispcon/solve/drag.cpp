@@ -571,8 +571,8 @@ DragResult drag(Model& model, BodyId body, const Pose& target, int steps,
   }
   std::ostringstream msg;
   if (out.converged) {
-    msg << "dragged '" << model.body(body).name << "' in " << steps << " steps, " << out.iterations
-        << " iterations";
+    msg << "dragged '" << model.body(body).name << "' in " << counted(steps, "step") << ", "
+        << counted(out.iterations, "iteration");
   } else {
     msg << "step " << out.failed_step + 1 << " of " << steps << " failed, '"
         << model.body(body).name << "' left "

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "dispcon/solve/counted.hpp"
+
 namespace dispcon {
 
 namespace {
@@ -211,8 +213,9 @@ AnimateResult animate(Model& model, const AnimateOptions& o) {
     model.set_speeds(BodyId{i}, speed[static_cast<size_t>(i)].v, speed[static_cast<size_t>(i)].w);
   }
   std::ostringstream msg;
-  msg << "animated " << out.frames.back().time << " s in " << out.frames.size() - 1 << " frames, "
-      << out.iterations << " iterations";
+  msg << "animated " << out.frames.back().time << " s in "
+      << counted(static_cast<long long>(out.frames.size()) - 1, "frame") << ", "
+      << counted(out.iterations, "iteration");
   if (!out.converged) msg << ", " << out.warnings.size() << " frames with violated constraints";
   if (out.stopped) msg << " (stopped)";
   out.message = msg.str();

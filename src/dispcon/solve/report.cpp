@@ -50,19 +50,23 @@ std::vector<ConstraintReport> violated_worst_first(const std::vector<ConstraintR
   return bad;
 }
 
+std::string counted(long long n, const char* word) {
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+
 std::string solve_message(const Model& model, const SolveResult& result) {
   std::ostringstream msg;
   if (result.converged) {
-    msg << "converged in " << result.iterations << " iterations (max residual "
+    msg << "converged in " << counted(result.iterations, "iteration") << " (max residual "
         << result.max_residual << ")";
     return msg.str();
   }
   if (result.status == SolveStatus::Diverged) {
-    msg << "diverged after " << result.iterations
-        << " iterations (a residual or a pose became infinite or not a number; the poses were "
+    msg << "diverged after " << counted(result.iterations, "iteration")
+        << " (a residual or a pose became infinite or not a number; the poses were "
            "not changed); at fault: ";
   } else {
-    msg << "did not converge after " << result.iterations << " iterations"
+    msg << "did not converge after " << counted(result.iterations, "iteration")
         << (result.status == SolveStatus::Stalled
                 ? " (no progress: over-constrained or unreachable)"
                 : "")

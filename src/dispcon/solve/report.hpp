@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "dispcon/solve/counted.hpp"
 #include "dispcon/solve/state.hpp"
 
 namespace dispcon {

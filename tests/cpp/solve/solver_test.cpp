@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dispcon/solve/counted.hpp"
+
 namespace dispcon {
 namespace {
 
@@ -237,6 +239,27 @@ TEST(Drag, HeldBodyStaysAtEachStepTarget) {
     const double turn = steps[k][3].q.angularDistance(steps[k - 1][3].q);
     EXPECT_LT(turn, 0.1) << "step " << k;
   }
+}
+
+// The one line a person reads counts in words: "1 step", "1 iteration", never "1 steps".
+TEST(Drag, MessageSaysOneStepInTheSingular) {
+  FourBar fb;
+  ASSERT_TRUE(assemble(fb.m).converged);
+  const Pose target = Pose::from(Vec3::Zero(), Vec3(0, 0, fb.angle_of(fb.crank) + 0.1));
+  const DragResult d = drag(fb.m, fb.crank, target, 1, SolveOptions{});
+  ASSERT_TRUE(d.converged) << d.message;
+  ASSERT_GE(d.iterations, 2);
+  EXPECT_EQ(d.message, "dragged '" + fb.m.body(fb.crank).name + "' in 1 step, " +
+                           std::to_string(d.iterations) + " iterations");
+  const DragResult two = drag(fb.m, fb.crank, target, 2, SolveOptions{});
+  ASSERT_TRUE(two.converged) << two.message;
+  EXPECT_EQ(two.message, "dragged '" + fb.m.body(fb.crank).name + "' in 2 steps, 0 iterations");
+  const SolveResult again = assemble(fb.m);
+  ASSERT_TRUE(again.converged);
+  EXPECT_EQ(again.message.rfind("converged in 0 iterations (", 0), 0u) << again.message;
+  EXPECT_EQ(counted(1, "iteration"), "1 iteration");
+  EXPECT_EQ(counted(0, "frame"), "0 frames");
+  EXPECT_EQ(counted(31, "step"), "31 steps");
 }
 
 TEST(Drag, UnreachableTargetStopsAndKeepsLastGoodStep) {
