@@ -6,11 +6,12 @@ Cancel aborts."""
 import contextlib
 import math
 import os
+import re
 
 import FreeCAD as App
 
 from . import engine, geometry, objects, subassembly
-from .adapter import Adapter, Result, _vec
+from .adapter import ALREADY_HELD, Adapter, Result, _vec
 from .objects import joints, placed_parts, shape_of
 
 
@@ -555,13 +556,26 @@ def solve(asm, undo_step=True):
         r = adapter.model.assemble(tolerance=tolerance(asm), max_iterations=asm.MaxIterations)
     with _step(asm.Document, "Solve assembly", undo_step):
         if r.converged:
-            adapter.write_back()
+            adapter.write_back(moved=r.iterations > 0)
         adapter.update_joints()
         adapter.mark(r)
         result = Result(adapter, r)
-        asm.LastSolve = result.message
+        if _new_news(asm.LastSolve, result.message):
+            asm.LastSolve = result.message
     asm.Document.recompute()
     return result
+
+
+_HELD = re.compile(r"solved in \d+ iterations?")
+
+
+def _new_news(last, message):
+    """Whether a solve's message is news to the assembly's LastSolve: a Solve that moved nothing
+    (ALREADY_HELD) after one that made every joint hold says nothing new, so it leaves LastSolve
+    and the document unmodified (opening a solved document and pressing Solve changes nothing)."""
+    if message == ALREADY_HELD and (last == ALREADY_HELD or _HELD.fullmatch(last)):
+        return False
+    return last != message
 
 
 def _holding(asm, adapter):

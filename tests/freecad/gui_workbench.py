@@ -698,6 +698,36 @@ class TestRestored(unittest.TestCase):
             App.closeDocument(doc.Name)
             settle()
 
+    def test_solve_on_a_solved_document_leaves_it_unmodified(self):
+        from dispcon_fc.adapter import ALREADY_HELD
+
+        close_dialog()
+        path = headless_fourbar(os.path.join(tempfile.mkdtemp(), "solved-fourbar.FCStd"))
+        doc = App.openDocument(path)
+        try:
+            settle()
+            gui_doc = Gui.getDocument(doc.Name)
+            self.assertFalse(gui_doc.Modified)
+            asm = next(o for o in doc.Objects if "LastSolve" in o.PropertiesList)
+            last = asm.LastSolve
+            Gui.runCommand("Dispcon_Solve")
+            settle()
+            self.assertIn("%s: %s" % (asm.Label, ALREADY_HELD), mw().statusBar().currentMessage())
+            self.assertFalse(gui_doc.Modified, "a Solve that moved nothing marked the document modified")
+            self.assertEqual(asm.LastSolve, last)
+            # A part pulled off its joint: Solve still writes what it moved, and says so.
+            coupler = doc.getObjectsByLabel("Coupler")[0]
+            off = App.Placement(App.Vector(1.2, 0.6, -0.1), App.Rotation(App.Vector(0, 0, 1), 11))
+            coupler.Placement = off
+            Gui.runCommand("Dispcon_Solve")
+            settle()
+            self.assertGreater((coupler.Placement.Base - off.Base).Length, 0.1)
+            self.assertRegex(asm.LastSolve, r"^solved in \d+ iterations?$")
+            self.assertIn("%s: %s" % (asm.Label, asm.LastSolve), mw().statusBar().currentMessage())
+        finally:
+            App.closeDocument(doc.Name)
+            settle()
+
 
 class TestJointPanel(Documents):
     def open(self, kind="Revolute"):

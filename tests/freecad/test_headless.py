@@ -609,6 +609,86 @@ class Messages(unittest.TestCase):
             self.assertEqual(Result(adapter, engine_says).message, text)
 
 
+class Recorder:
+    """A document observer: every property changed, as (object name, property)."""
+
+    def __init__(self):
+        self.changed = []
+
+    def slotChangedObject(self, obj, prop):
+        self.changed.append((obj.Name, prop))
+
+    def slotChangedDocument(self, doc, prop):
+        self.changed.append(("<document>", prop))
+
+
+class SolveWritesOnlyWhatChanged(unittest.TestCase):
+    """Opening a solved document and pressing Solve leaves it unmodified: no placement, residual,
+    Violated or LastSolve is written when the solve moved nothing (any write marks the document
+    modified in the GUI, even of the value it had)."""
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp()
+        path, _ = saved_fourbar(self.tmp)
+        self.doc = App.openDocument(path)
+        self.asm = next(o for o in self.doc.Objects if "LastSolve" in o.PropertiesList)
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+        shutil.rmtree(self.tmp)
+
+    def solve_recorded(self):
+        rec = Recorder()
+        App.addDocumentObserver(rec)
+        try:
+            result = da.solve(self.asm)
+        finally:
+            App.removeDocumentObserver(rec)
+        return result, rec.changed
+
+    def test_a_solve_that_moved_nothing_changes_nothing(self):
+        from dispcon_fc.adapter import ALREADY_HELD
+        last = self.asm.LastSolve
+        self.assertRegex(last, r"^solved in \d+ iterations?$")
+        placements = {o.Name: (tuple(o.Placement.Base), o.Placement.Rotation.Q) for o in da.parts(self.asm)}
+        result, changed = self.solve_recorded()
+        self.assertEqual((result.converged, result.iterations, result.message), (True, 0, ALREADY_HELD))
+        self.assertEqual(changed, [])
+        self.assertFalse(self.doc.isTouched())
+        self.assertEqual([o.Name for o in self.doc.Objects if "Touched" in o.State], [])
+        self.assertEqual(self.asm.LastSolve, last)
+        self.assertEqual({o.Name: (tuple(o.Placement.Base), o.Placement.Rotation.Q) for o in da.parts(self.asm)},
+                         placements)
+        # Again, in the same session: still nothing.
+        self.assertEqual(self.solve_recorded()[1], [])
+
+    def test_a_solve_that_moves_writes_what_moved(self):
+        coupler = next(o for o in da.parts(self.asm) if o.Label == "Coupler")
+        ground = next(o for o in da.parts(self.asm) if o.Grounded)
+        coupler.Placement = App.Placement(App.Vector(1.2, 0.6, -0.1), App.Rotation(App.Vector(0, 0, 1), 11))
+        self.doc.recompute()
+        result, changed = self.solve_recorded()
+        self.assertTrue(result.converged, result.message)
+        self.assertGreater(result.iterations, 0)
+        self.assertIn((coupler.Name, "Placement"), changed)
+        self.assertNotIn((ground.Name, "Placement"), changed)  # grounded: never written
+        self.assertIn((self.asm.Name, "LastSolve"), changed)
+        self.assertEqual(self.asm.LastSolve, result.message)
+        # The joints pulled apart by the move hold again, and say so.
+        self.assertTrue(all(not j.Violated and j.Residual <= self.asm.Tolerance for j in da.joints(self.asm)))
+
+    def test_a_failed_solve_then_an_idle_one_rewrite_the_message(self):
+        from dispcon_fc.operations import _new_news
+        from dispcon_fc.adapter import ALREADY_HELD
+        self.assertFalse(_new_news("solved in 1 iteration", ALREADY_HELD))
+        self.assertFalse(_new_news(ALREADY_HELD, ALREADY_HELD))
+        # After a failure, or a message with a skipped joint, "already holds" is news.
+        self.assertTrue(_new_news("could not make every joint hold; still violated: J (residual 0.5)", ALREADY_HELD))
+        self.assertTrue(_new_news("solved in 3 iterations; skipped J", ALREADY_HELD))
+        self.assertTrue(_new_news("", ALREADY_HELD))
+        self.assertTrue(_new_news(ALREADY_HELD, "solved in 2 iterations"))
+
+
 class RobustOperations(unittest.TestCase):
     def setUp(self):
         self.doc = App.newDocument("robust")
@@ -1087,7 +1167,7 @@ class MarkerLayout(unittest.TestCase):
 
 
 UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles,
-              MarkerLayout, FrameRotation, Messages)
+              MarkerLayout, FrameRotation, Messages, SolveWritesOnlyWhatChanged)
 
 
 def run_unit_tests():
