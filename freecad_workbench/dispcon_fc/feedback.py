@@ -1,6 +1,9 @@
 """What the GUI tells the user about a command's outcome: a message in the Report view and the
 status bar, and the joints to look at marked in the 3D view (their markers turn red). The marks
 are state of the view, never of the document: nothing a command shows is saved into the file."""
+import math
+import re
+
 import FreeCAD as App
 
 
@@ -59,3 +62,50 @@ def solve_outcome(asm, result):
     panel = panels.show(CheckPanel(asm, headline=text, result=c))
     mark(asm, culprits)
     return panel
+
+
+_COUNTED = re.compile(r"\b(\d+) ([A-Za-z][A-Za-z ]*?)\(s\)")
+
+
+def counts_in_words(text):
+    """The engine's "1 redundant joint(s)", "2 limit(s) in contact" as a person writes them:
+    "1 redundant joint", "2 limits in contact" (the command line keeps its own wording)."""
+    from .adapter import plural
+
+    return _COUNTED.sub(lambda m: plural(int(m.group(1)), m.group(2)), text)
+
+
+def swept_value(study, value):
+    """A value of a swept joint as the panels write it: a turn in degrees ("-5.02°", from the
+    study's radians), a travel in mm."""
+    if study.kind == "angle":
+        return "%g°" % round(math.degrees(value), 4)
+    return "%g mm" % round(value, 6)
+
+
+def study_message(study):
+    """A motion study's outcome in the workbench's words: angles in degrees with their unit and
+    counts in words ("1 pair of parts collides", "5 pairs of parts collide"). The study's own
+    .message is the command line's (`dispcon sweep`), fixed by its contract, so it is not
+    reworded but composed again from what the study found."""
+    from .adapter import plural
+
+    label = "'%s'" % study.joint.Label
+    if study.start is None:  # it did not assemble: nothing was swept
+        return counts_in_words(study.message)
+    if study.locked and not study.samples:
+        text = "%s cannot reach the start %s: it locks at %s" % (
+            label, swept_value(study, study.start), swept_value(study, study.lock_value))
+    elif study.locked:
+        text = "%s locks at %s: it cannot %s past it" % (
+            label, swept_value(study, study.lock_value), "turn" if study.kind == "angle" else "slide")
+    else:
+        text = "%s moves freely from %s to %s" % (label, swept_value(study, study.start),
+                                                  swept_value(study, study.stop))
+    hits = study.interference() if study.clearance else []
+    if hits:
+        text += "; %s of parts %s: %s" % (plural(len(hits), "pair"), "collides" if len(hits) == 1 else "collide",
+                                          ", ".join("'%s' and '%s' from %s to %s" % (
+                                              h["parts"][0], h["parts"][1], swept_value(study, h["first"]),
+                                              swept_value(study, h["last"])) for h in hits))
+    return text

@@ -447,6 +447,7 @@ class SweepStudy:
         self.samples = []
         self.locked = False
         self.lock_value = None
+        self.start = self.stop = None  # the range swept, once known (radians or length units)
         self.message = ""
         self.clearance = None
 
@@ -532,6 +533,7 @@ def sweep(asm, joint_label, start=None, stop=None, steps=360, interference=True,
     if kind == "angle":
         # Turn to the start the short way round from where the joint is.
         start = v0 + math.remainder(start - v0, 2 * math.pi) if stop - start <= 2 * math.pi + 1e-12 else start
+    out.start, out.stop = start, stop
     session = s.model.session(**s.options())
     n = len(s.joints)
     out.clearance = clearance_of(s) if interference else None

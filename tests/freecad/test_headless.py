@@ -689,6 +689,76 @@ class SolveWritesOnlyWhatChanged(unittest.TestCase):
         self.assertTrue(_new_news(ALREADY_HELD, "solved in 2 iterations"))
 
 
+class StudyInWords(unittest.TestCase):
+    """The motion study and the check as the workbench says them: angles in degrees with their
+    unit, counts in words; the command line's own wording (study.message) stays as it is."""
+
+    def setUp(self):
+        self.doc = App.newDocument("words")
+        self.asm, self.base, self.arm = arm_on_base(self.doc)
+        # The arm on top of the plate's boss (touching, not overlapping), turning about it.
+        self.joint = da.add_joint(self.asm, "Revolute", pin(self.arm, (0, 0, 0)), pin(self.base, (0, 0, 0.1)))
+        self.assertTrue(da.solve(self.asm).converged)
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def block(self, y):
+        """A grounded block across the arm's circle (radius 1.5) at (0, y..y+0.2)."""
+        import Part
+
+        b = self.doc.addObject("Part::Feature", "Block")
+        b.Shape = Part.makeBox(0.2, 0.2, 0.3, App.Vector(-0.1, y, -0.1))
+        da.add_part(self.asm, b, grounded=True)
+        return b
+
+    def ranges(self, text):
+        return [(float(a), float(b)) for a, b in re.findall(r"from (-?[\d.]+)° to (-?[\d.]+)°", text)]
+
+    def test_a_sweep_says_degrees_and_counts_its_pairs_in_words(self):
+        from dispcon_fc import feedback, studies
+
+        self.block(0.8)
+        one = studies.export_drive_study(self.asm, self.joint)
+        self.assertIn("1 pair(s) of parts collide", one.message)  # the command line's, kept
+        text = feedback.study_message(one)
+        self.assertRegex(text, r"^'Revolute' moves freely from -?[\d.]+° to -?[\d.]+°; 1 pair of parts collides: "
+                               r"'Arm' and 'Block' from [\d.]+° to [\d.]+°$")
+        self.assertNotIn("rad", text)
+        self.block(-1.0)
+        two = feedback.study_message(studies.export_drive_study(self.asm, self.joint))
+        self.assertIn("; 2 pairs of parts collide: 'Arm' and 'Block' from ", two)
+        self.assertIn(", 'Arm' and 'Block001' from ", two)
+        (start, stop), *hits = self.ranges(two)
+        self.assertAlmostEqual(stop - start, 360.0, places=6)  # a whole turn
+        # The strip 0.2 wide meets a block 0.2 wide at 0.8 from the pin while its edge passes
+        # the near corners: 2 asin(0.1 / |(0.1, 0.8)|) + 2 atan(0.1 / 0.8) = 28.5° wide, centred
+        # across the pin from one block to the other (90° and 270°, the joint's sense either way);
+        # the sweep's degree steps land inside by up to one.
+        width = math.degrees(2 * math.asin(0.1 / math.hypot(0.1, 0.8)) + 2 * math.atan2(0.1, 0.8))
+        self.assertEqual(len(hits), 2)
+        centres = sorted(math.remainder((a + b) / 2 - start, 360.0) % 360.0 for a, b in hits)
+        for got, want in zip(centres, (90.0, 270.0)):
+            self.assertAlmostEqual(got, want, delta=1.0)
+        for a, b in hits:
+            self.assertGreater(b - a, width - 2.0)
+            self.assertLessEqual(b - a, width)
+
+    def test_the_check_counts_in_words(self):
+        from dispcon_fc.feedback import counts_in_words
+
+        # The same revolute twice: one of them repeats the other.
+        da.add_joint(self.asm, "Revolute", pin(self.arm, (0, 0, 0)), pin(self.base, (0, 0, 0.1)))
+        c = da.check(self.asm)
+        self.assertIn("1 redundant joint(s)", c["message"])
+        self.assertIn("1 redundant joint", counts_in_words(c["message"]))
+        self.assertNotIn("(s)", counts_in_words(c["message"]))
+        self.assertEqual(counts_in_words("assembled; 0 degrees of freedom, 2 redundant joint(s), 1 limit(s) in "
+                                         "contact, locked by 3 coupling(s)"),
+                         "assembled; 0 degrees of freedom, 2 redundant joints, 1 limit in contact, locked by "
+                         "3 couplings")
+
+
 class RobustOperations(unittest.TestCase):
     def setUp(self):
         self.doc = App.newDocument("robust")
@@ -1167,7 +1237,8 @@ class MarkerLayout(unittest.TestCase):
 
 
 UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles,
-              MarkerLayout, FrameRotation, Messages, SolveWritesOnlyWhatChanged)
+              MarkerLayout, FrameRotation, Messages, SolveWritesOnlyWhatChanged,
+              StudyInWords)
 
 
 def run_unit_tests():

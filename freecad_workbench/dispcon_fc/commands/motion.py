@@ -2,7 +2,7 @@
 import FreeCADGui as Gui
 
 from .. import operations
-from ..feedback import report, solve_outcome
+from ..feedback import report, solve_outcome, study_message
 from ..objects import joints
 from .common import Command, active_assembly, has_joints
 
@@ -89,7 +89,7 @@ def export_motion_study(asm, joint, path):
     base = path[:-4] if path.lower().endswith(".svg") else path
     study = studies.export_drive_study(asm, joint, svg_path=base + ".svg", plot_path=base + "-plot.svg",
                                        csv_path=base + ".csv")
-    report("%s (written: %s.svg, %s-plot.svg, %s.csv)" % (study.message, base, base, base),
+    report("%s (written: %s.svg, %s-plot.svg, %s.csv)" % (study_message(study), base, base, base),
            error=study.exit_code() != 0)
     return study
 
