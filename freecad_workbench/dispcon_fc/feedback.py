@@ -76,11 +76,11 @@ def counts_in_words(text):
 
 
 def swept_value(study, value):
-    """A value of a swept joint as the panels write it: a turn in degrees ("-5.02°", from the
-    study's radians), a travel in mm."""
+    """A value of a swept joint as the Drive panel writes it: a turn in degrees to the hundredth
+    ("46.73°", from the study's radians), a travel in mm to the ten-thousandth ("0.25 mm")."""
     if study.kind == "angle":
-        return "%g°" % round(math.degrees(value), 4)
-    return "%g mm" % round(value, 6)
+        return "%g°" % round(math.degrees(value), 2)
+    return "%g mm" % round(value, 4)
 
 
 def study_message(study):
