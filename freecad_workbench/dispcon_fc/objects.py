@@ -292,8 +292,6 @@ def show_properties(obj):
                 obj.setEditorMode(name, mode)
 
 
-
-
 def frame_rotation(joint):
     """The rotation offset of part 2's joint frame (App.Rotation from FrameYaw, FramePitch,
     FrameRoll in degrees), or None when there is none (or the type takes none)."""

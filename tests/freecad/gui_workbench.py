@@ -1142,20 +1142,22 @@ def answer_save_dialog(path, tries=100):
 
 
 class TestCheckPanel(Documents):
-    def test_the_check_panel_exports_its_report_and_a_motion_study(self):
-        import json
+    def checked_fourbar(self):
+        """A four-bar, solved, its assembly selected and Check run: the panel shown."""
+        from dispcon_fc import operations, panels
 
-        asm, g, crank, coupler, rocker = self.fourbar()
-        from dispcon_fc import operations
-
-        operations.solve(asm)
+        asm = self.fourbar()[0]
+        self.assertTrue(operations.solve(asm).converged)
         Gui.Selection.clearSelection()
         Gui.Selection.addSelection(asm)
         Gui.runCommand("Dispcon_Check")
         settle()
-        from dispcon_fc import panels
+        return panels.last_panel
 
-        panel = panels.last_panel
+    def test_the_check_panel_exports_its_report_and_a_motion_study(self):
+        import json
+
+        panel = self.checked_fourbar()
         out = tempfile.mkdtemp()
         QtCore.QTimer.singleShot(50, lambda: answer_save_dialog(os.path.join(out, "check.json")))
         panel.form.exportReport.click()
@@ -1172,17 +1174,15 @@ class TestCheckPanel(Documents):
             self.assertTrue(os.path.getsize(os.path.join(out, name)) > 100, name)
         with open(os.path.join(out, "crank.csv")) as f:
             self.assertGreater(len(f.readlines()), 100)
+        # The study said in the workbench's words: a whole turn in degrees, no radians.
+        said = panel.form.report.toPlainText().splitlines()[-1]
+        self.assertRegex(said, r"^'[^']+' moves freely from -?[\d.]+° to -?[\d.]+°")
+        self.assertNotIn("rad", said)
+        self.assertNotIn("(s)", said)
         shot("check-exports")
 
     def test_the_check_is_a_report_closed_by_one_button_and_counts_in_words(self):
-        asm, g, crank, coupler, rocker = self.fourbar()
-        from dispcon_fc import operations
-
-        operations.solve(asm)
-        Gui.Selection.clearSelection()
-        Gui.Selection.addSelection(asm)
-        Gui.runCommand("Dispcon_Check")
-        settle()
+        self.checked_fourbar()
         # One degree of freedom (the four-bar's crank), said as a person says it.
         self.assertEqual(mw().statusBar().currentMessage(), "Check: 1 degree of freedom")
         boxes = [b for b in mw().findChildren(QtWidgets.QDialogButtonBox) if b.isVisible()]
