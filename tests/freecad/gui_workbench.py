@@ -3,6 +3,7 @@ menus, joint markers, the joint task panel, errors in the GUI and drag mode, thr
 widgets and Coin3D events. Each test class opens and closes its own documents. Screenshots go to
 DISPCON_GUI_OUT for a person to look at. Quits FreeCAD itself; writes 0 to <out>/status-workbench
 when every test passed."""
+import contextlib
 import math
 import os
 import sys
@@ -667,17 +668,26 @@ class TestTreeIcons(Documents):
 class TestRestored(unittest.TestCase):
     """Documents saved by freecadcmd, opened in the GUI: markers drawn, nothing modified."""
 
-    def test_a_headless_document_shows_its_markers_unmodified(self):
-        from pivy import coin
-        from dispcon_fc import objects, viewproviders
-
+    @contextlib.contextmanager
+    def opened(self, name):
+        """A four-bar solved and saved by freecadcmd, opened in the GUI and unmodified: (its
+        document, its GUI document); closed after."""
         close_dialog()
-        path = headless_fourbar(os.path.join(tempfile.mkdtemp(), "headless-fourbar.FCStd"))
-        doc = App.openDocument(path)
+        doc = App.openDocument(headless_fourbar(os.path.join(tempfile.mkdtemp(), name)))
         try:
             settle()
             gui_doc = Gui.getDocument(doc.Name)
             self.assertFalse(gui_doc.Modified, "opening the document marked it modified")
+            yield doc, gui_doc
+        finally:
+            App.closeDocument(doc.Name)
+            settle()
+
+    def test_a_headless_document_shows_its_markers_unmodified(self):
+        from pivy import coin
+        from dispcon_fc import objects, viewproviders
+
+        with self.opened("headless-fourbar.FCStd") as (doc, gui_doc):
             self.assertFalse(doc.isTouched(), "opening the document touched it")
             asm = next(o for o in doc.Objects if objects.is_assembly(o))
             self.assertTrue(asm.ViewObject.Visibility)
@@ -694,20 +704,11 @@ class TestRestored(unittest.TestCase):
             gui_doc.ActiveView.fitAll()
             shot("headless-opened")
             self.assertFalse(gui_doc.Modified)
-        finally:
-            App.closeDocument(doc.Name)
-            settle()
 
     def test_solve_on_a_solved_document_leaves_it_unmodified(self):
         from dispcon_fc.adapter import ALREADY_HELD
 
-        close_dialog()
-        path = headless_fourbar(os.path.join(tempfile.mkdtemp(), "solved-fourbar.FCStd"))
-        doc = App.openDocument(path)
-        try:
-            settle()
-            gui_doc = Gui.getDocument(doc.Name)
-            self.assertFalse(gui_doc.Modified)
+        with self.opened("solved-fourbar.FCStd") as (doc, gui_doc):
             asm = next(o for o in doc.Objects if "LastSolve" in o.PropertiesList)
             last = asm.LastSolve
             Gui.runCommand("Dispcon_Solve")
@@ -724,9 +725,6 @@ class TestRestored(unittest.TestCase):
             self.assertGreater((coupler.Placement.Base - off.Base).Length, 0.1)
             self.assertRegex(asm.LastSolve, r"^solved in \d+ iterations?$")
             self.assertIn("%s: %s" % (asm.Label, asm.LastSolve), mw().statusBar().currentMessage())
-        finally:
-            App.closeDocument(doc.Name)
-            settle()
 
 
 class TestJointPanel(Documents):
