@@ -587,7 +587,7 @@ def sweep(asm, joint_label, start=None, stop=None, steps=360, interference=True,
         out.message = "'%s' moves freely from %.9g to %.9g%s" % (j.Label, start, stop, unit)
     hits = out.interference() if out.clearance else []
     if hits:
-        out.message += "; %d pair(s) of parts collide: %s" % (len(hits), ", ".join(
+        out.message += "; %s of parts %s: %s" % (plural(len(hits), "pair"), "collides" if len(hits) == 1 else "collide", ", ".join(
             "'%s'/'%s' from %.6g to %.6g" % (h["parts"][0], h["parts"][1], h["first"], h["last"])
             for h in hits))
     return out

@@ -160,6 +160,8 @@ class Sweep(unittest.TestCase):
                              if r["interference"][0]["parts"][0] == "Crank" else
                              [["Coupler", "Stop"], ["Crank", "Stop"]])
             self.assertEqual(len(r["samples"]), 121)
+            # The one line counts in words: two pairs collide (one "pair ... collides").
+            self.assertIn("; 2 pairs of parts collide: ", r["message"])
             self.assertEqual([j["label"] for j in r["joints"]], ["Revolute", "Revolute001", "Revolute002", "Revolute003"])
             first, last = r["samples"][0], r["samples"][-1]
             # The driven joint reads the driven value; a full turn brings every joint back.

@@ -145,14 +145,16 @@ CheckResult check(const Model& input, const SolveOptions& options) {
 
   std::ostringstream msg;
   if (out.solve.converged) {
-    msg << "assembled; " << out.dof << " degree" << (out.dof == 1 ? "" : "s") << " of freedom";
+    msg << "assembled; " << counted(out.dof, "degree") << " of freedom";
   } else {
     msg << "does not assemble (" << out.solve.message << ")";
   }
-  if (!out.redundant.empty()) msg << ", " << out.redundant.size() << " redundant joint(s)";
-  if (!out.conflicting.empty()) msg << ", " << out.conflicting.size() << " conflicting joint(s)";
-  if (!out.limits_active.empty()) msg << ", " << out.limits_active.size() << " limit(s) in contact";
-  if (!out.locking.empty()) msg << ", locked by " << out.locking.size() << " coupling(s)";
+  const auto n = [](const auto& list) { return static_cast<long long>(list.size()); };
+  if (!out.redundant.empty()) msg << ", " << counted(n(out.redundant), "redundant joint");
+  if (!out.conflicting.empty()) msg << ", " << counted(n(out.conflicting), "conflicting joint");
+  if (!out.limits_active.empty())
+    msg << ", " << counted(n(out.limits_active), "limit") << " in contact";
+  if (!out.locking.empty()) msg << ", locked by " << counted(n(out.locking), "coupling");
   out.message = msg.str();
   return out;
 }

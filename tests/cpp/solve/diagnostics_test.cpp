@@ -53,6 +53,16 @@ TEST(Check, PlanarFourBarIn3DHasThreeRedundantEquationsOnItsClosingJoint) {
   for (const char* body : {"crank", "coupler", "rocker"}) {
     EXPECT_EQ(c.body_dof[static_cast<size_t>(m.find(body)->value)], 1) << body;
   }
+  // Its one line counts in words.
+  EXPECT_EQ(c.message, "assembled; 1 degree of freedom, 1 redundant joint");
+}
+
+// The monocycle's line: plurals where there are several.
+TEST(Check, MessageCountsInWords) {
+  const CheckResult c = check(sample("monocycle.dcl"));
+  ASSERT_EQ(c.redundant.size(), 1u);
+  ASSERT_EQ(c.limits_active.size(), 4u);
+  EXPECT_EQ(c.message, "assembled; 8 degrees of freedom, 1 redundant joint, 4 limits in contact");
 }
 
 // A four-bar whose base is welded to the world (a leg bolted to a frame): the base has no motion
