@@ -2,7 +2,6 @@
 status bar, and the joints to look at marked in the 3D view (their markers turn red). The marks
 are state of the view, never of the document: nothing a command shows is saved into the file."""
 import math
-import re
 
 import FreeCAD as App
 
@@ -64,17 +63,6 @@ def solve_outcome(asm, result):
     return panel
 
 
-_COUNTED = re.compile(r"\b(\d+) ([A-Za-z][A-Za-z ]*?)\(s\)")
-
-
-def counts_in_words(text):
-    """The engine's "1 redundant joint(s)", "2 limit(s) in contact" as a person writes them:
-    "1 redundant joint", "2 limits in contact" (the command line keeps its own wording)."""
-    from .adapter import plural
-
-    return _COUNTED.sub(lambda m: plural(int(m.group(1)), m.group(2)), text)
-
-
 def swept_value(study, value):
     """A value of a swept joint as the Drive panel writes it: a turn in degrees to the hundredth
     ("46.73°", from the study's radians), a travel in mm to the ten-thousandth ("0.25 mm")."""
@@ -86,13 +74,13 @@ def swept_value(study, value):
 def study_message(study):
     """A motion study's outcome in the workbench's words: angles in degrees with their unit and
     counts in words ("1 pair of parts collides", "5 pairs of parts collide"). The study's own
-    .message is the command line's (`dispcon sweep`), fixed by its contract, so it is not
-    reworded but composed again from what the study found."""
+    .message is the command line's (`dispcon sweep`, in radians), so it is not reworded but
+    composed again from what the study found."""
     from .adapter import plural
 
     label = "'%s'" % study.joint.Label
     if study.start is None:  # it did not assemble: nothing was swept
-        return counts_in_words(study.message)
+        return study.message
     if study.locked and not study.samples:
         text = "%s cannot reach the start %s: it locks at %s" % (
             label, swept_value(study, study.start), swept_value(study, study.lock_value))

@@ -4,7 +4,7 @@ import FreeCADGui as Gui
 
 from .. import operations
 from ..adapter import plural
-from ..feedback import counts_in_words, labels, mark, report, status, study_message
+from ..feedback import labels, mark, report, status, study_message
 from ..commands.motion import export_motion_study, save_path, study_joint
 from ..objects import joints as joints_of
 from ..qt import QtWidgets
@@ -42,7 +42,7 @@ class CheckPanel:
         self.form.motionStudy.setEnabled(bool(joints_of(asm)))
         mark(asm, c["conflicting"])
         if headline is None:
-            report(counts_in_words(c["message"]), error=not c["converged"])
+            report(c["message"], error=not c["converged"])
             status("Check: %s of freedom%s" % (plural(c["dof"], "degree"), "; conflicting: " + labels(c["conflicting"])
                                                         if c["conflicting"] else ""))
 
