@@ -720,7 +720,7 @@ class StudyInWords(unittest.TestCase):
 
         self.block(0.8)
         one = studies.export_drive_study(self.asm, self.joint)
-        self.assertIn("1 pair(s) of parts collide", one.message)  # the command line's, kept
+        self.assertIn("1 pair of parts collides", one.message)  # the command line's (radians)
         text = feedback.study_message(one)
         self.assertRegex(text, r"^'Revolute' moves freely from -?[\d.]+° to -?[\d.]+°; 1 pair of parts collides: "
                                r"'Arm' and 'Block' from [\d.]+° to [\d.]+°$")
