@@ -61,44 +61,23 @@ void describe_path(std::ostream& msg, const Model& model, const ReachBound::Gap&
 }
 
 // The model's poses with every body that `body` reaches through joints between movable bodies
-// carried with it as one rigid body to `target`, when every active joint holds there (those to
-// the world and to fixed bodies included: a linkage free in space, or on a plane moved along
-// it), measured as reported: then a step to `target` is made at once. Else nullopt.
-std::optional<SolveResult> carried(const Model& model, BodyId body, const Pose& target,
-                                   const SolveOptions& options) {
-  const auto movable = [&](BodyId b) { return b.value > 0 && !model.body(b).fixed; };
-  std::vector<bool> carry(static_cast<size_t>(model.body_count()), false);
-  carry[static_cast<size_t>(body.value)] = true;
-  for (bool grew = true; grew;) {
-    grew = false;
-    for (int j = 0; j < model.joint_count(); ++j) {
-      const Joint& joint = model.joint(JointId{j});
-      if (!joint.active_at(options.time) || !movable(joint.body1) || !movable(joint.body2)) {
-        continue;
-      }
-      const size_t a = static_cast<size_t>(joint.body1.value);
-      const size_t b = static_cast<size_t>(joint.body2.value);
-      if (carry[a] != carry[b]) {
-        carry[a] = carry[b] = true;
-        grew = true;
-      }
-    }
-  }
-  const Pose& start = model.body(body).pose;
-  const Quat turn = (target.q * start.q.conjugate()).normalized();
+// carried with it as one rigid body to `target` (ReachBound::carry, whose bodies joined are the
+// same), when every active joint holds there (those to the world and to fixed bodies included: a
+// linkage free in space, or on a plane moved along it), measured as reported: then a step to
+// `target` is made at once. Else nullopt.
+std::optional<SolveResult> carried(const Model& model, const ReachBound& reach, BodyId body,
+                                   const Pose& target, const SolveOptions& options) {
+  const std::vector<Pose> poses = model.poses();
   SolveResult r;
-  r.poses = model.poses();
-  for (size_t i = 0; i < carry.size(); ++i) {
-    if (!carry[i]) continue;
-    Pose& p = r.poses[i];
-    p.x = target.x + turn * (p.x - start.x);
-    p.q = (turn * p.q).normalized();
+  r.poses = poses;
+  r.poses[static_cast<size_t>(body.value)] = target;
+  std::vector<int> moved_with(poses.size(), -1);
+  moved_with[static_cast<size_t>(body.value)] = body.value;
+  if (!reach.carry(model, poses, r.poses, moved_with, options, r.constraints)) return std::nullopt;
+  for (const Pose& p : r.poses) {
     if (!(p.x.cwiseAbs().maxCoeff() <= kLargest)) return std::nullopt;  // off the model's range
   }
-  r.poses[static_cast<size_t>(body.value)] = target;
-  r.constraints = measure(model, r.poses, options);
   r.max_residual = largest_residual(r.constraints);
-  if (!(r.max_residual <= options.tolerance) || !r.violated().empty()) return std::nullopt;
   return r;
 }
 
@@ -241,7 +220,7 @@ SolveResult Dragger::move_to(const Pose& target) {
   // body, every joint may still hold; then the step is made at once, where the held Newton
   // steps, cut short by the seed's turn, crawl (the monocycle's thigh moved 50: 400-2,000
   // iterations).
-  if (std::optional<SolveResult> made = carried(model_, body_, at, options_)) {
+  if (std::optional<SolveResult> made = carried(model_, *reach_, body_, at, options_)) {
     add_spent(*made, {r});
     made->message = solve_message(model_, *made) + ": carried with '" + model_.body(body_).name +
                     "' as one rigid body";

@@ -71,6 +71,13 @@ class ReachBound {
                                               const Pose& target,
                                               const SolveOptions& options) const;
 
+  // Moves each body that hangs off a moved one (joined to it through active joints between
+  // parts that can move; moved_with[b] == b for the bodies moved, -1 for the rest) as that one
+  // moved from `poses` to `out`, then measures every joint there: false when one is broken.
+  bool carry(const Model& model, const std::vector<Pose>& poses, std::vector<Pose>& out,
+             std::vector<int>& moved_with, const SolveOptions& options,
+             std::vector<ConstraintReport>& constraints) const;
+
  private:
   // Where a path ends on what cannot move: a point, or the set a guide keeps its point on
   // (world coordinates, read from the poses when the bound was built).
@@ -115,12 +122,6 @@ class ReachBound {
   };
   // The bodies of `path` from its anchor to the held body (the held body not included).
   std::vector<Link> links(const Path& path) const;
-  // Moves each body that hangs off a moved one (moved_with[b] == b for the bodies moved, -1 for
-  // the rest) as that one moved from `poses` to `out`, then measures every joint there: false
-  // when one is broken.
-  bool carry(const Model& model, const std::vector<Pose>& poses, std::vector<Pose>& out,
-             std::vector<int>& moved_with, const SolveOptions& options,
-             std::vector<ConstraintReport>& constraints) const;
   std::uint64_t revision_ = 0;
 };
 
