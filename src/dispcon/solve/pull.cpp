@@ -133,12 +133,13 @@ class Holds {
       }
       const JointBounds bound = test(c, band);
       s.rows(js, bound, parts, false);
-      if (c != joint && bound.bound.band > 0 && js.bounded) s.outward(js, bound, out);
+      // A bounded joint other than the pull's whose band a step widened: its bounds are held.
+      const bool holds = c != joint && bound.bound.band > 0;
+      if (holds) s.outward(js, bound, out);
       for (int p = 0; p < kPartSlots; ++p) {
         const PartRows& rows = parts[p];
         // (A bound let go that has rows is passed, by rounding or more: not held.)
-        if (c != joint && bound.bound.band > 0 && js.bounded && rows.at_limit &&
-            (bound.let_go_parts >> p & 1u) == 0 &&
+        if (holds && rows.at_limit && (bound.let_go_parts >> p & 1u) == 0 &&
             (out[p][0] != 0 || out[p][1] != 0 || out[p][2] != 0)) {
           held_.push_back({c, p, row, rows.count, {out[p][0], out[p][1], out[p][2]}});
         }
