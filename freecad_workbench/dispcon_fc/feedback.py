@@ -11,11 +11,19 @@ def report(text, error=False):
 
 
 def status(text, msecs=0):
-    """The text in the main window's status bar (until the next message when msecs is 0)."""
+    """The text in the main window's status bar (until the next message when msecs is 0).
+
+    FreeCAD echoes a Report view message in the status bar by an event it posts, which would
+    overwrite this text when it is processed (unless an earlier error's is still shown: so it did
+    or did not, by the clock). The text is shown now and once more when the events already
+    posted have been processed, so what the command says last is what stays."""
     if App.GuiUp:
         import FreeCADGui as Gui
+        from .qt import QtCore, is_alive
 
-        Gui.getMainWindow().statusBar().showMessage(text, msecs)
+        bar = Gui.getMainWindow().statusBar()
+        bar.showMessage(text, msecs)
+        QtCore.QTimer.singleShot(0, lambda: is_alive(bar) and bar.showMessage(text, msecs))
 
 
 def mark(asm, culprits):

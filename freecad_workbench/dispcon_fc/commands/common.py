@@ -4,6 +4,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from ..feedback import report
+from ..feedback import status as feedback_status
 from ..objects import is_assembly, joints, placed_parts, sub_assemblies
 
 
@@ -61,8 +62,8 @@ class Command:
 
 
 def status(text, msecs=8000):
-    """A message in the main window's status bar."""
-    Gui.getMainWindow().statusBar().showMessage(text, msecs)
+    """A message in the main window's status bar, for 8 s."""
+    feedback_status(text, msecs)
 
 
 # When commands can run (FreeCAD asks often: these stay cheap).
