@@ -9,7 +9,7 @@ import FreeCAD as App
 
 from . import engine, geometry, subassembly
 from .objects import (COUPLINGS, JOINT_TYPES, LENGTH_PHASE, frame_rotation, joints, parts, phase_value,
-                      remake_phase, set_phase, shape_of)
+                      offset_text, remake_phase, set_phase, shape_of)
 
 
 def _vec(v):
@@ -304,7 +304,10 @@ class Adapter:
     """One assembly as a dispcon.Model: bodies are the parts (their Placement is the pose), with
     mass and inertia from their shapes; joints are the joint objects, in order."""
 
-    def __init__(self, asm, physics=False):
+    def __init__(self, asm, physics=False, made=None):
+        # made: {joint name: engine phase} for couplings whose phase is to be made at the poses
+        # with an offset typed since (pending_offsets): the model is built again with them.
+        self.made = made or {}
         self.dispcon = engine.load()
         self.asm = asm
         self.model = self.dispcon.Model()
@@ -345,12 +348,35 @@ class Adapter:
         with self.engine_errors():
             for j in self.joints:
                 self.add_joint(j)
+        pending = {} if made is not None else self.pending_offsets()
+        if pending:
+            self.__init__(asm, physics, pending)
+
+    def pending_offsets(self):
+        """{joint name: engine phase} for the couplings of this document whose phase the engine
+        made at the poses (new, changed, or their geometry moved) while their mesh offset differs
+        from the one those poses stand at (MeshOffsetHeld: what the stored phase held; 0 for a
+        coupling made or changed): the phase made, moved on by the difference (part 2's turn or
+        travel enters the equation with a factor 1), so a kept or typed offset is held now."""
+        pending = {}
+        for i, j in enumerate(self.joints):
+            if (isinstance(j, subassembly.InstanceJoint) or j.Document != self.asm.Document
+                    or j.JointType not in COUPLINGS or "MeshOffsetHeld" not in j.PropertiesList
+                    or (getattr(j, "PhaseKnown", False) and j not in self.remade)):
+                continue
+            change = j.MeshOffset.Value - j.MeshOffsetHeld.Value
+            made = self.model.joint(i).phase
+            if change != 0.0 and made is not None:
+                pending[j.Name] = made + phase_to_engine(j, change)
+        return pending
 
     def add_joint(self, j, **changed):
         """Adds joint `j` to the model (with the arguments in `changed` in place of its own:
         what an edit would give the engine, which checks them); returns its index."""
         (b1, l1), (b2, l2) = self.frames[j.Reference1[0].Name], self.frames[j.Reference2[0].Name]
-        kw = dict(joint_kwargs(self.dispcon, j, self.anchors[j.Name, j.Document.Name], j in self.remade), **changed)
+        made = {"phase": self.made[j.Name]} if j.Name in self.made and j.Document == self.asm.Document else {}
+        kw = dict(joint_kwargs(self.dispcon, j, self.anchors[j.Name, j.Document.Name], j in self.remade), **made)
+        kw.update(changed)
         kw = _in_body(_in_body(kw, "1", l1), "2", l2)
         return self.model.add_joint(b2, object1=b1, label=j.Label, **kw)
 
@@ -474,8 +500,8 @@ class Adapter:
             if j in self.remade:  # made at these poses: its geometry goes with it
                 self.store_anchors(j)
                 j.PhaseKnown = False
-            if not getattr(j, "PhaseKnown", False) and "MeshOffset" in j.PropertiesList:
-                j.MeshOffset = 0.0  # made at the poses: the mesh as it stands is the one made
+            # A phase made at the poses holds the mesh offset the joint has: 0 for a coupling
+            # made or changed, the designer's own for one whose geometry moved (pending_offsets).
             held = "MeshOffsetHeld" in j.PropertiesList and j.MeshOffsetHeld.Value == j.MeshOffset.Value
             if not getattr(j, "PhaseKnown", False) or abs(phase_value(j) - value) > 1e-12 or not held:
                 set_phase(j, value)
@@ -486,8 +512,8 @@ class Adapter:
         if not self.remade:
             return ""
         return "; ".join("made the phase of %s again at the parts' poses (the geometry of %s moved its axis or "
-                         "centre; its mesh offset starts at 0)"
-                         % (j.Label, " and ".join(self.moved[j.Name]))
+                         "centre; its mesh offset, %s, kept)"
+                         % (j.Label, " and ".join(self.moved[j.Name]), offset_text(j))
                          for j in self.remade)
 
     def store_anchors(self, j):
@@ -504,7 +530,7 @@ class Adapter:
                 continue
             self.store_anchors(j)
             if j in self.remade and not getattr(self, "recorded", False):
-                remake_phase(j)  # the solve failed: made at the poses by the next model
+                remake_phase(j, keep_offset=True)  # the solve failed: made at the poses by the next model
 
     def mark(self, result):
         """Each joint's residual and whether it is violated, written only where they changed

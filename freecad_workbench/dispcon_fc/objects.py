@@ -175,10 +175,10 @@ class JointProxy(_Proxy):
         for name, value in anchors.items():
             if getattr(obj, name) != value:
                 setattr(obj, name, value)
-        remake_phase(obj)
+        remake_phase(obj, keep_offset=True)
         parts = " and ".join(moved)
         text = ("dispcon: the geometry of %s moved the axis or centre of %s: its phase is made again at the "
-                "parts' poses (its mesh offset starts at 0)" % (parts, obj.Label))
+                "parts' poses (its mesh offset, %s, kept)" % (parts, obj.Label, offset_text(obj)))
         App.Console.PrintWarning(text + "\n")
         if App.GuiUp:
             from . import feedback
@@ -378,16 +378,29 @@ def mesh_offset(joint):
     return joint.MeshOffset.Value if "MeshOffset" in joint.PropertiesList else 0.0
 
 
+def offset_text(joint):
+    """The coupling's mesh offset as the messages say it: "7 deg" (°), "0.05 mm"."""
+    unit = "mm" if getattr(joint, "JointType", "") in LENGTH_PHASE else "\u00b0"
+    return "%g%s%s" % (round(mesh_offset(joint), 9), " " if unit == "mm" else "", unit)
+
+
 def normal_offset(joint_type, value):
     """A mesh offset as shown: an angle within -180..180 deg (a whole turn of part 2 is the same
     pose, the same mesh), a length as it is."""
     return value if joint_type in LENGTH_PHASE else math.remainder(value, 360.0)
 
 
-def remake_phase(joint):
+def remake_phase(joint, keep_offset=False):
     """The coupling's phase made again at the poses the parts have at the next model (what it
-    is measured with changed: a ratio, an axis, the geometry): its mesh offset starts at 0."""
+    is measured with changed: a ratio, the type, the references): its mesh offset starts at 0.
+    `keep_offset` (its part's geometry moved an axis or a centre: the coupling is the same, its
+    phase only measured about new axes): the designer's offset is kept, the poses the parts
+    have standing at the offset the stored phase held (MeshOffsetHeld), so an offset typed since
+    is still to be taken (Adapter.pending_offsets) and setting it to 0 later turns part 2 back by
+    as much as it was offset."""
     joint.PhaseKnown = False
+    if keep_offset:
+        return
     for name in ("MeshOffset", "MeshOffsetHeld"):
         if name in joint.PropertiesList:
             setattr(joint, name, 0.0)

@@ -452,7 +452,8 @@ class Samples(unittest.TestCase):
     def test_a_coupling_whose_geometry_moved_is_made_again_and_said(self):
         # G2's geometry moved 0.3 in its own frame (its bore and its pitch circle): its revolute
         # follows the bore; the mesh's phase, taken about the old centre, would hold the gears
-        # by a centre that is no longer the axle's. Solve makes it again at the poses and says so.
+        # by a centre that is no longer the axle's. Solve makes it again at the poses and says so,
+        # keeping the designer's mesh offset (how far G2 stands against G1 from where it was made).
         asm, p = self.build("three-gears")
         mesh = joint_between(asm, p["G1"], p["G2"])
         da.edit_joint(mesh, mesh_offset=7.0)
@@ -462,16 +463,58 @@ class Samples(unittest.TestCase):
         self.assertTrue(r.converged, r.message)
         self.assertIn("made the phase of %s again" % mesh.Label, r.message)
         self.assertIn("G2", r.message)
+        self.assertIn("its mesh offset, 7\u00b0, kept", r.message)
         self.assertTrue(mesh.PhaseKnown)
-        self.assertEqual(da.mesh_offset(mesh), 0.0)
+        self.assertEqual((da.mesh_offset(mesh), mesh.MeshOffsetHeld.Value), (7.0, 7.0))
         self.assertAlmostEqual((mesh.Point2 - App.Vector(0.3, 0, 0)).Length, 0.0, delta=1e-9)
+        placed = {n: o.Placement for n, o in p.items()}
         again = da.solve(asm)
         self.assertNotIn("made the phase", again.message)  # made once
-        # The ratio holds about the axles as they are now.
+        for n, pl in placed.items():
+            self.assertTrue(same_placement(p[n].Placement, pl), "%s moved at the second solve" % n)
+        # The ratio holds about the axles as they are now, and the offset through the turns.
         turns = Turns({n: p[n] for n in ("G1", "G2")})
         da.drive(asm, joint_between(asm, p["Plate"], p["G1"]), range(10, 100, 10), callback=turns.sample)
         self.assertAlmostEqual(turns.total["G1"], math.radians(90), delta=TOL)
         self.assertAlmostEqual(turns.total["G2"], -0.5 * turns.total["G1"], delta=TOL)
+        self.assertEqual(da.mesh_offset(mesh), 7.0)
+        # The offset still means "from where it was made": back to 0, G2 turns 7 degrees back
+        # against G1 (the equation ratio turn1 + turn2 by -7 degrees), into the mesh as made.
+        before = self.mesh_value(mesh, p)
+        da.edit_joint(mesh, mesh_offset=0.0)
+        self.assertTrue(da.solve(asm).converged)
+        self.assertAlmostEqual(math.remainder(self.mesh_value(mesh, p) - before, 2 * math.pi), math.radians(-7),
+                               delta=1e-8)
+
+    def remade_with(self, typed):
+        """The three gears with an offset of 7 degrees, G2's geometry moved, `typed` set in the
+        property editor (None: nothing typed), solved: (the mesh's equation after it, the joint)."""
+        asm, p = self.build("three-gears")
+        mesh = joint_between(asm, p["G1"], p["G2"])
+        da.edit_joint(mesh, mesh_offset=7.0)
+        self.assertTrue(da.solve(asm).converged)
+        p["G2"].Shape = self.moved_gear(p["G2"], (0.3, 0, 0))
+        if typed is not None:
+            mesh.MeshOffset = typed
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        self.assertIn("made the phase of %s again" % mesh.Label, r.message)
+        placed = {n: o.Placement for n, o in p.items()}
+        self.assertTrue(da.solve(asm).converged)
+        for n, pl in placed.items():
+            self.assertTrue(same_placement(p[n].Placement, pl), "%s moved at the second solve" % n)
+        return self.mesh_value(mesh, p), mesh
+
+    def test_an_offset_typed_before_a_remade_phase_is_taken_at_that_solve(self):
+        # 10 degrees typed where 7 was held, then the Solve that makes the phase again at the
+        # poses (which stand at 7): G2 stands 3 degrees on against G1 from where the same Solve
+        # leaves it with nothing typed, and a second Solve moves nothing.
+        kept, mesh = self.remade_with(None)
+        self.assertEqual((da.mesh_offset(mesh), mesh.MeshOffsetHeld.Value, mesh.PhaseKnown), (7.0, 7.0, True))
+        self.tearDown()
+        typed, mesh = self.remade_with(10.0)
+        self.assertEqual((da.mesh_offset(mesh), mesh.MeshOffsetHeld.Value, mesh.PhaseKnown), (10.0, 10.0, True))
+        self.assertAlmostEqual(math.remainder(typed - kept, 2 * math.pi), math.radians(3), delta=1e-8)
 
     def test_a_recompute_remakes_a_moved_coupling_before_it_is_saved(self):
         # The part recomputed (as a Pad changed in the GUI): the joint takes the new geometry and
@@ -481,9 +524,12 @@ class Samples(unittest.TestCase):
         try:
             asm, p = self.build("three-gears")
             mesh = joint_between(asm, p["G1"], p["G2"])
+            da.edit_joint(mesh, mesh_offset=-4.5)
+            self.assertTrue(da.solve(asm).converged)
             p["G1"].Shape = self.moved_gear(p["G1"], (0, 0.2, 0))
             self.doc.recompute()
             self.assertFalse(mesh.PhaseKnown)
+            self.assertEqual(da.mesh_offset(mesh), -4.5)  # the designer's offset kept
             self.assertAlmostEqual((mesh.Point1 - App.Vector(0, 0.2, 0)).Length, 0.0, delta=1e-9)
             path = os.path.join(tmp, "moved.FCStd")
             self.doc.saveAs(path)
@@ -494,11 +540,15 @@ class Samples(unittest.TestCase):
             mesh = joint_between(asm, p["G1"], p["G2"])
             self.assertFalse(mesh.PhaseKnown)
             self.assertAlmostEqual((mesh.Point1 - App.Vector(0, 0.2, 0)).Length, 0.0, delta=1e-9)
-            self.assertTrue(da.solve(asm).converged)
+            self.assertEqual(da.mesh_offset(mesh), -4.5)
+            r = da.solve(asm)
+            self.assertTrue(r.converged, r.message)
             self.assertTrue(mesh.PhaseKnown)
+            self.assertEqual((da.mesh_offset(mesh), mesh.MeshOffsetHeld.Value), (-4.5, -4.5))
             turns = Turns({n: p[n] for n in ("G1", "G2")})
             da.drive(asm, joint_between(asm, p["Plate"], p["G1"]), range(10, 100, 10), callback=turns.sample)
             self.assertAlmostEqual(turns.total["G2"], -0.5 * turns.total["G1"], delta=TOL)
+            self.assertEqual(da.mesh_offset(mesh), -4.5)
         finally:
             shutil.rmtree(tmp)
 
