@@ -16,6 +16,7 @@ sun and its mesh with the ring, a few pixels apart at fit-all zoom) are pushed a
 import math
 
 import FreeCAD as App
+import numpy as np
 
 # Which pieces each joint type's glyph has: ring (turn about the axis), arrows (travel along
 # it), sphere (turn about the point), square (the plane across the axis), cube (no motion),
@@ -255,38 +256,67 @@ def stacks(frames, tolerance):
     """The markers drawn at one place: `frames` is [(key, point, axis)] in the assembly's order;
     returns {key: (k, direction)} for each marker that is the k-th (k >= 1) of a stack whose first
     marker is at the same point (within `tolerance`), with the world direction across the first
-    one's axis along which the stack is set apart. The first of each stack stays where it is."""
-    firsts, out = [], {}
+    one's axis along which the stack is set apart. The first of each stack stays where it is.
+    The firsts are found through a grid of tolerance-sized cells (a point looks in its cell and
+    the 26 around it), not by a walk over every stack (quadratic with hundreds of joints)."""
+    firsts, out, cells = [], {}, {}
+    size = tolerance if tolerance > 0 else 1.0
+
+    def cell(p):
+        return (math.floor(p.x / size), math.floor(p.y / size), math.floor(p.z / size))
+
     for key, point, axis in frames:
-        for first in firsts:
-            if (point - first[0]).Length <= tolerance:
-                first[2] += 1
-                out[key] = (first[2], first[1])
-                break
-        else:
-            a = App.Vector(axis).normalize() if axis.Length > 1e-12 else App.Vector(0, 0, 1)
-            across = a.cross(App.Vector(0, 0, 1))
-            if across.Length < 1e-6:  # an axis along z: the stack goes along -x
-                across = a.cross(App.Vector(0, 1, 0))
-            firsts.append([point, across.normalize(), 0])
+        cx, cy, cz = cell(point)
+        near = [f for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)
+                for f in cells.get((cx + dx, cy + dy, cz + dz), ())]
+        # The earliest stack within reach, as a walk over them in order would find.
+        hit = min((f for f in near if (point - firsts[f][0]).Length <= tolerance), default=None)
+        if hit is not None:
+            first = firsts[hit]
+            first[2] += 1
+            out[key] = (first[2], first[1])
+            continue
+        a = App.Vector(axis).normalize() if axis.Length > 1e-12 else App.Vector(0, 0, 1)
+        across = a.cross(App.Vector(0, 0, 1))
+        if across.Length < 1e-6:  # an axis along z: the stack goes along -x
+            across = a.cross(App.Vector(0, 1, 0))
+        cells.setdefault((cx, cy, cz), []).append(len(firsts))
+        firsts.append([point, across.normalize(), 0])
     return out
 
 
-def _near_pairs(pos, gap):
-    """The pairs (i, k), i < k, of points nearer than `gap`, through a grid of gap-sized cells
-    (a hundred markers spread over the screen are each near a few)."""
-    cells = {}
-    for i, (x, y) in enumerate(pos):
-        cells.setdefault((math.floor(x / gap), math.floor(y / gap)), []).append(i)
-    for (cx, cy), members in cells.items():
-        near = [k for dx in (-1, 0, 1) for dy in (-1, 0, 1) for k in cells.get((cx + dx, cy + dy), ())]
-        for i in members:
-            for k in near:
-                if k > i and math.hypot(pos[k][0] - pos[i][0], pos[k][1] - pos[i][1]) < gap - 1e-9:
-                    yield i, k
+def _pairs_within(pos, radius):
+    """The pairs (i, k), i < k, of rows of `pos` (an n x 2 array of pixels) nearer than `radius`
+    (a number, or an n x n-free rule: an array of each point's reach, a pair kept when nearer than
+    the sum of their reaches and `radius`'s largest twice over is the sweep's): two index arrays.
+    Sweep and prune along the longer side of their box, in numpy: each point is paired with those
+    after it along it within reach, and those pairs measured at once (a few hundred markers spread
+    over the screen are each within reach of a few dozen)."""
+    n = len(pos)
+    if n < 2:
+        return np.empty(0, dtype=np.intp), np.empty(0, dtype=np.intp)
+    reach = np.broadcast_to(np.asarray(radius, dtype=float), (n,))
+    sweep = float(reach.max()) if reach.ndim else float(reach)
+    sweep = 2 * sweep if np.ndim(radius) else sweep
+    axis = 0 if np.ptp(pos[:, 0]) >= np.ptp(pos[:, 1]) else 1
+    order = np.argsort(pos[:, axis], kind="stable")
+    xs = pos[order, axis]
+    ends = np.searchsorted(xs, xs + sweep, side="left")
+    starts = np.arange(1, n + 1)
+    counts = np.maximum(ends - starts, 0)
+    total = int(counts.sum())
+    if total == 0:
+        return np.empty(0, dtype=np.intp), np.empty(0, dtype=np.intp)
+    a = np.repeat(np.arange(n), counts)
+    b = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts) + np.repeat(starts, counts)
+    i, k = order[a], order[b]
+    d = np.hypot(pos[k, 0] - pos[i, 0], pos[k, 1] - pos[i, 1])
+    near = d < (reach[i] + reach[k] if np.ndim(radius) else radius)
+    i, k = i[near], k[near]
+    return np.minimum(i, k), np.maximum(i, k)
 
 
-def spread(anchors, gap, seeds=None, iterations=100):
+def spread(anchors, gap, seeds=None, iterations=100, box=None):
     """A layout of markers on the screen: `anchors` are the markers' points in pixels [(x, y)],
     `seeds` their first offsets (a stack's side by side, or (0, 0)); returns the offsets [(dx, dy)]
     in pixels that set every two markers at least `gap` apart, each pair that is nearer pushed
@@ -295,11 +325,34 @@ def spread(anchors, gap, seeds=None, iterations=100):
     marker that nothing crowds keeps its seed; none goes further than its seed's length and a
     gap from its point. A crowd that cannot be made readable so (a hundred joints along a chain
     seen whole: more markers than the screen has room for beside their joints) keeps its seeds:
-    markers scattered about would say less than markers at their joints."""
+    markers scattered about would say less than markers at their joints. `box` (x0, y0, x1, y1),
+    the screen in the same pixels: markers whose points are further off it than three gaps and
+    their cap are not laid out (they keep their seeds; they cannot be drawn on it, and the camera
+    coming to rest over them lays them out then).
+
+    In numpy, each pass over one list of the pairs that can ever come within a gap (a marker
+    stays within its cap of its point: those whose points are nearer than a gap and their two
+    caps), so a camera rest with hundreds of joints lays them out in milliseconds
+    (docs/performance.md)."""
     n = len(anchors)
+    if n == 0:
+        return []
     seeds = seeds or [(0.0, 0.0)] * n
-    pos = [[a[0] + s[0], a[1] + s[1]] for a, s in zip(anchors, seeds)]
-    caps = [math.hypot(*s) + gap for s in seeds]
+    anchor = np.array(anchors, dtype=float).reshape(n, 2)
+    seed = np.array(seeds, dtype=float).reshape(n, 2)
+    caps = np.hypot(seed[:, 0], seed[:, 1]) + gap
+    if box is not None:
+        reach = caps + 3 * gap
+        shown = ((anchor[:, 0] > box[0] - reach) & (anchor[:, 0] < box[2] + reach)
+                 & (anchor[:, 1] > box[1] - reach) & (anchor[:, 1] < box[3] + reach))
+        if not shown.all():
+            inside = np.flatnonzero(shown).tolist()
+            laid = spread([anchors[i] for i in inside], gap, [seeds[i] for i in inside], iterations) if inside else []
+            out = [tuple(s) for s in seeds]
+            for i, offset in zip(inside, laid):
+                out[i] = offset
+            return out
+    pos = anchor + seed
     # The crowds: markers joined by chains of pairs nearer than a gap, as seeded.
     crowd = list(range(n))
 
@@ -309,45 +362,63 @@ def spread(anchors, gap, seeds=None, iterations=100):
             i = crowd[i]
         return i
 
-    for i, k in _near_pairs(pos, gap):
+    near_i, near_k = _pairs_within(pos, gap - 1e-9)
+    for i, k in zip(near_i.tolist(), near_k.tolist()):
         crowd[top(i)] = top(k)
+    tops = np.array([top(i) for i in range(n)])
     # A crowd that has not the room for its markers a gap apart (packed as closely as discs can
     # be, 0.87 gap^2 each, in its box grown by a gap all round) is left as seeded at once.
-    boxes = {}
-    for i, (x, y) in enumerate(pos):
-        b = boxes.setdefault(top(i), [x, y, x, y, 0])
-        b[:] = [min(b[0], x), min(b[1], y), max(b[2], x), max(b[3], y), b[4] + 1]
-    hopeless = {c for c, (x0, y0, x1, y1, m) in boxes.items()
-                if m > 1 and 0.87 * m * gap * gap > (x1 - x0 + 2 * gap) * (y1 - y0 + 2 * gap)}
-    free = [i for i in range(n) if top(i) not in hopeless]
+    hopeless = set()
+    for c in np.unique(tops[near_i]).tolist() if len(near_i) else ():
+        members = pos[tops == c]
+        x0, y0 = members.min(axis=0)
+        x1, y1 = members.max(axis=0)
+        if 0.87 * len(members) * gap * gap > (x1 - x0 + 2 * gap) * (y1 - y0 + 2 * gap):
+            hopeless.add(c)
+    free = ~np.isin(tops, list(hopeless)) if hopeless else np.ones(n, dtype=bool)
+    # The pairs that can come within a gap: each point's reach is its cap and half a gap.
+    cand_i, cand_k = _pairs_within(anchor, caps + 0.5 * gap)
+    keep = free[cand_i] & free[cand_k]
+    cand_i, cand_k = cand_i[keep], cand_k[keep]
     for _ in range(iterations):
-        moves = [[0.0, 0.0] for _ in range(n)]  # all pairs pushed from the same positions
-        crowded = False
-        for a, b in _near_pairs([pos[i] for i in free], gap):
-            i, k = free[a], free[b]
-            crowded = True
-            dx, dy = pos[k][0] - pos[i][0], pos[k][1] - pos[i][1]
-            d = math.hypot(dx, dy)
-            if d < 1e-9:  # one point: apart along a direction of their own
-                a = 2.399963 * (i + k)  # the golden angle: no two pairs alike
-                dx, dy, d = math.cos(a), math.sin(a), 1.0
-            push = 0.5 * (gap - d) + 1e-6
-            moves[i][0] -= dx / d * push
-            moves[i][1] -= dy / d * push
-            moves[k][0] += dx / d * push
-            moves[k][1] += dy / d * push
-        for i in range(n):  # none wanders off its joint
-            pos[i][0] += moves[i][0]
-            pos[i][1] += moves[i][1]
-            ox, oy = pos[i][0] - anchors[i][0], pos[i][1] - anchors[i][1]
-            r = math.hypot(ox, oy)
-            if r > caps[i]:
-                pos[i] = [anchors[i][0] + ox * caps[i] / r, anchors[i][1] + oy * caps[i] / r]
-        if not crowded:
+        # All pairs pushed from the same positions.
+        dx = pos[cand_k, 0] - pos[cand_i, 0]
+        dy = pos[cand_k, 1] - pos[cand_i, 1]
+        d = np.hypot(dx, dy)
+        near = d < gap - 1e-9
+        if not near.any():
             break
-    unreadable = hopeless | {top(i) for pair in _near_pairs(pos, gap * (1 - 1e-3)) for i in pair}
-    return [tuple(seeds[i]) if top(i) in unreadable else (pos[i][0] - anchors[i][0], pos[i][1] - anchors[i][1])
-            for i in range(n)]
+        i, k, dx, dy, d = cand_i[near], cand_k[near], dx[near], dy[near], d[near]
+        same = d < 1e-9
+        if same.any():  # one point: apart along a direction of their own
+            turn = 2.399963 * (i[same] + k[same])  # the golden angle: no two pairs alike
+            dx[same], dy[same], d[same] = np.cos(turn), np.sin(turn), 1.0
+        push = 0.5 * (gap - d) + 1e-6
+        ux, uy = dx / d * push, dy / d * push
+        move = np.zeros((n, 2))
+        move[:, 0] = np.bincount(k, ux, n) - np.bincount(i, ux, n)
+        move[:, 1] = np.bincount(k, uy, n) - np.bincount(i, uy, n)
+        pos += move
+        # None wanders off its joint.
+        off = pos - anchor
+        r = np.hypot(off[:, 0], off[:, 1])
+        out = r > caps
+        if out.any():
+            pos[out] = anchor[out] + off[out] * (caps[out] / r[out])[:, None]
+    # A crowd still crowded goes back to its seeds; one of those may then crowd a marker of a
+    # crowd made readable (whose passes saw it elsewhere), which then goes back too, until none
+    # is left nearer than a gap to a marker that moved.
+    unreadable = set(hopeless)
+    while True:
+        back = np.isin(tops, list(unreadable)) if unreadable else np.zeros(n, dtype=bool)
+        pos[back] = anchor[back] + seed[back]
+        left_i, left_k = _pairs_within(pos, gap * (1 - 1e-3) - 1e-9)
+        more = set(tops[left_i].tolist()) | set(tops[left_k].tolist())
+        if more <= unreadable:
+            break
+        unreadable |= more
+    offsets = (pos - anchor).tolist()
+    return [tuple(seeds[i]) if tops[i] in unreadable else (offsets[i][0], offsets[i][1]) for i in range(n)]
 
 
 def _screen_scaled(child, pixels):

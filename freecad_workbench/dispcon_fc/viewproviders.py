@@ -56,6 +56,8 @@ class ViewProviderAssembly(_ViewProxy):
             return
         frames, views = [], {}
         for j in group:
+            if j.TypeId != "App::FeaturePython":  # a part: no marker (read at once, not its view's proxy)
+                continue
             view = _joint_view(j)
             frame = markers.joint_frame(j) if view is not None else None
             if frame is not None:
@@ -76,7 +78,7 @@ class ViewProviderAssembly(_ViewProxy):
             gap = markers.SCREEN_GAP * markers.PIXELS
             anchors = [screen.pixels(point) for _, point, _ in frames]
             seeds = [screen.across(shifts[name]) if name in shifts else (0.0, 0.0) for name, _, _ in frames]
-            offsets = markers.spread(anchors, gap, seeds)
+            offsets = markers.spread(anchors, gap, seeds, box=screen.box)
             shifts = {name: screen.world(offset) for (name, _, _), offset in zip(frames, offsets)}
         for name, view in views.items():
             view.set_shift(shifts.get(name))
@@ -276,10 +278,14 @@ class _Screen:
     (pixels from the camera's axis, x right, y up), world((dx, dy)) a shift of so many pixels as
     a world vector in glyph units (markers.PIXELS pixels each), across(shift) the other way."""
 
-    def __init__(self, camera, height_pixels):
+    def __init__(self, camera, height_pixels, width_pixels=None):
         from pivy import coin
 
         self.camera = camera
+        # The screen in pixels() (None: unknown, every marker laid out), its longer side both
+        # ways: a window taller than wide has its camera's height across its width.
+        side = 0.5 * max(width_pixels, height_pixels) if width_pixels else None
+        self.box = None if side is None else (-side, -side, side, side)
         rot = camera.orientation.getValue()
         self.right, self.up, self.forward = (App.Vector(*rot.multVec(coin.SbVec3f(*v)).getValue())
                                              for v in ((1, 0, 0), (0, 1, 0), (0, 0, -1)))
@@ -319,8 +325,8 @@ def _screen(doc):
         view = gdoc.ActiveView if gdoc is not None else None
         if view is None or not hasattr(view, "getCameraNode"):
             return None
-        height = view.getViewer().getSoRenderManager().getViewportRegion().getViewportSizePixels()[1]
-        return _Screen(view.getCameraNode(), height)
+        width, height = view.getViewer().getSoRenderManager().getViewportRegion().getViewportSizePixels()
+        return _Screen(view.getCameraNode(), height, width)
     except Exception:  # a view closing meanwhile: the world's stacks only
         return None
 

@@ -1230,6 +1230,66 @@ class MarkerLayout(unittest.TestCase):
         self.assertEqual(out[:30], [(0.0, 0.0)] * 30)
         self.assertAlmostEqual(math.hypot(out[31][0] - out[30][0] + 5.0, out[31][1] - out[30][1]), gap, delta=1e-3)
 
+    def test_hundreds_of_markers_are_set_apart_as_every_pair_says(self):
+        # 400 markers in crowds of four over a 2000 x 1400 pixel plane (the layout runs in numpy
+        # over a list of the pairs that can come within a gap): measured pair by pair afterwards.
+        import random
+
+        from dispcon_fc import markers
+
+        gap, rng = 46.2, random.Random(7)
+        anchors = []
+        for _ in range(100):
+            x, y = rng.uniform(0, 2000), rng.uniform(0, 1400)
+            anchors += [(x + rng.uniform(-8, 8), y + rng.uniform(-8, 8)) for _ in range(4)]
+        out = markers.spread(anchors, gap)
+        pos = [(a[0] + o[0], a[1] + o[1]) for a, o in zip(anchors, out)]
+        moved = [k for k, o in enumerate(out) if o != (0.0, 0.0)]
+        self.assertGreater(len(moved), 250)  # most crowds were set apart, not left as seeded
+        # A marker moved is a gap from every other marker, and no further than a gap from its point.
+        for i in moved:
+            self.assertLessEqual(math.hypot(*out[i]), gap + 1e-9)
+            for k in range(len(pos)):
+                if k != i:
+                    self.assertGreaterEqual(math.hypot(pos[i][0] - pos[k][0], pos[i][1] - pos[k][1]),
+                                            gap * (1 - 1e-3) - 1e-9)
+
+    def test_markers_off_the_screen_are_not_laid_out(self):
+        from dispcon_fc import markers
+
+        gap = 40.0
+        crowd = [(0, 0), (10, 0), (20, 0)]
+        far = [(5000 + x, y) for x, y in crowd]
+        seeds = [(0.0, 0.0)] * 6
+        box = (-640, -450, 640, 450)
+        out = markers.spread(crowd + far, gap, seeds, box=box)
+        self.assertEqual(out[3:], [(0.0, 0.0)] * 3)  # three gaps and a cap off the screen: as seeded
+        self.assertEqual(out[:3], markers.spread(crowd, gap, seeds[:3]))  # on it: as without a box
+        # Without the box, the far crowd is set apart as the near one is.
+        whole = markers.spread(crowd + far, gap, seeds)
+        for a, b in zip(whole[:3], whole[3:]):
+            self.assertAlmostEqual(a[0], b[0], delta=1e-9)
+            self.assertAlmostEqual(a[1], b[1], delta=1e-9)
+
+    def test_stacks_find_a_place_across_the_grid_of_cells(self):
+        # Two points a hair apart on either side of a cell's edge are one place; a point further
+        # than the tolerance from the stack's first starts a stack of its own, even where it is
+        # within the tolerance of the second; a point within reach of two stacks' firsts joins
+        # the earlier, as a walk over the stacks in order does.
+        from dispcon_fc import markers
+
+        tol, z = 1e-6, App.Vector(0, 0, 1)
+        frames = [("a", App.Vector(tol * 0.9995, 0, 0), z), ("b", App.Vector(tol * 1.0005, 0, 0), z),
+                  ("c", App.Vector(tol * 2.0, 0, 0), z), ("d", App.Vector(tol * 1.9, tol * 0.1, 0), z),
+                  ("e", App.Vector(tol * 0.9995, 0, 0), App.Vector(1, 0, 0))]
+        out = markers.stacks(frames, tol)
+        self.assertEqual(sorted(out), ["b", "d", "e"])  # c: a stack's first
+        self.assertLessEqual((frames[3][1] - frames[2][1]).Length, tol)  # d within reach of c too
+        self.assertEqual((out["b"][0], out["d"][0], out["e"][0]), (1, 2, 3))
+        # The stack's direction is across its first marker's axis (z: along -x, as before).
+        self.assertAlmostEqual((out["e"][1] - out["b"][1]).Length, 0.0, delta=1e-15)
+        self.assertAlmostEqual(abs(out["b"][1].x), 1.0, delta=1e-12)
+
 
 UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles,
               MarkerLayout, FrameRotation, Messages, SolveWritesOnlyWhatChanged,
