@@ -1191,6 +1191,53 @@ class TestCheckPanel(Documents):
         self.assertFalse(Gui.Control.activeDialog())
         self.assertFalse(any(b.isVisible() for b in mw().findChildren(QtWidgets.QDialogButtonBox)))
 
+    def test_the_report_is_as_tall_as_its_text_its_tables_monospace(self):
+        from dispcon_fc.panels import check
+
+        panel = self.checked_fourbar()
+        box = panel.form.report
+        settle()
+        # The whole report shows without scrolling (the four-bar's is short), the box no taller
+        # than its text and a frame.
+        self.assertEqual(box.verticalScrollBar().maximum(), 0)
+        self.assertLessEqual(box.height(), box.document().size().height() + 2 * box.frameWidth() + 12)
+        self.assertGreaterEqual(box.height(), box.document().size().height())
+        # The parts' degrees of freedom: a table, a row per part and its header, in a fixed-pitch font.
+        shot("check-report")
+
+        def text(table, r, k):
+            return table.cellAt(r, k).firstCursorPosition().block().text()
+
+        tables = [f for f in box.document().rootFrame().childFrames() if isinstance(f, QtGui.QTextTable)]
+        parts = [t for t in tables if [text(t, 0, k) for k in range(t.columns())] == ["part", "DOF"]]
+        self.assertEqual(len(parts), 1, [[text(t, 0, k) for k in range(t.columns())] for t in tables])
+        table = parts[0]
+        self.assertEqual((table.rows(), table.columns()), (5, 2))
+        cells = [[text(table, r, k) for k in range(2)] for r in range(5)]
+        # A four-bar: its grounded part 0, each moving part 1 (the crank's turn moves them all).
+        from dispcon_fc import objects
+
+        expected = [[p.Label, "0" if p.Grounded else "1"] for p in objects.parts(panel.asm)]
+        self.assertEqual(cells, [["part", "DOF"]] + expected)
+        font = table.cellAt(1, 0).firstCursorPosition().charFormat().font()
+        self.assertTrue(QtGui.QFontInfo(font).fixedPitch(), font.family())
+        self.assertIn("degrees of freedom: 1", box.toPlainText())
+        # A long report (sixty parts) stops growing at the cap and scrolls.
+        c = dict(panel.result, part_dof={"Part%d" % k: k % 7 for k in range(60)})
+        Gui.Control.closeDialog()
+        settle()
+        long_panel = check.CheckPanel(panel.asm, result=c)
+        from dispcon_fc import panels
+
+        panels.show(long_panel)
+        settle()
+        box = long_panel.form.report
+        self.assertEqual(box.height(), check.REPORT_MAX_HEIGHT)
+        self.assertGreater(box.verticalScrollBar().maximum(), 0)
+        shot("check-report-long")
+        Gui.Control.closeDialog()
+        settle()
+
 
 def gui_text(widget):
     """Every label's and text box's text under the task view."""
@@ -1198,9 +1245,10 @@ def gui_text(widget):
     for w in mw().findChildren(QtWidgets.QLabel):
         if w.isVisible():
             out.append(w.text())
-    for w in mw().findChildren(QtWidgets.QPlainTextEdit):
-        if w.isVisible():
-            out.append(w.toPlainText())
+    for kind in (QtWidgets.QPlainTextEdit, QtWidgets.QTextEdit):
+        for w in mw().findChildren(kind):
+            if w.isVisible():
+                out.append(w.toPlainText())
     return "\n".join(out)
 
 

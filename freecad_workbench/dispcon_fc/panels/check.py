@@ -1,5 +1,7 @@
 """The check panel: the report of `operations.check` and of interference (ui/check.ui),
 also shown by a Solve that failed, headed by what went wrong."""
+import html
+
 import FreeCADGui as Gui
 
 from .. import operations
@@ -17,20 +19,12 @@ class CheckPanel:
 
     def __init__(self, asm, headline=None, result=None):
         c = result if result is not None else operations.check(asm)
-        lines = ["degrees of freedom: %d" % c["dof"]]
-        lines += ["  %s: %d" % (name, dof) for name, dof in c["part_dof"].items()]
-        for what, joints in (("conflicting", c["conflicting"]), ("redundant", c["redundant"]),
-                             ("limits in contact", c["limits_active"])):
-            if joints:
-                lines.append("%s: %s" % (what, ", ".join(j.Label for j in joints)))
-        lines += c["advice"]
-        for a, b, v in operations.interference(asm):
-            lines.append("%s and %s overlap by %.4g" % (a.Label, b.Label, v))
         self.result = c
         self.form = load_ui("check.ui")
         self.form.summary.setWordWrap(True)
         self.form.summary.setText(_summary(c))
-        self.form.report.setPlainText("\n".join(lines))
+        fit_to_content(self.form.report)
+        self.form.report.setHtml(report_html(c, operations.interference(asm)))
         if headline:
             self.form.summary.setText(headline)
             self.form.summary.setStyleSheet("color: #cc0000; font-weight: bold;")
@@ -69,7 +63,7 @@ class CheckPanel:
             self._said(str(e))
 
     def _said(self, text):
-        self.form.report.appendPlainText(text)
+        self.form.report.append("<p>%s</p>" % html.escape(text))
         status(text)
 
     def getStandardButtons(self):
@@ -83,6 +77,51 @@ class CheckPanel:
 
     def reject(self):
         return self.accept()
+
+
+# The report box grows with its text up to this many pixels (then it scrolls), and is never
+# smaller than a few lines.
+REPORT_MAX_HEIGHT = 560
+REPORT_MIN_HEIGHT = 80
+
+
+def fit_to_content(box):
+    """Keeps the QTextEdit `box` as tall as its text (wrapped at its width), between
+    REPORT_MIN_HEIGHT and REPORT_MAX_HEIGHT pixels; beyond that it scrolls."""
+    def fit(*_):
+        frame = 2 * box.frameWidth() + box.contentsMargins().top() + box.contentsMargins().bottom()
+        height = int(box.document().size().height()) + frame + 2
+        box.setFixedHeight(max(REPORT_MIN_HEIGHT, min(REPORT_MAX_HEIGHT, height)))
+
+    box.document().documentLayout().documentSizeChanged.connect(fit)
+    return fit
+
+
+def report_html(c, overlaps):
+    """The check's report as rich text: the degrees of freedom with each part's in a monospace
+    table, the joints that conflict, repeat or touch a limit by label, the engine's advice as
+    paragraphs, and the overlapping parts in a monospace table with their volumes."""
+    e = html.escape
+    mono = "font-family: monospace;"
+    out = ["<p><b>degrees of freedom: %d</b></p>" % c["dof"]]
+    if c["part_dof"]:
+        rows = "".join('<tr><td style="%s">%s</td><td align="right" style="%s">%d</td></tr>' % (mono, e(name), mono, dof)
+                       for name, dof in c["part_dof"].items())
+        out.append('<table cellspacing="0" cellpadding="2" style="margin-left: 8px;">'
+                   '<tr><th align="left" style="%s">part</th><th align="right" style="%s">DOF</th></tr>%s</table>'
+                   % (mono, mono, rows))
+    for what, joints in (("conflicting", c["conflicting"]), ("redundant", c["redundant"]),
+                         ("limits in contact", c["limits_active"])):
+        if joints:
+            out.append("<p><b>%s:</b> %s</p>" % (what, e(", ".join(j.Label for j in joints))))
+    out += ["<p>%s</p>" % e(line) for line in c["advice"]]
+    if overlaps:
+        rows = "".join('<tr><td style="%s">%s</td><td style="%s">%s</td><td align="right" style="%s">%.4g</td></tr>'
+                       % (mono, e(a.Label), mono, e(b.Label), mono, v) for a, b, v in overlaps)
+        out.append('<p><b>overlapping parts:</b></p><table cellspacing="0" cellpadding="2" style="margin-left: 8px;">'
+                   '<tr><th align="left" style="%s">part</th><th align="left" style="%s">part</th>'
+                   '<th align="right" style="%s">volume</th></tr>%s</table>' % (mono, mono, mono, rows))
+    return "".join(out)
 
 
 def _summary(c):
