@@ -87,7 +87,27 @@ def joint_by_picking(ref1, ref2, screenshot=None):
     return panel.joint
 
 
+def this_tree():
+    """Refuses to go on when the workbench FreeCAD runs may not be this tree's: a copy installed in
+    the user's Mod folder (loaded at FreeCAD's start, before this script) would be shown instead.
+    scripts/screenshots gives FreeCAD a user data folder of its own, so there is none."""
+    import dispcon_fc
+
+    mine = os.path.realpath(WB)
+    ran = os.path.realpath(os.path.dirname(os.path.dirname(dispcon_fc.__file__)))
+    if "DispconWorkbench" in Gui.listWorkbenches():  # registered by FreeCAD from a Mod folder
+        ran = ran if ran != mine else "a Mod folder"
+    others = sorted({os.path.realpath(p) for p in sys.path if p and os.path.isfile(os.path.join(p, "dispcon_fc", "__init__.py"))}
+                    - {mine})
+    if ran != mine or others:
+        raise RuntimeError("FreeCAD runs the workbench in %s (other copies: %s), not only this tree's (%s): a copy "
+                           "installed in the user's Mod folder loads first; run scripts/screenshots, which gives "
+                           "FreeCAD a user data folder of its own" % (ran, ", ".join(others) or "none", mine))
+    print("the workbench driven: %s" % ran)
+
+
 def main():
+    this_tree()
     os.makedirs(OUT, exist_ok=True)
     # What FreeCAD runs for a workbench installed in its Mod folder: Init.py, then InitGui.py.
     for name in ("Init.py", "InitGui.py"):
