@@ -8,7 +8,7 @@ import re
 import FreeCAD as App
 
 from . import engine, geometry, subassembly
-from .objects import (COUPLINGS, JOINT_TYPES, LENGTH_PHASE, frame_rotation, joints, parts, phase_value,
+from .objects import (COUPLINGS, JOINT_TYPES, LENGTH_PHASE, frame_rotation, frame_shift, joints, parts, phase_value,
                       offset_text, remake_phase, set_phase, shape_of)
 
 
@@ -211,7 +211,8 @@ def joint_kwargs(dispcon, j, anchors=None, remake=False):
     row = kind_of(dispcon, j.JointType)
     rad = math.radians
     axis2, across2 = turned_frame(a["Axis2"] * flip, a["Perp2"], frame_rotation(j))
-    kw = dict(kind=row["name"], point1=_vec(a["Point1"] + a["Axis1"] * offset), point2=_vec(a["Point2"]),
+    point2 = moved_point(a["Point2"], axis2, across2, frame_shift(j))
+    kw = dict(kind=row["name"], point1=_vec(a["Point1"] + a["Axis1"] * offset), point2=_vec(point2),
               axis1=_vec(a["Axis1"]), axis2=_vec(axis2), across1=_vec(a["Perp1"]), across2=_vec(across2))
     limits = {"angle": (rad(j.AngleMin.Value), rad(j.AngleMax.Value))}
     if j.HasRotationLimits:
@@ -235,6 +236,20 @@ def moved_anchors(j, anchors):
     `j` from those the joint holds ([] when none did)."""
     return [ref[0].Label for k, ref in (("1", j.Reference1), ("2", j.Reference2))
             if any(getattr(j, name + k) != anchors[name + k] for name in ("Point", "Axis"))]
+
+
+def moved_point(point, axis, across, shift):
+    """Part 2's joint point (in part 2's frame) with the frame's translation offset `shift`, (x, y)
+    along the frame's x (the twist reference `across`, square to `axis`) and y (axis x across), or
+    as it is when None: the point goes the other way, so that when the joint puts it on part 1's,
+    part 2 stands moved by `shift` in the joint's frame."""
+    if shift is None:
+        return point
+    z = App.Vector(axis).normalize()
+    x = App.Vector(across) - z * App.Vector(across).dot(z)
+    x = x.normalize() if x.Length > 1e-12 else _across(z)
+    y = z.cross(x)
+    return point - x * shift[0] - y * shift[1]
 
 
 def turned_frame(axis, across, rotation):

@@ -261,6 +261,11 @@ def joint_extras(obj):
                       ("FramePitch", "part 2's axis tilted this far about the frame's y (after the yaw)"),
                       ("FrameRoll", "part 2's axis tilted this far about the frame's x (after the pitch)")):
         _add(obj, "App::PropertyAngle", name, "Joint", doc)
+    # Its translation offset across the axis (along the axis: Offset): part 2's joint frame moved
+    # in its own x and y, so part 2 stands that far off part 1's point in the joint's frame.
+    for name, doc in (("FrameX", "part 2 moved this far along the joint frame's x (across the axis)"),
+                      ("FrameY", "part 2 moved this far along the joint frame's y (across the axis)")):
+        _add(obj, "App::PropertyDistance", name, "Joint", doc)
     _add(obj, "App::PropertyString", "Feature1", "Geometry", "what reference 1 is: point, line, plane, circle, ...")
     _add(obj, "App::PropertyString", "Feature2", "Geometry", "what reference 2 is")
     _add(obj, "App::PropertyDistance", "Distance", "Joint", "Distance joint: the distance between the features")
@@ -277,7 +282,7 @@ def joint_extras(obj):
 _USED_BY = {"Ratio": ("Gears", "Belt"), "Radius": ("RackPinion",), "Pitch": ("Screw",), "LeftHanded": ("Screw",),
             "MeshOffset": COUPLINGS, "Phase": COUPLINGS, "PhaseTurns": ("Gears", "Belt"),
             "Distance": ("Distance",), "FrameYaw": FRAME_ROTATED, "FramePitch": FRAME_ROTATED,
-            "FrameRoll": FRAME_ROTATED}
+            "FrameRoll": FRAME_ROTATED, "FrameX": FRAME_ROTATED, "FrameY": FRAME_ROTATED}
 _READ_ONLY = ("Phase", "PhaseTurns")  # the engine's: the mesh offset sets them
 
 
@@ -290,6 +295,15 @@ def show_properties(obj):
             mode = (1 if name in _READ_ONLY else 0) if kind in types else 2
             if obj.getEditorMode(name) != {0: [], 1: ["ReadOnly"], 2: ["Hidden"]}[mode]:
                 obj.setEditorMode(name, mode)
+
+
+def frame_shift(joint):
+    """The translation offset of part 2's joint frame across the joint's axis, (x, y) in mm from
+    FrameX and FrameY, or None when there is none (or the type takes none)."""
+    if getattr(joint, "JointType", "") not in FRAME_ROTATED or "FrameX" not in joint.PropertiesList:
+        return None
+    shift = (joint.FrameX.Value, joint.FrameY.Value)
+    return shift if any(shift) else None
 
 
 def frame_rotation(joint):

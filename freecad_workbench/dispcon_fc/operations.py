@@ -260,7 +260,9 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
     rack or a screw: part 2 turned, or moved, that far against part 1 from the pose the coupling is
     made in), phase= (the engine's constant itself, degrees or mm). Fixed, Revolute, Slider,
     Cylindrical and Planar: frame=(yaw, pitch, roll) in degrees turns part 2's joint frame, so that
-    part 2 stands so turned against part 1 (yaw about the joint's axis, then pitch and roll)."""
+    part 2 stands so turned against part 1 (yaw about the joint's axis, then pitch and roll);
+    shift=(x, y) in mm moves it along the frame's x and y (across the axis; along it: offset), so
+    that part 2 stands that far off part 1's point in the joint's frame."""
     _assembly(asm)
     if joint_type not in objects.JOINT_TYPES:
         raise ValueError("unknown joint type %r (expected one of %s)" % (joint_type, ", ".join(objects.JOINT_TYPES)))
@@ -287,11 +289,12 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
         _place(j, joint_type, a, b)
         _set_limits(j, **limits)
         asm.addObject(j)
-        if limits.get("frame") is not None:
+        if limits.get("frame") is not None or limits.get("shift") is not None:
             if joint_type not in objects.FRAME_ROTATED:
-                raise ValueError("%s: a %s joint's frame takes no rotation offset (only %s)"
-                                 % (j.Label, joint_type, ", ".join(objects.FRAME_ROTATED)))
-            Adapter(asm)  # the engine checks the turned axis (its door); an error undoes the joint
+                raise ValueError("%s: a %s joint's frame takes no %s offset (only %s)"
+                                 % (j.Label, joint_type, "rotation" if limits.get("frame") is not None
+                                    else "translation", ", ".join(objects.FRAME_ROTATED)))
+            Adapter(asm)  # the engine checks the turned axis, the moved point (its door); an error undoes the joint
         given = limits.get("phase") is not None or limits.get("mesh_offset") is not None
         if given and joint_type not in objects.COUPLINGS:
             raise ValueError("%s: only a coupling (%s) has a phase" % (j.Label, ", ".join(objects.COUPLINGS)))
@@ -356,7 +359,7 @@ def _check_distance(label, joint_type, f1, distance):
 
 def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None,
                   offset=None, distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None,
-                  mesh_offset=None, frame=None):
+                  mesh_offset=None, frame=None, shift=None):
     """Refuses limits that cannot hold, before anything changes; names the joint and the limit."""
     for what, pair, unit in (("rotation", rotation, "deg"), ("travel", travel, "mm"), ("angle", angle, "deg")):
         if pair not in (None, False):
@@ -376,7 +379,7 @@ def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move
 
 def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None, offset=None,
                 distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None, mesh_offset=None,
-                frame=None):
+                frame=None, shift=None):
     # rotation=False, travel=False: no such limits any more.
     if rotation is not None:
         j.HasRotationLimits = rotation is not False
@@ -395,6 +398,8 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None,
     objects.joint_extras(j)
     if frame is not None:
         j.FrameYaw, j.FramePitch, j.FrameRoll = (float(a) for a in frame)
+    if shift is not None:
+        j.FrameX, j.FrameY = (float(d) for d in shift)
     # What the coupling's phase is measured with changed: the engine makes it again at the
     # poses the parts have (record_phases keeps it), so the parts stay where they are.
     remade = False
@@ -436,6 +441,38 @@ def _check_phase(joint, kind, phase):
 
     with adapter.engine_errors():
         adapter.add_joint(joint, phase=phase_to_engine(joint, phase))
+
+
+def _check_shift(joint, kind, shift, frame=None):
+    """A translation offset of part 2's joint frame, (x, y) in mm across the joint's axis, checked
+    by the engine (the model's door) before anything changes: the joint added again with part 2's
+    point moved so (and its frame turned by `frame` when that changes too), to a model of its
+    assembly as it stands."""
+    if kind not in objects.FRAME_ROTATED:
+        raise ValueError("%s: a %s joint's frame takes no translation offset (only %s)"
+                         % (joint.Label, kind, ", ".join(objects.FRAME_ROTATED)))
+    try:
+        x, y = (float(d) for d in shift)
+    except (TypeError, ValueError):
+        raise ValueError("%s: a frame's translation offset is (x, y) in mm, not %r" % (joint.Label, shift)) from None
+    asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
+    if asm is None or joint.JointType != kind:
+        return  # a joint changing its type meets the door at its first solve
+    adapter = Adapter(asm)
+    if joint not in adapter.joints:  # skipped (a part deleted): its solve says so
+        return
+    from .adapter import moved_point, turned_frame
+
+    a = adapter.anchors[joint.Name, joint.Document.Name]
+    flip = -1 if getattr(joint, "Reversed", False) else 1
+    turn = App.Rotation(*(float(v) for v in frame)) if frame is not None else objects.frame_rotation(joint)
+    axis, across = turned_frame(a["Axis2"] * flip, a["Perp2"], turn)
+    try:
+        with adapter.engine_errors():
+            adapter.add_joint(joint, axis2=_vec(axis), across2=_vec(across),
+                              point2=_vec(moved_point(a["Point2"], axis, across, (x, y))))
+    except ValueError as e:
+        raise ValueError("%s: its frame moved by %r mm: %s" % (joint.Label, tuple(shift), e)) from None
 
 
 def _check_frame(joint, kind, frame):
@@ -517,6 +554,10 @@ def edit_joint(joint, joint_type=None, undo_step=True, **limits):
     if frame is not None and tuple(frame) != tuple(getattr(joint, name).Value if name in joint.PropertiesList else 0.0
                                                for name in ("FrameYaw", "FramePitch", "FrameRoll")):
         _check_frame(joint, kind, frame)
+    shift = limits.get("shift")
+    if shift is not None and tuple(shift) != tuple(getattr(joint, name).Value if name in joint.PropertiesList else 0.0
+                                               for name in ("FrameX", "FrameY")):
+        _check_shift(joint, kind, shift, frame)
     offset = limits.pop("mesh_offset", None)
     if offset is not None:
         if kind not in objects.COUPLINGS:

@@ -790,6 +790,28 @@ class TestJointPanel(Documents):
         settle()
         self.assertEqual((j.FrameYaw.Value, j.FramePitch.Value, j.FrameRoll.Value), (0.0, 90.0, 0.0))
 
+    def test_part_2s_frame_moved_in_the_panel(self):
+        # The translation offset of part 2's joint frame, in mm: moved 0.3 along the frame's y,
+        # the arm's picked pin stands 0.3 off the base's axis at the preview's solve; OK keeps it.
+        panel, asm, base, arm = self.open("Revolute")
+        j = panel.joint
+        self.assertEqual([box.objectName() for box in panel.shift], ["frameX", "frameY"])
+        for box in panel.shift:
+            self.assertIn("mm", box.text())
+            self.assertTrue(box.isVisible())
+        panel.shift[1].setProperty("rawValue", 0.3)
+        settle()
+        self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
+        self.assertEqual((j.FrameX.Value, j.FrameY.Value), (0.0, 0.3))
+        point = base.Placement.multVec(j.Point1)
+        z = base.Placement.Rotation.multVec(j.Axis1).normalize()
+        off = arm.Placement.multVec(j.Point2) - point
+        self.assertAlmostEqual((off - z * off.dot(z)).Length, 0.3, delta=1e-8)
+        shot("panel-frame-moved")
+        panel.ok_button().click()
+        settle()
+        self.assertEqual((j.FrameX.Value, j.FrameY.Value), (0.0, 0.3))
+
     def test_min_above_max_refused_in_the_panel(self):
         panel, asm, base, arm = self.open("Revolute")
         panel.has_rotation.setChecked(True)

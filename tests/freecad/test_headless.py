@@ -1127,9 +1127,8 @@ class WorkbenchFiles(unittest.TestCase):
         self.assertTrue(qt.QtCore.__name__.startswith("PySide"))
         self.assertTrue(hasattr(qt.QtWidgets, "QWidget"))
 
-class FrameRotation(unittest.TestCase):
-    """The rotation offset of part 2's joint frame (yaw, pitch, roll), against the pose it must
-    give: the pose without it turned by as much about the joint's frame."""
+class FrameCase(unittest.TestCase):
+    """An arm fixed on a base, for the offsets of part 2's joint frame."""
 
     def setUp(self):
         self.doc = App.newDocument("frame")
@@ -1147,6 +1146,11 @@ class FrameRotation(unittest.TestCase):
     def assertPlaced(self, pl, expected, tol=1e-7):
         self.assertLess((pl.Base - expected.Base).Length, tol, (pl, expected))
         self.assertLess(pl.Rotation.multiply(expected.Rotation.inverted()).Angle, tol, (pl, expected))
+
+
+class FrameRotation(FrameCase):
+    """The rotation offset of part 2's joint frame (yaw, pitch, roll), against the pose it must
+    give: the pose without it turned by as much about the joint's frame."""
 
     def test_a_turned_frame_turns_part_2_in_the_joints_frame(self):
         asm, base, arm, j = self.fixed()
@@ -1197,6 +1201,86 @@ class FrameRotation(unittest.TestCase):
             j = da.joints(asm)[0]
             arm = self.doc.getObject("Arm")
             self.assertEqual((j.FrameYaw.Value, j.FramePitch.Value, j.FrameRoll.Value), (-45, 0, 10))
+            self.assertTrue(da.solve(asm).converged)
+            self.assertPlaced(arm.Placement, placed, 1e-9)
+
+
+class FrameTranslation(FrameCase):
+    """The translation offset of part 2's joint frame across the axis (FrameX, FrameY), against
+    the pose it must give: the pose without it moved by as much along the joint frame's x and y
+    (part 1's twist reference, and the axis times it, in the world)."""
+
+    def joint_axes(self, base, j):
+        """The joint frame's x and y in the world: part 1's twist reference made square to its
+        axis, and the axis times it."""
+        rot = base.Placement.Rotation
+        z = rot.multVec(j.Axis1).normalize()
+        x = rot.multVec(j.Perp1)
+        x = (x - z * x.dot(z)).normalize()
+        return x, z.cross(x), z
+
+    def test_a_moved_frame_moves_part_2_in_the_joints_frame(self):
+        asm, base, arm, j = self.fixed()
+        p0 = arm.Placement
+        x, y, z = self.joint_axes(base, j)
+        da.edit_joint(j, shift=(0.25, -0.1))
+        self.assertEqual((j.FrameX.Value, j.FrameY.Value), (0.25, -0.1))
+        self.assertTrue(da.solve(asm).converged)
+        self.assertPlaced(arm.Placement, App.Placement(p0.Base + x * 0.25 - y * 0.1, p0.Rotation))
+        # Turned and moved: yawed about the joint's point, then moved in the joint's frame.
+        point = base.Placement.multVec(j.Point1)
+        da.edit_joint(j, frame=(30, 0, 0), shift=(0.2, 0.0))
+        self.assertTrue(da.solve(asm).converged)
+        turn = App.Rotation(z, 30)
+        self.assertPlaced(arm.Placement, App.Placement(point + turn.multVec(p0.Base - point) + x * 0.2,
+                                                       turn.multiply(p0.Rotation)))
+        # A revolute so moved turns part 2 about part 1's axis with its picked point 0.3 off it,
+        # driven or not.
+        da.edit_joint(j, joint_type="Revolute", frame=(0, 0, 0), shift=(0.0, 0.3))
+        self.assertTrue(da.solve(asm).converged)
+        for angle in (0, 40, 95):
+            if angle:
+                da.drive(asm, j, [angle])
+            p2 = arm.Placement.multVec(j.Point2)
+            off = p2 - point
+            self.assertAlmostEqual((off - z * off.dot(z)).Length, 0.3, delta=1e-8)
+        # Back to none: the pose without it.
+        da.edit_joint(j, joint_type="Fixed", shift=(0, 0))
+        self.assertTrue(da.solve(asm).converged)
+        self.assertPlaced(arm.Placement, p0)
+
+    def test_the_moved_frame_saved_refused_and_types_without_one(self):
+        asm, base, arm, j = self.fixed()
+        self.assertEqual([j.getEditorMode(n) for n in ("FrameX", "FrameY")], [[], []])
+        j.JointType = "Ball"  # as the property editor changes it
+        self.assertEqual([j.getEditorMode(n) for n in ("FrameX", "FrameY")], [["Hidden"], ["Hidden"]])
+        j.JointType = "Fixed"
+        da.edit_joint(j, shift=(0.1, 0.2))
+        self.assertTrue(da.solve(asm).converged)
+        placed = arm.Placement
+        # Refused at the engine's door (a NaN moves part 2's point to NaNs), nothing changed.
+        for bad in ((float("nan"), 0), (0, float("inf"))):
+            with self.assertRaisesRegex(ValueError, "Fixed.*frame moved"):
+                da.edit_joint(j, shift=bad)
+            self.assertEqual((j.FrameX.Value, j.FrameY.Value), (0.1, 0.2))
+        with self.assertRaisesRegex(ValueError, "not \\('a', 0\\)"):
+            da.edit_joint(j, shift=("a", 0))
+        with self.assertRaisesRegex(ValueError, "Ball joint's frame takes no translation offset"):
+            da.edit_joint(j, joint_type="Ball", shift=(0.3, 0))
+        self.assertEqual(j.JointType, "Fixed")
+        with self.assertRaisesRegex(ValueError, "frame takes no translation offset"):
+            da.add_joint(asm, "Ball", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)), shift=(0.1, 0))
+        self.assertEqual(len(da.joints(asm)), 1)  # the refused joint undone
+        self.assertPlaced(arm.Placement, placed, 1e-12)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "moved.FCStd")
+            self.doc.saveAs(path)
+            App.closeDocument(self.doc.Name)
+            self.doc = App.openDocument(path)
+            asm = next(o for o in self.doc.Objects if da.is_assembly(o))
+            j = da.joints(asm)[0]
+            arm = self.doc.getObject("Arm")
+            self.assertEqual((j.FrameX.Value, j.FrameY.Value), (0.1, 0.2))
             self.assertTrue(da.solve(asm).converged)
             self.assertPlaced(arm.Placement, placed, 1e-9)
 
@@ -1292,7 +1376,7 @@ class MarkerLayout(unittest.TestCase):
 
 
 UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles,
-              MarkerLayout, FrameRotation, Messages, SolveWritesOnlyWhatChanged,
+              MarkerLayout, FrameRotation, FrameTranslation, Messages, SolveWritesOnlyWhatChanged,
               StudyInWords)
 
 

@@ -117,7 +117,7 @@ class JointPanel(TransactionPanel):
         gl.addRow("Offset", self.offset)
         # The rotation offset of part 2's joint frame, as FreeCAD's placement dialog spells a
         # rotation: yaw about the joint's axis, then pitch and roll.
-        g = self._group(top, "frame", "Part 2's frame turned")
+        g = self._group(top, "frame", "Part 2's frame offset")
         gl = QtWidgets.QFormLayout()
         g.layout().addLayout(gl)
         self.frame = []
@@ -129,6 +129,15 @@ class JointPanel(TransactionPanel):
             box.setToolTip(tip)
             gl.addRow(label, box)
             self.frame.append(box)
+        # Its translation offset across the axis (along it: Offset), in the frame's x and y.
+        self.shift = []
+        for name, label, tip in (("frameX", "Moved x", "Part 2 moved this far along the joint frame's x"),
+                                 ("frameY", "Moved y", "Part 2 moved this far along the joint frame's y")):
+            box = quantity_box("mm", -1e6, 1e6)
+            box.setObjectName(name)
+            box.setToolTip(tip)
+            gl.addRow(label, box)
+            self.shift.append(box)
         self.rot_min, self.rot_max, self.has_rotation = self._range(top, "rotation", "Limit the turn", "deg", -360, 360)
         self.tr_min, self.tr_max, self.has_travel = self._range(top, "travel", "Limit the travel", "mm", -1e6, 1e6)
         g = self._group(top, "cone", None)
@@ -180,7 +189,7 @@ class JointPanel(TransactionPanel):
         self.reverse.toggled.connect(self._changed)
         for box in (self.offset, self.rot_min, self.rot_max, self.tr_min, self.tr_max, self.cone,
                     self.ang_min, self.ang_max, self.distance, self.ratio, self.radius, self.pitch, self.phase,
-                    *self.frame):
+                    *self.frame, *self.shift):
             box.valueChanged.connect(self._changed)
         for check in (self.has_rotation, self.has_travel, self.left):
             check.toggled.connect(self._changed)
@@ -246,7 +255,7 @@ class JointPanel(TransactionPanel):
             self.cone.setProperty("rawValue", j.ConeAngle.Value)
             self.ang_min.setProperty("rawValue", j.AngleMin.Value)
             self.ang_max.setProperty("rawValue", j.AngleMax.Value)
-            for box, name in zip(self.frame, ("FrameYaw", "FramePitch", "FrameRoll")):
+            for box, name in zip(self.frame + self.shift, ("FrameYaw", "FramePitch", "FrameRoll", "FrameX", "FrameY")):
                 box.setProperty("rawValue", getattr(j, name).Value if name in j.PropertiesList else 0.0)
             self._load_values()
         else:
@@ -425,6 +434,7 @@ class JointPanel(TransactionPanel):
         kw["offset"] = raw(self.offset) if "offset" in shown else 0.0
         if "frame" in shown:
             kw["frame"] = tuple(raw(box) for box in self.frame)
+            kw["shift"] = tuple(raw(box) for box in self.shift)
         if "distance" in shown:
             kw["distance"] = raw(self.distance)
         if "ratio" in shown:
