@@ -96,7 +96,7 @@ class ViewProviderAssembly(_ViewProxy):
             from .qt import QtCore
 
             # Once the camera rests (a turn or a zoom with the mouse moves it at every frame):
-            # the layout of a hundred markers takes some 20 ms (docs/performance.md).
+            # the layout of hundreds of markers takes tens of ms (docs/performance.md).
             self.camera_timer = QtCore.QTimer()
             self.camera_timer.setSingleShot(True)
             self.camera_timer.setInterval(self.CAMERA_REST_MS)
