@@ -373,9 +373,24 @@ void JsonWriter::value(double v) {
     // nlohmann's conversion (Grisu2, above): its digits are not always the shortest
     // (std::to_chars writes 1.542053954523393 where it writes 1.5420539545233929), and the
     // documents must not change by a digit.
-    end = grisu::write(end, a);
+    end = number(end, a);
   }
   size_ += static_cast<size_t>(end - buf);
+}
+
+char* JsonWriter::number(char* out, double a) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &a, sizeof bits);
+  Memo& m = memo_[(bits * 0x9E3779B97F4A7C15u) >> (64 - kMemoBits)];
+  if (m.bits == bits) {
+    std::memcpy(out, m.text, 24);  // the text and its size byte: room is there, size_ says
+    return out + m.size;
+  }
+  char* const end = grisu::write(out, a);
+  m.bits = bits;
+  m.size = static_cast<std::uint8_t>(end - out);
+  std::memcpy(m.text, out, sizeof m.text);
+  return end;
 }
 
 void JsonWriter::value(int v) {

@@ -2,6 +2,7 @@
 // model (a body, a constraint, a frame at a time) costs what printing it costs.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -21,7 +22,9 @@ class JsonWriter {
   // What is written is kept in the writer's own buffer and appended to `out` in pieces, the last
   // when the writer is destroyed. With a `sink`, each full piece (64 kB) goes out to it instead:
   // a long document never sits whole in memory (the last piece still goes to `out`).
-  explicit JsonWriter(std::string& out, std::FILE* sink = nullptr) : out_(out), sink_(sink) {}
+  explicit JsonWriter(std::string& out, std::FILE* sink = nullptr) : out_(out), sink_(sink) {
+    std::memset(static_cast<void*>(memo_), 0, sizeof(Memo) << kMemoBits);
+  }
   ~JsonWriter() { out_.append(buffer_, size_); }
   JsonWriter(const JsonWriter&) = delete;
   JsonWriter& operator=(const JsonWriter&) = delete;
@@ -84,6 +87,20 @@ class JsonWriter {
   void open(char bracket);
   void close(char bracket);
   void string(std::string_view s);
+  // grisu::write of a > 0 (finite, not whole) at `out` (24 bytes of room), through the memo.
+  char* number(char* out, double a);
+
+  // The text of the last numbers converted, by their bits (a direct-mapped table, an entry per
+  // hash of the bits): a document repeats many of its numbers (the same part's rotations, the
+  // same residuals in a model of like mechanisms), and a repeat is a copy of at most 24 bytes, not
+  // a conversion (about 400 instructions). The longest text is 23 bytes (d.dddddddddddddddde-308).
+  struct Memo {
+    std::uint64_t bits;  // 0: empty (0.0 is a whole number, never converted here)
+    char text[23];
+    std::uint8_t size;
+  };
+  static_assert(sizeof(Memo) == 32);
+  static constexpr int kMemoBits = 7;
 
   std::string& out_;
   std::FILE* sink_;
@@ -93,8 +110,10 @@ class JsonWriter {
   // On the heap, not in the writer: a writer on the stack made the stack's first touch of 16
   // pages, each a page fault (17-20 us of CPU on the development VM), where the command's heap is
   // on huge pages already touched (main.cpp).
-  std::unique_ptr<char[]> own_{new char[kBuffer]};
+  // The memo lies there too, after the buffer (zeroed by the constructor).
+  std::unique_ptr<char[]> own_{new char[kBuffer + (sizeof(Memo) << kMemoBits)]};
   char* const buffer_ = own_.get();
+  Memo* const memo_ = reinterpret_cast<Memo*>(buffer_ + kBuffer);
 };
 
 }  // namespace dispcon::cli
