@@ -354,6 +354,31 @@ void JsonWriter::plain_key(std::string_view k) {
 
 void JsonWriter::value(double v) {
   item();
+  number_text(v);
+}
+
+void JsonWriter::numbers(const double* v, size_t n) {
+  const size_t indent = 2 * (items_.size() + 1);  // the numbers' own
+  if (n == 0 || indent + 1 >= kShortLine) {
+    begin_array();
+    for (size_t i = 0; i < n; ++i) value(v[i]);
+    return end_array();
+  }
+  open('[');  // its item() before the array, its count of items below
+  items_.back() = static_cast<int>(n);
+  for (size_t i = 0; i < n; ++i) {
+    // The comma (kept only after the first), the new line and the indent, as item() writes them.
+    char* const out = room(kShortLine + 1);
+    const size_t comma = i > 0 ? 1 : 0;
+    *out = ',';
+    std::memcpy(out + comma, kShortLineText, kShortLine);
+    size_ += comma + indent + 1;
+    number_text(v[i]);
+  }
+  close(']');
+}
+
+void JsonWriter::number_text(double v) {
   if (!std::isfinite(v)) {
     put("null", 4);
     return;
@@ -362,7 +387,10 @@ void JsonWriter::value(double v) {
   char* end = buf;
   if (std::signbit(v)) *end++ = '-';  // -0.0 too, as nlohmann writes it
   const double a = std::abs(v);
-  if (a < 1e15 && static_cast<double>(static_cast<long long>(a)) == a) {
+  if (a == 0) {  // half a planar model's rotations
+    std::memcpy(end, "0.0", 3);
+    end += 3;
+  } else if (a < 1e15 && static_cast<double>(static_cast<long long>(a)) == a) {
     // A whole number (a planar model's zeros and ones: half its rotations) as nlohmann writes
     // it, its digits and ".0", without its conversion: cli.JsonNumbers compares them on
     // millions of values.

@@ -44,6 +44,9 @@ class JsonWriter {
   }
 
   void value(double v);
+  // An array of n numbers: begin_array(), value() of each, end_array(), in fewer steps (the 400
+  // four-bars' document is 19,200 numbers in 7,200 arrays of three or four).
+  void numbers(const double* v, size_t n);
   void value(int v);
   void value(bool v);
   void value(std::string_view s);
@@ -87,6 +90,8 @@ class JsonWriter {
   void open(char bracket);
   void close(char bracket);
   void string(std::string_view s);
+  // The text of a number at the end of the buffer (value() after its item()).
+  void number_text(double v);
   // grisu::write of a > 0 (finite, not whole) at `out` (24 bytes of room), through the memo.
   char* number(char* out, double a);
 

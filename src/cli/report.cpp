@@ -10,9 +10,7 @@ namespace dispcon::cli {
 namespace {
 
 void write_numbers(JsonWriter& w, std::initializer_list<double> values) {
-  w.begin_array();
-  for (const double v : values) w.value(v);
-  w.end_array();
+  w.numbers(values.begin(), values.size());
 }
 
 // A body's pose (and its dof when given), members in key order.

@@ -100,6 +100,55 @@ int main() {
   std::printf("%ld arrays of repeated numbers, %ld differ from nlohmann's\n", arrays,
               arrays_differ);
 
+  // numbers(), an array written in one call, as begin_array(), value() of each and end_array()
+  // write it: arrays of 0 to 5 numbers (zeros of both signs, whole numbers, NaN and infinities
+  // among them) as an object's member and an array's item, at every depth from 0 to 20 (the
+  // deeper ones past the short indents, where it falls back to those calls), against nlohmann.
+  long nested = 0, nested_differ = 0;
+  const double specials[] = {0.0, -0.0,    1.0, -3.0,     1e15,
+                             0.1, -2.5e-7, NAN, INFINITY, 0.7648421872844884};
+  for (int depth = 0; depth <= 20; ++depth) {
+    for (size_t n = 0; n <= 5; ++n) {
+      for (const bool member : {false, true}) {
+        std::vector<double> v;
+        for (size_t i = 0; i < n; ++i) {
+          v.push_back(random() % 3 ? specials[random() % 10]
+                                   : std::ldexp(static_cast<double>(random() >> 11), -60));
+        }
+        nlohmann::json leaf = nlohmann::json::array();
+        for (const double x : v) leaf.push_back(x);
+        std::string out;
+        {
+          dispcon::cli::JsonWriter w(out);
+          for (int d = 0; d < depth; ++d) w.begin_array();
+          w.value(1);  // an item before in the innermost array: the array's item has a comma
+          if (member) {
+            w.begin_object();
+            w.key("a");
+            w.value(2);
+            w.key("b");
+          }
+          w.numbers(v.data(), v.size());
+          if (member) w.end_object();
+          for (int d = 0; d < depth; ++d) w.end_array();
+        }
+        nlohmann::json doc = member ? nlohmann::json{{"a", 2}, {"b", leaf}} : leaf;
+        for (int d = 0; d < depth; ++d) {
+          doc = d == 0 ? nlohmann::json::array({1, doc}) : nlohmann::json::array({doc});
+        }
+        // At depth 0 the writer's document is the number 1 and the array after it: not one JSON
+        // value, so it is compared with the two dumped one after the other.
+        const std::string expected = depth == 0 ? "1" + doc.dump(2) : doc.dump(2);
+        ++nested;
+        if (out != expected && nested_differ++ < 10)
+          std::printf("numbers() of %zu at depth %d differs:\n%s\n%s\n", n, depth, out.c_str(),
+                      expected.c_str());
+      }
+    }
+  }
+  std::printf("%ld arrays written by numbers(), %ld differ from nlohmann's\n", nested,
+              nested_differ);
+
   long strings = 0, strings_differ = 0;
   auto test_string = [&](const std::string& s) {
     std::string value, key;
@@ -138,5 +187,5 @@ int main() {
     }
   }
   std::printf("%ld strings, %ld differ from nlohmann's\n", strings, strings_differ);
-  return differ || arrays_differ || strings_differ ? 1 : 0;
+  return differ || arrays_differ || nested_differ || strings_differ ? 1 : 0;
 }
