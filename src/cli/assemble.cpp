@@ -14,8 +14,14 @@ struct AssembleArgs {
   std::string write;
 };
 
+// The model read, kept to the process's end: the command exits right after it, and the exit hands
+// the whole heap back at once, where the model's destruction handed back its blocks one by one
+// (0.23 M instructions for the 400 four-bars).
+std::optional<Model>* kept_model = nullptr;
+
 int run_assemble(const AssembleArgs& a) {
-  auto m = load(a.common.file);
+  kept_model = new std::optional<Model>(load(a.common.file));
+  std::optional<Model>& m = *kept_model;
   if (!m) return kBadInput;
   const SolveResult r = assemble(*m, options(a.common));
   if (!a.write.empty() && r.converged && !write_text(a.write, write_dcl(*m))) return kBadInput;
