@@ -271,11 +271,7 @@ void JsonWriter::put(const char* s, size_t n) {
   }
 }
 
-void JsonWriter::item() {
-  if (after_key_) {  // the value of a member: on the key's line
-    after_key_ = false;
-    return;
-  }
+void JsonWriter::next_item() {
   if (items_.empty()) return;  // the document itself
   const size_t comma = items_.back()++ > 0 ? 1 : 0;
   const size_t indent = 2 * items_.size();

@@ -124,7 +124,7 @@ int main() {
           w.value(1);  // an item before in the innermost array: the array's item has a comma
           if (member) {
             w.begin_object();
-            w.key("a");
+            w.literal_key("a");  // the report's own keys' way
             w.value(2);
             w.key("b");
           }
