@@ -348,61 +348,30 @@ void JsonWriter::plain_key(std::string_view k) {
   after_key_ = true;
 }
 
-void JsonWriter::value(double v) {
-  item();
-  number_text(v);
-}
-
-void JsonWriter::numbers(const double* v, size_t n) {
-  const size_t indent = 2 * (items_.size() + 1);  // the numbers' own
-  if (n == 0 || indent + 1 >= kShortLine) {
-    begin_array();
-    for (size_t i = 0; i < n; ++i) value(v[i]);
-    return end_array();
-  }
-  open('[');  // its item() before the array, its count of items below
-  items_.back() = static_cast<int>(n);
-  for (size_t i = 0; i < n; ++i) {
-    // The comma (kept only after the first), the new line and the indent, as item() writes them.
-    char* const out = room(kShortLine + 1);
-    const size_t comma = i > 0 ? 1 : 0;
-    *out = ',';
-    std::memcpy(out + comma, kShortLineText, kShortLine);
-    size_ += comma + indent + 1;
-    number_text(v[i]);
-  }
-  close(']');
-}
-
-void JsonWriter::number_text(double v) {
+// The text of v at `out`, with 64 bytes of room there (the longest double takes 25; the
+// conversion writes scratch bytes past its end); returns the end.
+inline char* JsonWriter::number_text(char* out, double v) {
   if (!std::isfinite(v)) {
-    put("null", 4);
-    return;
+    std::memcpy(out, "null", 4);
+    return out + 4;
   }
-  char* const buf = room(64);  // written in place: the longest double takes 25 bytes
-  char* end = buf;
-  if (std::signbit(v)) *end++ = '-';  // -0.0 too, as nlohmann writes it
+  if (std::signbit(v)) *out++ = '-';  // -0.0 too, as nlohmann writes it
   const double a = std::abs(v);
   if (a == 0) {  // half a planar model's rotations
-    std::memcpy(end, "0.0", 3);
-    end += 3;
-  } else if (a < 1e15 && static_cast<double>(static_cast<long long>(a)) == a) {
+    std::memcpy(out, "0.0", 3);
+    return out + 3;
+  }
+  if (a < 1e15 && static_cast<double>(static_cast<long long>(a)) == a) {
     // A whole number (a planar model's zeros and ones: half its rotations) as nlohmann writes
     // it, its digits and ".0", without its conversion: cli.JsonNumbers compares them on
     // millions of values.
-    end = std::to_chars(end, buf + 64, static_cast<long long>(a)).ptr;
-    *end++ = '.';
-    *end++ = '0';
-  } else {
-    // nlohmann's conversion (Grisu2, above): its digits are not always the shortest
-    // (std::to_chars writes 1.542053954523393 where it writes 1.5420539545233929), and the
-    // documents must not change by a digit.
-    end = number(end, a);
+    out = std::to_chars(out, out + 32, static_cast<long long>(a)).ptr;
+    std::memcpy(out, ".0", 2);
+    return out + 2;
   }
-  size_ += static_cast<size_t>(end - buf);
-}
-
-char* JsonWriter::number(char* out, double a) {
+  // nlohmann's conversion (Grisu2, above): its digits are not always the shortest
+  // (std::to_chars writes 1.542053954523393 where it writes 1.5420539545233929), and the
+  // documents must not change by a digit. Through the memo of the last numbers converted.
   std::uint64_t bits;
   std::memcpy(&bits, &a, sizeof bits);
   Memo& m = memo_[(bits * 0x9E3779B97F4A7C15u) >> (64 - kMemoBits)];
@@ -415,6 +384,33 @@ char* JsonWriter::number(char* out, double a) {
   m.size = static_cast<std::uint8_t>(end - out);
   std::memcpy(m.text, out, sizeof m.text);
   return end;
+}
+
+void JsonWriter::value(double v) {
+  item();
+  char* const out = room(64);
+  size_ += static_cast<size_t>(number_text(out, v) - out);
+}
+
+void JsonWriter::numbers(const double* v, size_t n) {
+  const size_t indent = 2 * (items_.size() + 1);  // the numbers' own
+  if (n == 0 || indent + 1 >= kShortLine) {
+    begin_array();
+    for (size_t i = 0; i < n; ++i) value(v[i]);
+    return end_array();
+  }
+  open('[');  // its item() before the array, its count of items below
+  items_.back() = static_cast<int>(n);
+  for (size_t i = 0; i < n; ++i) {
+    // The comma (kept only after the first), the new line and the indent, as item() writes them,
+    // then the number, in one room.
+    char* const out = room(kShortLine + 1 + 64);
+    const size_t comma = i > 0 ? 1 : 0;
+    *out = ',';
+    std::memcpy(out + comma, kShortLineText, kShortLine);
+    size_ += static_cast<size_t>(number_text(out + comma + indent + 1, v[i]) - out);
+  }
+  close(']');
 }
 
 void JsonWriter::value(int v) {

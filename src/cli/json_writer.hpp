@@ -106,10 +106,8 @@ class JsonWriter {
   void open(char bracket);
   void close(char bracket);
   void string(std::string_view s);
-  // The text of a number at the end of the buffer (value() after its item()).
-  void number_text(double v);
-  // grisu::write of a > 0 (finite, not whole) at `out` (24 bytes of room), through the memo.
-  char* number(char* out, double a);
+  // The text of a number at `out` (64 bytes of room), through the memo; returns its end.
+  char* number_text(char* out, double v);
 
   // The text of the last numbers converted, by their bits (a direct-mapped table, an entry per
   // hash of the bits): a document repeats many of its numbers (the same part's rotations, the
