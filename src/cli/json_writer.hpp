@@ -22,9 +22,7 @@ class JsonWriter {
   // What is written is kept in the writer's own buffer and appended to `out` in pieces, the last
   // when the writer is destroyed. With a `sink`, each full piece (64 kB) goes out to it instead:
   // a long document never sits whole in memory (the last piece still goes to `out`).
-  explicit JsonWriter(std::string& out, std::FILE* sink = nullptr) : out_(out), sink_(sink) {
-    std::memset(static_cast<void*>(memo_), 0, sizeof(Memo) << kMemoBits);
-  }
+  explicit JsonWriter(std::string& out, std::FILE* sink = nullptr) : out_(out), sink_(sink) {}
   ~JsonWriter() { out_.append(buffer_, size_); }
   JsonWriter(const JsonWriter&) = delete;
   JsonWriter& operator=(const JsonWriter&) = delete;
@@ -129,10 +127,9 @@ class JsonWriter {
   // On the heap, not in the writer: a writer on the stack made the stack's first touch of 16
   // pages, each a page fault (17-20 us of CPU on the development VM), where the command's heap is
   // on huge pages already touched (main.cpp).
-  // The memo lies there too, after the buffer (zeroed by the constructor).
-  std::unique_ptr<char[]> own_{new char[kBuffer + (sizeof(Memo) << kMemoBits)]};
+  std::unique_ptr<char[]> own_{new char[kBuffer]};
   char* const buffer_ = own_.get();
-  Memo* const memo_ = reinterpret_cast<Memo*>(buffer_ + kBuffer);
+  std::unique_ptr<Memo[]> memo_{new Memo[size_t{1} << kMemoBits]()};  // empty: zeroed
 };
 
 }  // namespace dispcon::cli
