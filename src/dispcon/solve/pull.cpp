@@ -30,6 +30,7 @@
 #include <cmath>
 
 #include "dispcon/solve/group.hpp"
+#include "dispcon/solve/rim.hpp"
 
 namespace dispcon {
 
@@ -286,6 +287,65 @@ void move_along(SolverState& s, const Group& group, const PoseBuffer& from,
   }
 }
 
+// A turn's reduced quasi-Newton steps (rim.hpp) from the kept pose the model last observed, one
+// after another while they are kept: each moved by the model's step, corrected onto the valid
+// poses as a pull step's end is, and kept when it gains what a sufficient decrease asks (a
+// ten-thousandth of what the model predicts), else undone (and the pull's own steps go on).
+// Stationary: once a step gained as the model predicted (within a factor of two), where the
+// model's whole next step (not held to the trust radius) promises less than the pull's own
+// steps must (a tenth of the tolerance, in distance).
+struct RimRun {
+  bool kept = false;        // a step was kept
+  bool stationary = false;  // see above
+};
+
+template <typename Correct>
+RimRun rim_steps(RimModel& rim, SolverState& s, const Group& group, int joint,
+                 const std::vector<double>& band, const LetGo& let_go, double band_soft,
+                 const SolveOptions& o, PoseBuffer& before, std::vector<double>& joint_r,
+                 Measure& now, double& h, SoftRows& rows, int& iterations, Correct&& correct) {
+  RimRun out;
+  const JointState& pulled = s.joints[static_cast<size_t>(joint)];
+  std::vector<Vec6> dq;
+  double predicted = 0;
+  while (iterations < o.max_iterations && now.distance > o.tolerance) {
+    if (rim.validated() &&
+        rim.whole_gain() < 0.1 * o.tolerance * std::max(now.distance, o.tolerance)) {
+      out.stationary = true;
+      return out;
+    }
+    if (!rim.propose(o.max_rotation_step, dq, predicted)) break;
+    const Measure kept = now;
+    const double h0 = h;
+    save_poses(s, group, before);
+    ++iterations;
+    move_along(s, group, before, dq, 1);
+    now = measure(s, group, joint, joint_r);
+    // The hard joints corrected until what they leave moves h by a hundredth of the gain
+    // predicted; within the tolerance unless the step was cut short to the seed's turn (as a
+    // pull step's: far from the nearest pose, the next step corrects the rest).
+    const double gain =
+        std::max(1e-3 * o.tolerance, 1e-2 * predicted / std::max(kept.distance, o.tolerance));
+    const double within = rim.cut_short() ? gain : std::min(o.tolerance, gain);
+    bool valid = std::isfinite(now.distance) && correct(within) && std::isfinite(now.distance);
+    if (valid && now.distance < 10 * o.tolerance) valid = correct(1e-3 * o.tolerance);
+    const double ht = valid ? rows.read(s, pulled, band_soft, false) : HUGE_VAL;
+    const bool keep = ht < h0 - 1e-4 * predicted;
+    const double ratio = (h0 - ht) / predicted;
+    rim.judge(ratio, keep);
+    if (!keep) {
+      load_poses(s, group, before);
+      now = kept;
+      rows.read(s, pulled, band_soft, true);
+      return out;
+    }
+    h = rows.read(s, pulled, band_soft, true);
+    out.kept = true;
+    if (!rim.observe(s, group, joint, band, band_soft, let_go)) return out;
+  }
+  return out;
+}
+
 }  // namespace
 
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
@@ -352,6 +412,9 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
                            ? kMinDamping
                            : kMinTurnDamping;
   double mu = follows ? kFollowDamping : kFirstDamping;
+  // A turn's model of its objective on the free directions (rim.hpp).
+  const bool turn = soft_joint.same_rotation;
+  RimModel rim;
   // Where the valid poses bend toward the target (the tension negative: a target inside a
   // crank's circle), no damping gives the step the curvature found, which is less than the
   // Gauss-Newton model's: the step is stretched instead, to the least point of the parabola the
@@ -362,6 +425,25 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   bool calibrated = false;  // mu was set by the secant: the step's model has the curvature found
   bool moved = false;       // a step was kept
   bool may_release = true;  // no bound let go since the last kept step
+  // Whether a pull step from the current poses, undone, lets go of a held bound (its impulses
+  // push it outward: Holds::release); when it does the pull goes on without it.
+  auto release_probe = [&] {
+    if (out.iterations >= o.max_iterations) return false;
+    const Measure at = now;
+    save_poses(s, group, before);
+    damping = mu;
+    ++out.iterations;
+    holds.find(s, group, joint, band);
+    const bool stepped = polisher.step(s, work, band, kRegularised, o.max_rotation_step, false,
+                                       false, &soft, &holds.let_go);
+    const bool released =
+        stepped && !polisher.cut_short() && polisher.has_multipliers() && holds.release(work.y_);
+    load_poses(s, group, before);
+    now = at;
+    rows.read(s, pulled, band_soft, true);
+    if (released) may_release = false;
+    return released;
+  };
   while (now.distance > o.tolerance && out.iterations < o.max_iterations) {
     const Measure kept = now;
     const double h0 = h;
@@ -563,6 +645,23 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     } else {
       mu = std::max(least, mu / 10);
       calibrated = false;
+    }
+    // A turn: the reduced quasi-Newton steps after a whole step (rim.hpp); stationary where
+    // their model says so and the step's impulses let go of no held bound (one pull step, made
+    // and undone, as a kept step's release() would judge it).
+    bool holding = false;  // a bound held as a row (its band widened)
+    for (int c : group.joints)
+      holding = holding || (c != joint && band[static_cast<size_t>(c)] > 0);
+    if (turn && holding && rim.observe(s, group, joint, band, band_soft, holds.let_go) &&
+        longest >= 1) {
+      const RimRun run = rim_steps(rim, s, group, joint, band, holds.let_go, band_soft, o, before,
+                                   joint_r, now, h, rows, out.iterations, correct);
+      if (run.stationary) {
+        if (release_probe()) continue;
+        if (tighten()) continue;
+        break;
+      }
+      if (run.kept) continue;
     }
     // Stationary: a kept step that gains less than the tolerance.
     const double gain = kept.distance - now.distance;
