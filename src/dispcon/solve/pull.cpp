@@ -652,6 +652,8 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     bool holding = false;  // a bound held as a row (its band widened)
     for (int c : group.joints)
       holding = holding || (c != joint && band[static_cast<size_t>(c)] > 0);
+    // (Observed after steps cut short too, for the pairs: only after whole steps, 14 of the 36
+    // turns of the robot arm's hand took 1-7 iterations more.)
     if (turn && holding && rim.observe(s, group, joint, band, band_soft, holds.let_go) &&
         longest >= 1) {
       const RimRun run = rim_steps(rim, s, group, joint, band, holds.let_go, band_soft, o, before,

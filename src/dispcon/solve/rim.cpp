@@ -23,9 +23,12 @@ bool RimModel::observe(const SolverState& s, const Group& group, int joint,
   }
   const auto n = static_cast<Eigen::Index>(6 * nv);
   // The hard rows (as a pull step gathers them) and the soft ones, with their Jacobians.
-  thread_local Eigen::MatrixXd hard;
-  Eigen::MatrixXd soft_j = Eigen::MatrixXd::Zero(3 * kPartSlots, n);
-  Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+  // (Kept from call to call, so a pull's steps allocate them once.)
+  Eigen::MatrixXd& hard = hard_;
+  Eigen::MatrixXd& soft_j = soft_j_;
+  Eigen::VectorXd& g = g_;
+  soft_j.setZero(3 * kPartSlots, n);
+  g.setZero(n);
   hard.setZero(3 * kPartSlots * static_cast<Eigen::Index>(group.joints.size()), n);
   Eigen::Index rows = 0, soft_rows = 0;
   PartRows parts[kPartSlots];
@@ -65,11 +68,11 @@ bool RimModel::observe(const SolverState& s, const Group& group, int joint,
   if (rows == 0) {
     Z = Eigen::MatrixXd::Identity(n, n);
   } else {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(hard.topRows(rows), Eigen::ComputeFullV);
-    const Eigen::VectorXd& sv = svd.singularValues();
-    Eigen::Index rank = 0;
-    while (rank < sv.size() && sv(rank) > 1e-9 * sv(0)) ++rank;
-    Z = svd.matrixV().rightCols(n - rank);
+    // A rank-revealing QR of the rows' transpose: its Q's last columns span what they leave.
+    qr_.compute(hard.topRows(rows).transpose());
+    qr_.setThreshold(1e-9);
+    const Eigen::Index rank = qr_.rank();
+    Z = qr_.householderQ() * Eigen::MatrixXd::Identity(n, n).rightCols(n - rank);
   }
   const Eigen::Index d = Z.cols();
   if (d > kMostFree) {

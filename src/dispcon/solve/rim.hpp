@@ -67,6 +67,10 @@ class RimModel {
   mutable bool cut_short_ = false;
   bool validated_ = false;
   bool observed_ = false;
+  // observe()'s scratch: the hard rows, the soft ones, the gradient, the QR.
+  Eigen::MatrixXd hard_, soft_j_;
+  Eigen::VectorXd g_;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
 };
 
 }  // namespace dispcon
