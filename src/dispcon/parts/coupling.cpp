@@ -1,5 +1,6 @@
 #include "dispcon/parts/coupling.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "dispcon/parts/gear.hpp"
@@ -43,10 +44,66 @@ double unwrap(double theta, double last) {
   return last + std::remainder(theta - last, 2 * kPi);
 }
 
+namespace {
+// How near half a turn from the last seen a turn is taken the way round its equation holds
+// (radians): wider than the relative turn of a Newton step (two bodies at the seed's 0.2 rad)
+// so that a solve's steps about the half turn all see the same way round.
+constexpr double kNearHalfTurn = 0.5;
+}  // namespace
+
+void unwrap_turns(const CouplingMeasure& m, const double last[2], double phase, double turns[2]) {
+  double f = m.s - phase;
+  for (int i = 0; i < m.angles; ++i) {
+    turns[i] = unwrap(m.theta[i], last[i]);
+    f += m.k[i] * turns[i];
+  }
+  for (int i = 0; i < m.angles; ++i) {
+    const double from = turns[i] - last[i];
+    if (!(std::abs(from) > kPi - kNearHalfTurn)) continue;
+    // The other way round: a whole turn less (or more), f by k 2 pi.
+    const double other = from > 0 ? -2 * kPi : 2 * kPi;
+    const double g = f + m.k[i] * other;
+    if (std::abs(g) < std::abs(f)) turns[i] += other, f = g;
+  }
+}
+
+void unwrap_read(const CouplingMeasure& m, const double last[2], double phase, double turns[2]) {
+  unwrap_turns(m, last, phase, turns);
+  if (!m.valid) return;
+  bool moved = false;
+  double f = m.s - phase, turn = 0;
+  for (int i = 0; i < m.angles; ++i) {
+    moved = moved || m.theta[i] != last[i];
+    f += m.k[i] * turns[i];
+    turn = std::max(turn, std::abs(2 * kPi * m.k[i]));
+  }
+  // f within a millionth of the largest turn's travel: held.
+  const double held = 1e-6 * turn;
+  if (!moved || !(std::abs(f) > held)) return;
+  // The whole turns (a few either way, the fewest first) that make f hold. The phase takes only
+  // their sum k . 2 pi n, so any that hold will do.
+  constexpr int kTurns = 4;
+  int best[2] = {0, 0};
+  int fewest = -1;
+  for (int n0 = -kTurns; n0 <= kTurns; ++n0) {
+    for (int n1 = m.angles == 2 ? -kTurns : 0; n1 <= (m.angles == 2 ? kTurns : 0); ++n1) {
+      const double g = f + 2 * kPi * (m.k[0] * n0 + (m.angles == 2 ? m.k[1] * n1 : 0));
+      const int count = std::abs(n0) + std::abs(n1);
+      if (std::abs(g) <= held && (fewest < 0 || count < fewest)) {
+        best[0] = n0, best[1] = n1, fewest = count;
+      }
+    }
+  }
+  if (fewest < 0) return;
+  for (int i = 0; i < m.angles; ++i) turns[i] += 2 * kPi * best[i];
+}
+
 double coupling_residual(const CouplingMeasure& m, const double last[2], double phase) {
   if (!m.valid) return 0;
+  double turns[2];
+  unwrap_turns(m, last, phase, turns);
   double f = m.s - phase;
-  for (int i = 0; i < m.angles; ++i) f += m.k[i] * unwrap(m.theta[i], last[i]);
+  for (int i = 0; i < m.angles; ++i) f += m.k[i] * turns[i];
   return f;
 }
 

@@ -52,7 +52,22 @@ CouplingMeasure measure_coupling(const CouplingSpec& c, const Frame& f1, const F
 // plus the whole turns that keep it within half a turn of `last`.
 double unwrap(double theta, double last);
 
-// f with the turns unwrapped next to `last`.
+// The turns of `m` unwrapped next to `last` into `turns`: each the short way round, but a turn
+// within a few tenths of a radian of half a turn from `last` (either way round is then about as
+// short: a drag step of exactly half a screw turn ends on the tie) the way round that leaves f
+// nearer 0. Valid poses then unwrap onto the turn their travel asks for, whichever side of the half
+// turn rounding puts them, and a solve converging there sees f continuous rather than a jump of a
+// whole turn's travel where its steps cross the half turn.
+void unwrap_turns(const CouplingMeasure& m, const double last[2], double phase, double turns[2]);
+
+// The same for poses read (a solve's start, a model's new poses), which may have moved any way
+// since `last`: as unwrap_turns, but where the turns taken so leave f open and a few whole turns
+// more or less make it hold (to a millionth of a turn's travel: poses a solve left valid), those.
+// A pull that turned a screw or a gear past half a turn from the poses last read is read back
+// onto the turns it made, not a whole turn's travel open.
+void unwrap_read(const CouplingMeasure& m, const double last[2], double phase, double turns[2]);
+
+// f with the turns unwrapped next to `last` (unwrap_turns).
 double coupling_residual(const CouplingMeasure& m, const double last[2], double phase);
 
 // The row of f (gradient of the unwrapped equation, residual f).

@@ -341,9 +341,19 @@ RimRun rim_steps(RimModel& rim, SolverState& s, const Group& group, int joint,
     }
     h = rows.read(s, pulled, band_soft, true);
     out.kept = true;
+    s.follow_couplings(group.joints);  // (as the pull's kept steps: SolverState::follow_couplings)
     if (!rim.observe(s, group, joint, band, band_soft, let_go)) return out;
   }
   return out;
+}
+
+// Whether the group has couplings, whose turns a pull follows after each kept step (a pull along
+// a screw goes on past half a turn: SolverState::follow_couplings).
+bool has_couplings(const SolverState& s, const Group& group) {
+  for (int c : group.joints) {
+    if (s.joints[static_cast<size_t>(c)].joint->coupling) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -358,6 +368,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   // Newton on the hard joints until they hold; false when they do not within kCorrections.
   Measure now = measure(s, group, joint, joint_r);
   Holds holds(o.tolerance, s.joints.size());
+  const bool couplings = has_couplings(s, group);
   // (Past the cap too: the poses a pull leaves must be valid whenever they can be.)
   // To well within the tolerance by default, so that the distances compared are of valid poses
   // alike; to `within` where what is compared is larger.
@@ -624,6 +635,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       continue;
     }
     load_poses(s, group, spare);
+    if (couplings) s.follow_couplings(group.joints);
     moved = true;
     may_release = true;
     holds.kept();

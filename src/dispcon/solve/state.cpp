@@ -160,14 +160,31 @@ SolverState::SolverState(const Model& model, const std::vector<Pose>& poses,
   unwrap_couplings();
 }
 
-// Each coupling's turns move on by the short way round from the last seen, and its phase by the
-// whole turns the wrapped measure dropped, so the equation stays continuous through full turns.
+// Each coupling's turns move on by the short way round from the last seen (near half a turn, the
+// way its equation holds: unwrap_turns), and its phase by the whole turns the wrapped measure
+// dropped, so the equation stays continuous through full turns.
 void SolverState::unwrap_couplings() {
   for (JointState& js : joints) {
     if (!js.joint->coupling) continue;
     const CouplingMeasure m = coupling(js, false);
+    double turns[2];
+    unwrap_read(m, js.last, js.phase, turns);
     for (int i = 0; i < m.angles; ++i) {
-      js.phase += m.k[i] * (m.theta[i] - unwrap(m.theta[i], js.last[i]));
+      js.phase += m.k[i] * (m.theta[i] - turns[i]);
+      js.last[i] = m.theta[i];
+    }
+  }
+}
+
+void SolverState::follow_couplings(const std::vector<int>& group_joints) {
+  for (int c : group_joints) {
+    JointState& js = joints[static_cast<size_t>(c)];
+    if (!js.joint->coupling) continue;
+    const CouplingMeasure m = coupling(js, false);
+    double turns[2];
+    unwrap_turns(m, js.last, js.phase, turns);
+    for (int i = 0; i < m.angles; ++i) {
+      js.phase += m.k[i] * (m.theta[i] - turns[i]);
       js.last[i] = m.theta[i];
     }
   }

@@ -136,6 +136,11 @@ class SolverState {
   void outward(const JointState& js, const JointBounds& bounds, double out[kPartSlots][3]) const;
   // A coupling's equation at the current poses (the joint must have one).
   CouplingMeasure coupling(const JointState& js, bool with_rows) const;
+  // The couplings among `joints` take their turns at the current poses as the last seen (each
+  // moved on the short way round, as unwrap_turns takes it): a pull's kept step, so that a pull
+  // turning a screw on and on sees each of its steps near the last (read_poses alone would put
+  // the way round's change at half a turn from the poses read, where the pull would stop).
+  void follow_couplings(const std::vector<int>& joints);
 
  private:
   void unwrap_couplings();

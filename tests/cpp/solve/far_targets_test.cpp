@@ -104,8 +104,6 @@ const Known kKnown[] = {
     {"otary.dcl", "tail", "rz", Breaks::Iterations},                  // iteration-limit after 91
     {"otary.dcl", "tray", "rx", Breaks::Iterations},                  // iteration-limit after 85
     {"steering.dcl", "knuckle_r", "rz", Breaks::Iterations},          // out-of-reach after 65
-    {"three-gears.dcl", "g2", "rz", Breaks::Iterations},              // iteration-limit after 98
-    {"three-gears.dcl", "g3", "rz", Breaks::Iterations},              // iteration-limit after 98
 };
 
 bool known(const std::string& sample, const std::string& body, const std::string& target,
