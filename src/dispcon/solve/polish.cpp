@@ -75,6 +75,9 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
       }
     }
   }
+  // A pull's step in the saddle-point form: its solution holds the impulses y beside dq, which
+  // the pull reads to let go of a bound (pull.cpp's Holds).
+  if (let_go && !reused_ && !dense() && kkt_) has_multipliers_ = blocks_multipliers();
   // Keep each body's turn small (seed 2.3): scale the whole step, never bend it.
   double largest = 0;
   for (const Vec6& d : w_->dq_) {

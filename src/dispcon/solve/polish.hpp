@@ -88,8 +88,9 @@ class Polisher {
             const std::vector<double>* soft = nullptr, const LetGo* let_go = nullptr);
   bool reused() const { return reused_; }
   // Whether the last step left its rows' impulses y (dq = M^-1 J^T y) in the work's y_, one a
-  // row in the order of the group's joints and each joint's parts: a dense or rows-form step
-  // (the saddle-point form solves for dq directly).
+  // row in the order of the group's joints and each joint's parts: a dense or rows-form step,
+  // or a pull's (given `let_go`) in the saddle-point form, whose solution holds them beside dq
+  // (other saddle-point steps leave them unread).
   bool has_multipliers() const { return has_multipliers_; }
   // Whether a small group (a dense system) may take chord steps too: only where its rows leave
   // no free motion (see no_free_motion()), and only within one solve. Off unless set (a drag's
@@ -194,6 +195,7 @@ class Polisher {
   void analyze_blocks();
   bool factor_blocks(const SolverState& s, double mu);
   bool solve_blocks(const std::vector<double>& residual);
+  bool blocks_multipliers();
   void analyze_rows();
 
   static constexpr int kDenseRows = 120;

@@ -1,6 +1,8 @@
 // The Newton polish's saddle-point form (groups whose loops share bodies, polish_sparse.cpp)
 // factored on blocks (block_ldlt.hpp): each body's six unknowns make a block, and so does each
 // run of up to six consecutive rows joining the same two bodies (a joint's rows, usually).
+#include <cmath>
+
 #include "dispcon/solve/polish.hpp"
 
 namespace dispcon {
@@ -90,6 +92,26 @@ bool Polisher::solve_blocks(const std::vector<double>& residual) {
     Vec6& d = w_->dq_[static_cast<size_t>(v)];
     d = Eigen::Map<const Vec6>(blocks_.values_of(v));
     finite = finite && d.allFinite();
+  }
+  return finite;
+}
+
+// The rows' impulses y of the last solve_blocks(), one a row in row order, into the work's y_:
+// the solution's run blocks. With [-M J^T; J mu I] [dq; z] = [0; -r], dq = M^-1 J^T z and
+// (J M^-1 J^T + mu) z = -r: z is the rows form's y. False when one is not finite.
+bool Polisher::blocks_multipliers() {
+  const int m = static_cast<int>(w_->rows_.size());
+  w_->y_.resize(static_cast<size_t>(m));
+  bool finite = true;
+  const int runs = static_cast<int>(run_slots_.size());
+  for (int k = 0; k < runs; ++k) {
+    const int first = run_start_[static_cast<size_t>(k)];
+    const double* z = blocks_.values_of(nv_ + k);
+    for (int a = first; a < run_start_[static_cast<size_t>(k) + 1]; ++a) {
+      const double y = z[a - first];
+      w_->y_[static_cast<size_t>(a)] = y;
+      finite = finite && std::isfinite(y);
+    }
   }
   return finite;
 }

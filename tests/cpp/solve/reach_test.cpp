@@ -1243,5 +1243,66 @@ TEST(Reach, RobotArmHandTurnedAboutObliqueAxesStopsAtTheNearestPose) {
   }
 }
 
+// A slider on a rod of the world (x in [-1, 1]) carries a bar of length 2 pinned at its origin,
+// and `satellites` light bodies pinned there too (each three rows on the slider: with 50 the
+// group has 160 rows, over the dense form's 120, and so many on one body that it is solved in
+// the sparse saddle-point form). The bar's end (a hand pinned there) is pulled toward `target`
+// by Session::pull. Started with the slider at `x0` and the bar along -x.
+struct SliderBar {
+  Model m;
+  BodyId slider, bar, hand;
+  JointId soft;
+  SliderBar(int satellites, double x0, const Vec3& target) {
+    auto body = [&](const std::string& name, const Vec3& at, double angle, double mass) {
+      Body b;
+      b.name = name;
+      b.pose = Pose::from(at, Vec3(0, 0, angle));
+      b.mass = mass;
+      b.inertia = mass * Mat3::Identity();
+      return m.add_body(b);
+    };
+    slider = body("slider", Vec3(x0, 0, 0), 0, 1);
+    bar = body("bar", Vec3(x0, 0, 0), kPi, 1);
+    hand = body("hand", Vec3(x0 - 2, 0, 0), 0, 1);
+    Joint rod;
+    rod.body2 = slider;
+    rod.has_hinge = true;
+    rod.guide = Guide{GuideKind::Axial, Vec3::UnitX(), -1, 1, 0, {}};
+    m.add_joint(rod);
+    m.add_joint(pin(slider, bar, Vec3::Zero()));
+    m.add_joint(pin(bar, hand, Vec3(2, 0, 0)));
+    for (int i = 0; i < satellites; ++i) {
+      const BodyId s = body("s" + std::to_string(i), Vec3(x0, 0, 0), 0, 1e-3);
+      m.add_joint(pin(slider, s, Vec3::Zero()));
+    }
+    soft = m.add_joint(pin(Model::kWorld, hand, target));
+  }
+};
+
+// The nearest pose: the slider at the rod's point nearest the target's shadow, the bar stretched
+// from it toward the target (distance |target - (clamp(x), 0, 0)| - 2). From the bar along -x
+// the pull's steps take the slider past the rod's end, where the bound is held as rows; the
+// nearest pose is inside, so the bound must be let go, which the rows' impulses tell. The same
+// in the dense form (no satellites) and in the saddle-point form (50).
+TEST(Reach, PullLetsGoOfABoundInTheSaddlePointForm) {
+  const Vec3 target(0.3, 4, 0);
+  for (int satellites : {0, 50}) {
+    SCOPED_TRACE(satellites);
+    SliderBar sb(satellites, 0.9, target);
+    SolveOptions o;
+    Session session(sb.m, o);
+    std::vector<Pose> poses = sb.m.poses();
+    const SolveResult r = session.pull(poses, sb.soft);
+    ASSERT_EQ(r.status, SolveStatus::OutOfReach) << r.message;
+    EXPECT_NEAR(r.distance_left, (target - Vec3(0.3, 0, 0)).norm() - 2, 1e-8);
+    // (The distance is of second order in an error of the pose there, so the pose is known to the
+    // root of the distance's precision.)
+    EXPECT_NEAR(poses[static_cast<size_t>(sb.slider.value)].x.x(), 0.3, 1e-3);
+    for (const ConstraintReport& c : measure(sb.m, poses, o)) {
+      if (c.joint.value != sb.soft.value) EXPECT_TRUE(c.satisfied) << c.joint.value;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dispcon
