@@ -356,6 +356,22 @@ bool has_couplings(const SolverState& s, const Group& group) {
   return false;
 }
 
+// What a step's curve gave at its valid points: the rise of h over its start at the longest and
+// the shortest tried. A step that goes down (slope < 0) from a pose on a smooth curve of valid
+// poses rises less, then falls, as t shrinks; where h rises about as much at a tenth of the step
+// as at the whole, the corrected poses are not near the pose they started from (a bound held
+// again as a row from a pose inside it: the corrections put the part at the bound, a fixed rise;
+// the snake's tail 0.025 inside its rod's end, 0.003 up at every t). No damping gets such a step
+// nearer, so the pull stops there, but that pose is no nearest one.
+struct Rises {
+  double far_t = 0, far = 0, near_t = 0, near = 0;
+  void add(double t, double rise) {
+    if (far_t == 0 || t > far_t) far_t = t, far = rise;
+    if (near_t == 0 || t < near_t) near_t = t, near = rise;
+  }
+  bool jump() const { return near > 0 && near_t <= 0.1 * far_t && near >= 0.5 * far; }
+};
+
 }  // namespace
 
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
@@ -436,6 +452,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   bool calibrated = false;  // mu was set by the secant: the step's model has the curvature found
   bool moved = false;       // a step was kept
   bool may_release = true;  // no bound let go since the last kept step
+  bool jumped = false;      // the last step tried found the valid poses off its start (Rises)
   // Whether a pull step from the current poses, undone, lets go of a held bound (its impulses
   // push it outward: Holds::release); when it does the pull goes on without it.
   auto release_probe = [&] {
@@ -458,6 +475,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   while (now.distance > o.tolerance && out.iterations < o.max_iterations) {
     const Measure kept = now;
     const double h0 = h;
+    jumped = false;
     save_poses(s, group, before);
     damping = mu;
     ++out.iterations;
@@ -541,6 +559,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     Measure best = kept;
     int flat = 0;
     double tp = 0, hp = 0;  // the last valid point tried before t, and h there
+    Rises rises;
     for (int k = 0; k < kCurvePoints && out.iterations < o.max_iterations; ++k) {
       if (t != longest) {  // (the step as made is where the polisher left the group)
         move_along(s, group, before, dq, t);
@@ -575,6 +594,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
           ht = valid ? rows.read(s, pulled, band_soft, false) : HUGE_VAL;
         }
       }
+      if (valid) rises.add(t, ht - h0);
       if (ht < best_h) {
         best_t = t, best_h = ht, best = now;
         save_poses(s, group, spare);
@@ -628,6 +648,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       break;
     }
     if (best_t == 0) {
+      jumped = rises.jump();
       if (!undo_and_damp()) {
         if (tighten()) continue;
         break;
@@ -698,6 +719,9 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       break;
     }
   }
+  // Ended where the last step's valid poses jumped off the pose kept: no step from it gets
+  // nearer, but not because it is least (Rises): no nearest pose is claimed.
+  if (jumped) out.stationary = false;
   // Back onto the valid poses to well within the tolerance.
   if (!correct(1e-3 * o.tolerance)) {
     load_poses(s, group, before);

@@ -1304,5 +1304,32 @@ TEST(Reach, PullLetsGoOfABoundInTheSaddlePointForm) {
   }
 }
 
+// The flying snake's s3 (samples/snake.dcl: its origin three links, 1.5, from the tail's end on
+// the rod between x = -1 and 1) pulled toward (0, 10, 0) by Session::pull directly (the reach
+// bound, which tells a drag at once, is not asked): the nearest pose has the tail's end at the
+// rod's point under the target and the links stretched up from it, 10 - 1.5 = 8.5 away. The
+// pull along the chain converges linearly; it stopped at a step gaining less than the tolerance,
+// 8.5522 after 144 iterations, and called that the nearest.
+TEST(Reach, SnakePulledAlongItsChainEndsAtTheNearestPoseOrSaysNot) {
+  ParseResult parsed = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/snake.dcl");
+  ASSERT_TRUE(parsed.ok()) << parsed.messages();
+  Model m = std::move(*parsed.model);
+  ASSERT_TRUE(assemble(m).converged);
+  const BodyId s3 = *m.find("s3"), tail = *m.find("tail");
+  const Vec3 target(0, 10, 0);
+  const JointId soft = m.add_joint(pin(Model::kWorld, s3, target));
+  SolveOptions o;
+  Session session(m, o);
+  std::vector<Pose> poses = m.poses();
+  const SolveResult r = session.pull(poses, soft);
+  if (r.status == SolveStatus::OutOfReach) {
+    EXPECT_NEAR(r.distance_left, 8.5, o.tolerance);
+    EXPECT_NEAR(r.poses[static_cast<size_t>(tail.value)].x.x(), 0, 1e-4);
+  } else {
+    EXPECT_EQ(r.status, SolveStatus::IterationLimit) << r.message;
+    EXPECT_GT(r.distance_left, 8.5);
+  }
+}
+
 }  // namespace
 }  // namespace dispcon
