@@ -304,8 +304,9 @@ void Model::set_poses(const std::vector<Pose>& poses) {
   for (size_t i = 1; i < bodies_.size(); ++i)
     checked[i] = check_pose(poses[i], "position", What("object '", bodies_[i].name, "'"));
   // A coupling's phase moves on by the whole turns its wrapped turns drop on the way (each turn
-  // taken the short way round, or near half a turn the way its equation holds: unwrap_turns), so
-  // the couplings hold through full turns.
+  // taken the short way round, or near half a turn the way its equation holds; from poses where
+  // it held, the whole turns that make it hold again: unwrap_read), so the couplings hold through
+  // full turns.
   std::vector<CouplingMeasure> before;
   for (const Joint& j : joints_) {
     if (j.coupling) {
@@ -321,7 +322,7 @@ void Model::set_poses(const std::vector<Pose>& poses) {
     const CouplingMeasure now =
         measure_coupling(*j.coupling, frame(body(j.body1)), frame(body(j.body2)), false);
     double turns[2];
-    unwrap_read(now, old.theta, *j.coupling->phase, turns);
+    unwrap_read(now, old.theta, *j.coupling->phase, turns, coupling_held(old, *j.coupling->phase));
     for (int i = 0; i < now.angles; ++i) {
       *j.coupling->phase += now.k[i] * (now.theta[i] - turns[i]);
     }

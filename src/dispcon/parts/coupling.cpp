@@ -67,9 +67,10 @@ void unwrap_turns(const CouplingMeasure& m, const double last[2], double phase, 
   }
 }
 
-void unwrap_read(const CouplingMeasure& m, const double last[2], double phase, double turns[2]) {
+void unwrap_read(const CouplingMeasure& m, const double last[2], double phase, double turns[2],
+                 bool held_before) {
   unwrap_turns(m, last, phase, turns);
-  if (!m.valid) return;
+  if (!m.valid || !held_before) return;
   bool moved = false;
   double f = m.s - phase, turn = 0;
   for (int i = 0; i < m.angles; ++i) {
@@ -96,6 +97,16 @@ void unwrap_read(const CouplingMeasure& m, const double last[2], double phase, d
   }
   if (fewest < 0) return;
   for (int i = 0; i < m.angles; ++i) turns[i] += 2 * kPi * best[i];
+}
+
+bool coupling_held(const CouplingMeasure& m, double phase) {
+  if (!m.valid) return false;
+  double f = m.s - phase, turn = 0;
+  for (int i = 0; i < m.angles; ++i) {
+    f += m.k[i] * m.theta[i];
+    turn = std::max(turn, std::abs(2 * kPi * m.k[i]));
+  }
+  return std::abs(f) <= 1e-6 * turn;
 }
 
 double coupling_residual(const CouplingMeasure& m, const double last[2], double phase) {

@@ -64,8 +64,14 @@ void unwrap_turns(const CouplingMeasure& m, const double last[2], double phase, 
 // since `last`: as unwrap_turns, but where the turns taken so leave f open and a few whole turns
 // more or less make it hold (to a millionth of a turn's travel: poses a solve left valid), those.
 // A pull that turned a screw or a gear past half a turn from the poses last read is read back
-// onto the turns it made, not a whole turn's travel open.
-void unwrap_read(const CouplingMeasure& m, const double last[2], double phase, double turns[2]);
+// onto the turns it made, not a whole turn's travel open. Only from poses where it held
+// (`held_before`): a gear turned by hand a whole turn, its mate left, keeps that turn in its phase
+// (the turns taken the short way), though one turn less would make the equation hold.
+void unwrap_read(const CouplingMeasure& m, const double last[2], double phase, double turns[2],
+                 bool held_before = true);
+// Whether the equation holds at `m`'s turns as measured (those last seen), to a millionth of a
+// turn's travel: the test unwrap_read's `held_before` asks.
+bool coupling_held(const CouplingMeasure& m, double phase);
 
 // f with the turns unwrapped next to `last` (unwrap_turns).
 double coupling_residual(const CouplingMeasure& m, const double last[2], double phase);
