@@ -15,7 +15,7 @@ mouse can be done from here under freecadcmd.
 from . import engine, geometry  # noqa: F401  (scripts reach the engine as da.engine)
 from .adapter import Adapter, Result, live_curve, offered_types  # noqa: F401
 from .objects import (COUPLINGS, JOINT_TYPES, AssemblyProxy, JointProxy, SubAssemblyProxy, adopt,  # noqa: F401
-                      adopt_document, instance_parts, is_assembly, is_joint, is_sub_assembly, joints,
+                      adopt_document, instance_parts, is_assembly, is_joint, is_sub_assembly, joints, nested_parts,
                       mesh_offset, part_properties, parts, phase_value, placed_parts, preferences, shape_of,
                       sub_assemblies, top_assemblies)
 from .operations import (Drag, PointDrag, Transaction, add_joint, add_part, check,  # noqa: F401
@@ -24,4 +24,4 @@ from .operations import (Drag, PointDrag, Transaction, add_joint, add_part, chec
                          import_dcl, import_part, interference, interference_along,
                          link_part, linkable_objects, set_grounded, set_limits, solve,
                          transaction)
-from .subassembly import insert_sub_assembly, set_rigid  # noqa: F401
+from .subassembly import insert_sub_assembly, resolve, set_rigid  # noqa: F401

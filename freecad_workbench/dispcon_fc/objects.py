@@ -527,6 +527,7 @@ def parts(asm):
 
 
 def sub_assemblies(asm):
+    """The instances placed in an assembly (or nested in an instance: one level down)."""
     return [o for o in asm.Group if is_sub_assembly(o)]
 
 
@@ -542,9 +543,15 @@ def top_assemblies(doc):
             and not any(is_sub_assembly(i) and i.Document == doc for i in o.InList)]
 
 
+def nested_parts(sub):
+    """The links of a sub-assembly instance and of the instances nested in it, at any depth."""
+    return instance_parts(sub) + [p for n in sub_assemblies(sub) for p in nested_parts(n)]
+
+
 def placed_parts(asm):
-    """Every part a joint of `asm` can hold: its own and those of its sub-assemblies."""
-    return parts(asm) + [p for s in sub_assemblies(asm) for p in instance_parts(s)]
+    """Every part a joint of `asm` can hold: its own and those of its sub-assemblies (and of
+    theirs, at any depth)."""
+    return parts(asm) + [p for s in sub_assemblies(asm) for p in nested_parts(s)]
 
 
 def joints(asm):

@@ -56,8 +56,12 @@ def _assembly(asm):
     if asm is None or not objects.is_assembly(asm):
         raise ValueError("%s is not a Dispcon assembly" % getattr(asm, "Label", asm))
     objects.adopt(asm)
-    for o in asm.Group:
-        objects.adopt(o)
+    groups = [asm]
+    while groups:  # an instance's nested instances and their links too, at any depth
+        for o in groups.pop().Group:
+            objects.adopt(o)
+            if objects.is_sub_assembly(o):
+                groups.append(o)
     return asm
 
 

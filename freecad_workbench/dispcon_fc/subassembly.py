@@ -13,7 +13,15 @@ times keeps four sets of poses and solving the parent never changes the linked f
   between this instance's links (each instance has its own copies). A part grounded in the placed
   assembly is not grounded here: the parent's joints hold the instance (as in FreeCAD 1.x).
 
-One level: an assembly that has sub-assemblies of its own cannot be placed yet."""
+Nested, to any depth (as FreeCAD 1.x's AssemblyLinks): an instance of an assembly that has
+sub-assemblies of its own holds, beside its links, one nested instance per such sub-assembly
+(a group of the same kind, its SourceName the Name of the sub-assembly it mirrors, its
+LocalPlacement its frame in the instance's), and so on down. A nested instance is rigid or
+flexible as the sub-assembly it mirrors is in the placed assembly; each level means what it
+means at the top: a rigid instance is one body (everything inside it solved once, in its frame),
+a flexible one's links are bodies and its placed assembly's joints join the solve. Every pose of
+every level is stored in the parent's document. An assembly placed inside itself, directly or
+through files, is refused, naming the chain."""
 import os
 
 import FreeCAD as App
@@ -35,24 +43,55 @@ def source_of(sub):
     return src
 
 
-def _source_part(link):
-    return link.getLinkedObject(False) if link.LinkedObject is not None else None
+def is_nested(inst):
+    """Whether an instance is nested in another (it mirrors a sub-assembly of the assembly that
+    one places) rather than placed by the designer in an assembly."""
+    return bool(getattr(inst, "SourceName", ""))
 
 
-def links_by_source(sub):
-    """{source part Name: link} of an instance."""
+def key(obj):
+    return (obj.Document.Name, obj.Name)
+
+
+def tree(inst):
+    """{path: object} of everything inside an instance, at any depth: a link by the Name of the
+    part it places, a nested instance by the Name of the sub-assembly it mirrors, the insides of
+    a nested instance below its path. The same paths name the same things in the placed
+    assembly (source_tree), whichever document each is in."""
     out = {}
-    for link in objects.instance_parts(sub):
-        src = link.LinkedObject
-        if src is not None:
-            out[src.Name] = link
+    for o in inst.Group:
+        if objects.is_sub_assembly(o) and is_nested(o):
+            out[(o.SourceName,)] = o
+            for path, d in tree(o).items():
+                out[(o.SourceName,) + path] = d
+        elif o.TypeId == "App::Link" and "LocalPlacement" in o.PropertiesList and o.LinkedObject is not None:
+            out[(o.LinkedObject.Name,)] = o
     return out
+
+
+def source_tree(asm):
+    """{path: object} of an assembly: its parts, its sub-assemblies and everything inside them
+    (tree), as an instance of it names them."""
+    out = {(p.Name,): p for p in objects.parts(asm)}
+    for s in objects.sub_assemblies(asm):
+        out[(s.Name,)] = s
+        for path, d in tree(s).items():
+            out[(s.Name,) + path] = d
+    return out
+
+
+def _label(inst, head):
+    """Whether `head` names the nested instance `inst` (its Name, its Label, the Name of the
+    sub-assembly it mirrors, or that sub-assembly's Label after its container's)."""
+    return head in (inst.Name, inst.Label, getattr(inst, "SourceName", "")) or inst.Label.endswith("." + head)
 
 
 def resolve(asm, obj, sub):
     """A reference in FreeCAD's forms as (object, element): (part, "Edge3"); (instance,
     "Crank.Edge3") or (assembly, "Leg1.Crank.Edge3"), the part named by its Name or Label in the
-    placed assembly (or the instance by its Name or Label in `asm`). Returns (part, "Edge3")."""
+    placed assembly (or the instance by its Name or Label in `asm`); nested instances the same
+    way, to any depth: (assembly, "Walk2.Leg1.Crank.Edge3"), (instance, "Leg1.Crank.Edge3").
+    Returns (part, "Edge3")."""
     if objects.is_assembly(obj) and "." in sub:
         head, rest = sub.split(".", 1)
         inst = next((s for s in objects.sub_assemblies(obj) if head in (s.Name, s.Label)), None)
@@ -68,17 +107,41 @@ def resolve(asm, obj, sub):
             src = link.LinkedObject
             if head in (link.Name, link.Label) or (src is not None and head in (src.Name, src.Label)):
                 return link, rest
+        for inst in objects.sub_assemblies(obj):
+            if _label(inst, head):
+                return resolve(asm, inst, rest)
         raise ValueError("%s has no part %s (parts: %s)"
-                         % (obj.Label, head, ", ".join(l.LinkedObject.Label for l in objects.instance_parts(obj)
-                                                       if l.LinkedObject is not None)))
+                         % (obj.Label, head, ", ".join([l.LinkedObject.Label for l in objects.instance_parts(obj)
+                                                        if l.LinkedObject is not None]
+                                                       + [n.Label.rsplit(".", 1)[-1] + " (a sub-assembly)"
+                                                          for n in objects.sub_assemblies(obj)])))
     return obj, sub
+
+
+def _where(doc):
+    return os.path.basename(doc.FileName) if doc.FileName else doc.Label
+
+
+def _chain(src, asm, seen=()):
+    """The places by which placing `src` would place `asm` inside itself: ["Walker", "Leg1 (Leg
+    in leg.FCStd)", ...] ending at `asm`, or None when it would not."""
+    if key(src) == key(asm):
+        return ["%s (%s)" % (src.Label, _where(src.Document))]
+    if key(src) in seen:
+        return None
+    for s in objects.sub_assemblies(src):
+        inner = s.Assembly if "Assembly" in s.PropertiesList else None
+        if inner is None:
+            continue
+        rest = _chain(inner, asm, seen + (key(src),))
+        if rest is not None:
+            return ["%s > %s" % (src.Label, s.Label)] + rest
+    return None
 
 
 def _places(src, asm):
     """Whether placing `src` would place `asm` inside itself."""
-    if src == asm:
-        return True
-    return any(_places(s.Assembly, asm) for s in objects.sub_assemblies(src) if s.Assembly is not None)
+    return _chain(src, asm) is not None
 
 
 def _open_assembly(path, label):
@@ -106,7 +169,9 @@ def insert_sub_assembly(asm, source, label=None, placement=None, rigid=True, nam
     """Places an assembly inside `asm`: `source` is an assembly object (of this document or of
     another open one) or the path of an .FCStd (its top-level assembly, or the one labelled
     `label`). `placement` puts the instance's frame (the placed assembly's origin); rigid=False
-    makes its parts and joints join the parent's solve. One undo step; returns the instance."""
+    makes its parts and joints join the parent's solve. An assembly with sub-assemblies of its
+    own is placed with them (nested instances, each rigid or flexible as it is there). One undo
+    step; returns the instance."""
     from .operations import _assembly, transaction
 
     _assembly(asm)
@@ -116,17 +181,17 @@ def insert_sub_assembly(asm, source, label=None, placement=None, rigid=True, nam
         source = _open_assembly(source, label)
     if not objects.is_assembly(source):
         raise ValueError("%s is not a Dispcon assembly" % getattr(source, "Label", source))
-    if _places(source, asm):
-        raise ValueError("%s cannot be placed inside %s: it would contain itself" % (source.Label, asm.Label))
-    if objects.sub_assemblies(source):
-        raise ValueError("%s has sub-assemblies of its own: one level of sub-assemblies only (not done yet)"
-                         % source.Label)
+    chain = _chain(source, asm)
+    if chain is not None:
+        raise ValueError("%s cannot be placed inside %s: it would contain itself (%s)"
+                         % (source.Label, asm.Label, " > ".join(chain)))
     if source.Document != asm.Document and not (asm.Document.FileName and source.Document.FileName):
         raise ValueError("save %s and %s before linking one into the other"
                          % (asm.Document.Label, source.Document.Label))
-    src_parts = objects.parts(source)
-    if not src_parts:
+    if not objects.parts(source) and not objects.sub_assemblies(source):
         raise ValueError("%s has no part to place" % source.Label)
+    for s in objects.sub_assemblies(source):
+        source_of(s)  # one that is gone is named before anything is made
     placement = placement or App.Placement()
     doc = asm.Document
     with transaction(doc, "Insert sub-assembly"):
@@ -135,53 +200,169 @@ def insert_sub_assembly(asm, source, label=None, placement=None, rigid=True, nam
         sub.Assembly = source
         sub.Rigid = bool(rigid)
         sub.Placement = placement
-        for p in src_parts:
-            _new_link(sub, p)
+        for p in objects.parts(source):
+            _new_link(sub, p, p.Placement)
+        for s in objects.sub_assemblies(source):
+            _new_nested(sub, s, s.Name, s.Label, s.Placement)
         asm.addObject(sub)
     return sub
 
 
-def _new_link(sub, part):
-    """The instance's link to `part` of the placed assembly, where that assembly has it."""
+def _new_link(sub, part, local):
+    """The instance's link to `part` of the placed assembly, at `local` in the instance's frame."""
     doc = sub.Document
     link = doc.addObject("App::Link", "%s_%s" % (sub.Name, part.Name))
     link.Label = "%s.%s" % (sub.Label, part.Label)
     link.LinkedObject = part
     instance_link_properties(link)
-    link.LocalPlacement = part.Placement
-    link.Placement = sub.Placement.multiply(part.Placement)
+    link.LocalPlacement = local
+    link.Placement = sub.Placement.multiply(local)
     sub.addObject(link)
     return link
 
 
+def nested_properties(inst):
+    objects._add(inst, "App::PropertyString", "SourceName", "Sub-assembly",
+                 "the Name of the sub-assembly this nested instance mirrors in the assembly its container places")
+    objects._add(inst, "App::PropertyPlacement", "LocalPlacement", "Sub-assembly",
+                 "this nested instance's frame in its container's frame (stored here, per instance)")
+    inst.setEditorMode("SourceName", 1)
+    inst.setEditorMode("Rigid", 1)  # the placed assembly's sub-assembly says it (there, not here)
+
+
+def _new_nested(container, like, source_name, label, local):
+    """A nested instance in `container` mirroring the sub-assembly named `source_name` of the
+    assembly `container` places, made like `like` (that sub-assembly, or an instance mirroring
+    it: its assembly, rigidity, links' and nested instances' poses), at `local`."""
+    doc = container.Document
+    inst = objects.new_sub_assembly(doc, "%s_%s" % (container.Name, source_name))
+    nested_properties(inst)
+    inst.Label = "%s.%s" % (container.Label, label)
+    inst.SourceName = source_name
+    inst.Assembly = source_of(like)
+    inst.Rigid = bool(like.Rigid)
+    inst.LocalPlacement = local
+    inst.Placement = container.Placement.multiply(local)
+    for link in objects.instance_parts(like):
+        if link.LinkedObject is not None:
+            _new_link(inst, link.LinkedObject, link.LocalPlacement)
+    for n in objects.sub_assemblies(like):
+        _new_nested(inst, n, n.SourceName, _mirror_label(n), n.LocalPlacement)
+    container.addObject(inst)
+    return inst
+
+
+def _mirror_label(nested):
+    """The Label of the sub-assembly a nested instance mirrors."""
+    m = mirror_of(nested)
+    return m.Label if m is not None else nested.Label.rsplit(".", 1)[-1]
+
+
+def container_of(inst):
+    return next((o for o in inst.InList if objects.is_assembly(o) or objects.is_sub_assembly(o)), None)
+
+
+def mirror_of(inst, container=None):
+    """The sub-assembly a nested instance mirrors, in the assembly its container places; None
+    when that assembly no longer has it."""
+    container = container or container_of(inst)
+    if container is None:
+        return None
+    return next((s for s in objects.sub_assemblies(source_of(container)) if s.Name == inst.SourceName), None)
+
+
+def _lacks(inst):
+    """What an instance lacks of the assembly it places, or has that it lost (this level only):
+    (labels lacking, objects to remove)."""
+    src = source_of(inst)
+    parts_now = {p.Name: p for p in objects.parts(src)}
+    subs_now = {s.Name: s for s in objects.sub_assemblies(src)}
+    have = set()
+    extra = []
+    for o in inst.Group:
+        if objects.is_sub_assembly(o):
+            if o.SourceName in subs_now:
+                have.add(o.SourceName)
+            else:
+                extra.append(o)
+        elif o.TypeId == "App::Link" and "LocalPlacement" in o.PropertiesList:
+            if o.LinkedObject is not None and o.LinkedObject.Name in parts_now:
+                have.add(o.LinkedObject.Name)
+            else:
+                extra.append(o)
+    lacking = [o.Label for n, o in list(parts_now.items()) + list(subs_now.items()) if n not in have]
+    return lacking, extra
+
+
+def _same_source(nested, mirror):
+    """Whether a nested instance places the assembly the sub-assembly it mirrors places."""
+    a = nested.Assembly if "Assembly" in nested.PropertiesList else None
+    b = mirror.Assembly if "Assembly" in mirror.PropertiesList else None
+    return a is not None and b is not None and key(a) == key(b)
+
+
+def _in_step(inst):
+    if "Assembly" not in inst.PropertiesList or inst.Assembly is None or not objects.is_assembly(inst.Assembly):
+        return True  # gone: source_of says so where it matters
+    lacking, extra = _lacks(inst)
+    if lacking or extra:
+        return False
+    for n in objects.sub_assemblies(inst):
+        m = mirror_of(n, inst)
+        if m is None or bool(m.Rigid) != bool(n.Rigid) or not _same_source(n, m) or not _in_step(n):
+            return False
+    return True
+
+
 def out_of_step(asm):
-    """The instances of `asm` whose placed assembly gained or lost parts since they were made."""
-    out = []
-    for sub in objects.sub_assemblies(asm):
-        src = sub.Assembly if "Assembly" in sub.PropertiesList else None
-        if src is None or not objects.is_assembly(src):
-            continue  # gone: source_of says so where it matters
-        linked = set(links_by_source(sub))
-        now = {p.Name for p in objects.parts(src)}
-        if linked != now or any(l.LinkedObject is None for l in objects.instance_parts(sub)):
-            out.append(sub)
-    return out
+    """The instances of `asm` whose placed assembly (or one nested in it) gained or lost parts or
+    sub-assemblies since they were made, or whose nested instances' rigidity changed there."""
+    return [sub for sub in objects.sub_assemblies(asm) if not _in_step(sub)]
+
+
+def _remove(obj):
+    for o in list(getattr(obj, "Group", [])) if objects.is_sub_assembly(obj) else []:
+        _remove(o)
+    container = container_of(obj)
+    if container is not None:
+        container.removeObject(obj)
+    obj.Document.removeObject(obj.Name)
+
+
+def _bring(inst, chain):
+    src = source_of(inst)
+    _refuse_cycle(inst, src, chain)  # before anything is made: a cycle's copies would never end
+    lacking, extra = _lacks(inst)
+    for o in extra:
+        _remove(o)
+    have = tree(inst)
+    for p in objects.parts(src):
+        if (p.Name,) not in have:
+            _new_link(inst, p, p.Placement)
+    for s in objects.sub_assemblies(src):
+        if (s.Name,) not in have:
+            like = s
+            if is_nested(inst):  # like the container's mirror's own nested instance, where it has one
+                m = mirror_of(inst)
+                like = next((n for n in objects.sub_assemblies(m) if n.SourceName == s.Name), s) if m else s
+            _new_nested(inst, like, s.Name, s.Label, like.LocalPlacement if like is not s else s.Placement)
+    for n in objects.sub_assemblies(inst):
+        m = mirror_of(n, inst)
+        if m is not None and not _same_source(n, m):  # it places another assembly now: made again
+            _remove(n)
+            n = _new_nested(inst, m, m.Name, m.Label, m.Placement)
+        if m is not None and bool(m.Rigid) != bool(n.Rigid):
+            n.Rigid = bool(m.Rigid)
+        _bring(n, chain + [src])
 
 
 def bring_in_step(asm):
-    """Each instance of `asm` gets a link for a part its placed assembly gained, and loses the
-    link of a part it lost (a joint of the parent on it is then skipped and named)."""
+    """Each instance of `asm` (and each nested one) gets a link for a part its placed assembly
+    gained and a nested instance for a sub-assembly it gained, loses those of what it lost (a
+    joint of the parent on one is then skipped and named), and its nested instances take the
+    rigidity of the sub-assemblies they mirror."""
     for sub in out_of_step(asm):
-        src = source_of(sub)
-        now = {p.Name: p for p in objects.parts(src)}
-        for link in objects.instance_parts(sub):
-            if link.LinkedObject is None or link.LinkedObject.Name not in now:
-                sub.removeObject(link)
-                sub.Document.removeObject(link.Name)
-        linked = links_by_source(sub)
-        for name, part in now.items():
-            if name not in linked:
-                _new_link(sub, part)
+        _bring(sub, [asm])
 
 
 def instance_link_properties(link):
@@ -199,11 +380,17 @@ def instance_link_properties(link):
 
 def set_rigid(sub, rigid=True):
     """Makes an instance move as one part (True) or join its parts' joints to the parent's solve
-    (False), in one undo step."""
+    (False), in one undo step. A nested instance is as the sub-assembly it mirrors is: refused."""
     from .operations import transaction
 
     if not objects.is_sub_assembly(sub):
         raise ValueError("%s is not a sub-assembly" % sub.Label)
+    if is_nested(sub):
+        container = container_of(sub)
+        m = mirror_of(sub)
+        raise ValueError("%s is nested in %s: it is rigid or flexible as %s is in %s (set it there)"
+                         % (sub.Label, container.Label if container else "?", m.Label if m else sub.SourceName,
+                            source_of(container).Label if container else "?"))
     with transaction(sub.Document, "Rigid" if rigid else "Flexible"):
         sub.Rigid = bool(rigid)
     return sub
@@ -212,7 +399,8 @@ def set_rigid(sub, rigid=True):
 class InstanceJoint:
     """A joint of a placed assembly as it holds in one flexible instance: its references are
     the instance's links; everything else is read from the joint in the placed assembly (which
-    is never written to). Its Label is the instance's and the joint's: Leg1.Revolute."""
+    is never written to). Its Label is the instance's and the joint's: Leg1.Revolute (nested:
+    Walk2.Leg1.Revolute)."""
 
     def __init__(self, joint, instance, ref1, ref2):
         self.source, self.instance = joint, instance
@@ -223,103 +411,173 @@ class InstanceJoint:
         return getattr(self.source, name)
 
 
-def solved_locals(sub):
-    """The placed assembly's parts solved in its own frame (its joints, its grounded parts),
-    from their placements in its document, which is not changed: {source part Name: Placement}."""
+# The placed assemblies being solved in their own frames now (solved_locals inside
+# solved_locals, for rigid instances nested in rigid ones): one met again is a cycle.
+_SOLVING = []
+
+
+def _refuse_cycle(where, src, chain):
+    if key(src) in [key(a) for a in chain]:
+        names = [a.Label for a in chain[[key(a) for a in chain].index(key(src)):]] + [src.Label]
+        raise ValueError("%s: %s would contain itself (%s): an assembly cannot be placed inside itself"
+                         % (where.Label, src.Label, " > ".join(names)))
+
+
+def solved_locals(src, where):
+    """The placed assembly `src` solved in its own frame (its joints, its grounded parts, its own
+    instances as they are there), from its document, which is not changed: {path (source_tree):
+    placement in its frame} of everything in it. `where`: the instance asking (named in errors)."""
     from .adapter import Adapter
     from .operations import tolerance
 
-    src = source_of(sub)
-    inner = Adapter(src)
-    with inner.engine_errors():
-        r = inner.model.assemble(tolerance=tolerance(src), max_iterations=src.MaxIterations)
+    _refuse_cycle(where, src, _SOLVING)
+    _SOLVING.append(src)
+    try:
+        inner = Adapter(src)
+        with inner.engine_errors():
+            r = inner.model.assemble(tolerance=tolerance(src), max_iterations=src.MaxIterations)
+    finally:
+        _SOLVING.pop()
     if not r.converged:
-        raise ValueError("%s: the joints of %s do not hold (%s)" % (sub.Label, src.Label, inner.labelled(r.message)))
-    return {p.Name: inner.placement_of(p) for p in inner.parts}
+        raise ValueError("%s: the joints of %s do not hold (%s)" % (where.Label, src.Label, inner.labelled(r.message)))
+    return {path: inner.placement_of(o) if o.Name in inner.frames else o.Placement
+            for path, o in source_tree(src).items()}
 
 
 def add_instances(adapter, physics):
-    """The parent's adapter gets the bodies of `adapter.asm`'s sub-assemblies (one per rigid
-    instance, one per part of a flexible one) and returns the flexible instances' joints. What
-    does not depend on where an instance is (the placed assembly solved in its frame, the mass
-    properties of its parts in their own frames) is computed once per placed assembly."""
+    """The parent's adapter gets the bodies of `adapter.asm`'s sub-assemblies, at any depth (one
+    per rigid instance, one per link of a flexible one) and returns the flexible instances'
+    joints. What does not depend on where an instance is (the placed assembly solved in its
+    frame, the mass properties of its parts in their own frames) is computed once per placed
+    assembly."""
+    chain = list(_SOLVING)
+    if not chain or key(chain[-1]) != key(adapter.asm):
+        chain.append(adapter.asm)
+    return _add_level(adapter, adapter.asm, physics, ({}, {}), chain)
+
+
+def _add_level(adapter, container, physics, once, chain):
     import Part
 
     from .adapter import local_mass
 
-    def key(obj):
-        return (obj.Document.Name, obj.Name)
-
-    rigid_once, part_once = {}, {}
+    rigid_once, part_once = once
     extra = []
-    for sub in objects.sub_assemblies(adapter.asm):
+    mirrors = None
+    if not objects.is_assembly(container):  # nested instances: rigid or flexible as what they mirror
+        mirrors = {s.Name: s for s in objects.sub_assemblies(source_of(container))}
+    for sub in objects.sub_assemblies(container):
         src = source_of(sub)
-        links = links_by_source(sub)
-        missing = [p.Label for p in objects.parts(src) if p.Name not in links]
-        if missing:
+        _refuse_cycle(sub, src, chain)
+        lacking, _ = _lacks(sub)
+        if lacking:
             raise ValueError("%s: %s has parts this instance lacks (%s): Solve brings them in"
-                             % (sub.Label, src.Label, ", ".join(missing)))
-        if sub.Rigid:
+                             % (sub.Label, src.Label, ", ".join(lacking)))
+        if mirrors is None:
+            rigid = sub.Rigid
+        elif sub.SourceName in mirrors:
+            rigid = mirrors[sub.SourceName].Rigid
+        else:
+            raise ValueError("%s: %s no longer has the sub-assembly it mirrors: Solve brings it in step"
+                             % (sub.Label, source_of(container).Label))
+        inside = tree(sub)
+        if rigid:
             if key(src) not in rigid_once:
-                local = solved_locals(sub)
+                local = solved_locals(src, sub)
                 shapes = []
-                for name, link in links.items():
-                    if name in local:  # else a part since removed from the placed assembly
-                        s = objects.shape_of(link).copy()
-                        s.Placement = local[name].multiply(link.Placement.inverse()).multiply(s.Placement)
+                for path, o in inside.items():
+                    if path in local and o.TypeId == "App::Link":
+                        s = objects.shape_of(o).copy()
+                        s.Placement = local[path].multiply(o.Placement.inverse()).multiply(s.Placement)
                         shapes.append(s)
                 rigid_once[key(src)] = (local, local_mass(Part.makeCompound(shapes), App.Placement()))
             local, mass = rigid_once[key(src)]
-            placed = {link.Name: local[name] for name, link in links.items() if name in local}
             body = adapter.add_body(sub, None, physics, local=mass)
-            for link_name, pl in placed.items():
-                adapter.frames[link_name] = (body, pl)
+            placed = {o.Name: local[path] for path, o in inside.items() if path in local}
+            for name, pl in placed.items():
+                adapter.frames[name] = (body, pl)
             adapter.rigid[sub.Name] = placed
         else:
-            for link in links.values():
+            links = {}
+            for link in objects.instance_parts(sub):
                 source = link.LinkedObject
+                if source is None:
+                    continue
+                links[source.Name] = link
                 if key(source) not in part_once:
                     part_once[key(source)] = local_mass(objects.shape_of(link), link.Placement)
                 adapter.add_body(link, None, physics, local=part_once[key(source)])
+            paths = {o.Name: path for path, o in source_tree(src).items()}
             for j in objects.joints(src):
                 refs = []
                 for ref in (j.Reference1, j.Reference2):
-                    link = links.get(ref[0].Name) if ref and ref[0] is not None else None
-                    refs.append((link, ref[1]) if link is not None else None)
+                    o = ref[0] if ref else None
+                    d = inside.get(paths.get(o.Name)) if o is not None and o.Document == src.Document else None
+                    refs.append((d, ref[1]) if d is not None else None)
                 extra.append(InstanceJoint(j, sub, *refs))
+            extra += _add_level(adapter, sub, physics, once, chain + [src])
     return extra
 
 
+def _set_local(adapter, obj, container):
+    f, g = adapter.frames.get(obj.Name), adapter.frames.get(container.Name)
+    if f is None:
+        return  # a flexible nested instance: its frame moves only with its container's
+    if f[1] is not None and g is not None and f[0] == g[0]:  # both inside one rigid instance
+        local = f[1] if g[1] is None else g[1].inverse().multiply(f[1])
+    else:
+        local = container.Placement.inverse().multiply(obj.Placement)
+    if not same(local, obj.LocalPlacement):
+        obj.LocalPlacement = local
+
+
+def _placed(adapter, obj):
+    """An object inside a rigid instance goes where its body's owner (just written) puts it."""
+    f = adapter.frames.get(obj.Name)
+    if f is not None and f[1] is not None:
+        pl = adapter.part_of(f[0]).Placement.multiply(f[1])
+        if not same(pl, obj.Placement):
+            obj.Placement = pl
+
+
+def _settle(adapter, inst, container):
+    _placed(adapter, inst)
+    if container is not None:
+        _set_local(adapter, inst, container)
+    for link in objects.instance_parts(inst):
+        if link.Name in adapter.frames:  # else a part since removed from the placed assembly
+            _placed(adapter, link)
+            _set_local(adapter, link, inst)
+    for n in objects.sub_assemblies(inst):
+        _settle(adapter, n, inst)
+
+
 def write_back(adapter):
-    """After the parent's bodies are written: a rigid instance's parts follow its Placement; a
-    flexible instance's parts keep their placements in its frame up to date."""
+    """After the parent's bodies are written: the parts (and nested instances) of a rigid
+    instance follow its Placement; every link and nested instance keeps its placement in its
+    container's frame up to date, at every level."""
     for sub in objects.sub_assemblies(adapter.asm):
-        if sub.Name in adapter.rigid:
-            for link in objects.instance_parts(sub):
-                local = adapter.rigid[sub.Name].get(link.Name)
-                if local is None:
-                    continue
-                if not same(local, link.LocalPlacement):
-                    link.LocalPlacement = local
-                placed = sub.Placement.multiply(local)
-                if not same(placed, link.Placement):
-                    link.Placement = placed
-        else:
-            inverse = sub.Placement.inverse()
-            for link in objects.instance_parts(sub):
-                if link.Name in adapter.names:
-                    local = inverse.multiply(link.Placement)
-                    if not same(local, link.LocalPlacement):
-                        link.LocalPlacement = local
+        _settle(adapter, sub, None)
+
+
+def _everything(inst):
+    out = [inst]
+    for o in inst.Group:
+        if objects.is_sub_assembly(o):
+            out += _everything(o)
+        elif "LocalPlacement" in o.PropertiesList:
+            out.append(o)
+    return out
 
 
 def snapshot(asm):
-    """Every placement a motion of `asm` can change (its parts, its instances and their parts);
-    calling the result puts them back."""
+    """Every placement a motion of `asm` can change (its parts, its instances and everything in
+    them, at any depth); calling the result puts them back."""
     saved = [(o, o.Placement) for o in objects.parts(asm)]
     for sub in objects.sub_assemblies(asm):
-        saved.append((sub, sub.Placement))
-        saved += [(link, link.Placement, link.LocalPlacement) for link in objects.instance_parts(sub)]
+        for o in _everything(sub):
+            saved.append((o, o.Placement, o.LocalPlacement) if "LocalPlacement" in o.PropertiesList
+                         else (o, o.Placement))
 
     def restore():
         for entry in saved:

@@ -1,0 +1,461 @@
+"""Nested sub-assemblies in real FreeCAD (freecadcmd): the walker of test_subassembly.py (the leg
+of leg.FCStd placed four times on a frame) saved as walker.FCStd and placed twice on a track in
+parade.FCStd, flexible and rigid at each level, and the parade placed again in a festival (three
+levels). Degrees of freedom against the sum of the walkers', poses against the walker's own file
+and Freudenstein's closure, every joint of every level within 1e-9, a save and reopen keeping every
+placement, the .dcl round trip, cycles refused by name. Each class opens and closes its own
+documents."""
+import math
+import os
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+os.environ["DISPCON_SUB_IMPORT_ONLY"] = "1"  # test_subassembly's helpers, not its tests
+
+import test_subassembly as ts  # noqa: E402
+from test_subassembly import App, angle_in, da, digest, gaps, parts, th, turned_about_pin  # noqa: E402
+
+STANDS = ((0, 0), (12, 0))
+
+
+def inside(obj):
+    """Every link and nested instance inside an instance, at any depth."""
+    out = []
+    for o in obj.Group:
+        out.append(o)
+        if da.is_sub_assembly(o):
+            out += inside(o)
+    return out
+
+
+def named(container, path):
+    """The object at a dotted path of labels inside an instance: named(walk2, "Leg3.Crank")."""
+    obj = container
+    for head in path.split("."):
+        obj = next(o for o in obj.Group if o.Label == "%s.%s" % (obj.Label, head))
+    return obj
+
+
+def placements(objs):
+    return {o.Name: (o.Placement, getattr(o, "LocalPlacement", None)) for o in objs}
+
+
+def make_walker_file(tmp, rigid_legs=False, hip_joints=("Fixed",) * 4):
+    """leg.FCStd and walker.FCStd (saved, solved); returns (leg path, walker path, walker doc)."""
+    leg = ts.make_leg(tmp)
+    doc, asm, frame, subs = ts.make_walker(tmp, leg, rigid=rigid_legs, hip_joints=hip_joints)
+    doc.save()
+    return leg, doc.FileName, doc
+
+
+def make_parade(tmp, walker, rigid, stand_joints=("Fixed", "Fixed"), name="parade"):
+    """A grounded track with a boss per stand and walker.FCStd placed on each (Walk1, Walk2),
+    each walker's frame held on its stand by stand_joints[k], its frame's first boss 0.2 above."""
+    doc = App.newDocument(name)
+    doc.saveAs(os.path.join(tmp, name + ".FCStd"))
+    asm = da.create_assembly(doc, "Parade")
+    track = doc.addObject("Part::Feature", "Track")
+    track.Shape = parts.frame(STANDS)
+    da.add_part(asm, track, grounded=True)
+    edge = parts.circle_edge(parts.frame(ts.LEGS), App.Vector(0, 0, 0))
+    walks = []
+    for k, ((x, y), kind) in enumerate(zip(STANDS, stand_joints)):
+        w = da.insert_sub_assembly(asm, walker, placement=App.Placement(App.Vector(x + 1, y + 1, 0.5), App.Rotation()),
+                                   rigid=rigid, name="Walk%d" % (k + 1))
+        ref = [(w, "Frame." + edge), (asm, "Walk%d.Frame.%s" % (k + 1, edge))][k % 2]
+        da.add_joint(asm, kind, (track, parts.circle_edge(track.Shape, App.Vector(x, y, 0.1))), ref, offset=0.2)
+        walks.append(w)
+    r = da.solve(asm)
+    assert r.converged, r.message
+    return doc, asm, track, walks
+
+
+def relative_to(obj, frame):
+    return frame.Placement.inverse().multiply(obj.Placement)
+
+
+class Parade(unittest.TestCase):
+    RIGID, RIGID_LEGS, HIPS, STANDS = False, False, ("Fixed",) * 4, ("Fixed", "Fixed")
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.leg, self.walker, self.wdoc = make_walker_file(self.tmp.name, self.RIGID_LEGS, self.HIPS)
+        self.digests = (digest(self.leg), digest(self.walker))
+        self.doc, self.asm, self.track, self.walks = make_parade(self.tmp.name, self.walker, self.RIGID, self.STANDS)
+
+    def tearDown(self):
+        for name in list(App.listDocuments()):
+            App.closeDocument(name)
+        self.tmp.cleanup()
+
+    def assert_files_unchanged(self):
+        self.assertEqual((digest(self.leg), digest(self.walker)), self.digests, "the parade wrote to a placed file")
+
+    def assert_joints_hold(self, asm=None):
+        checked = 0
+        for gap, tilt, label in gaps(asm or self.asm):
+            self.assertLess(gap, 1e-9, label)
+            self.assertLess(tilt, 1e-9, label)
+            checked += 1
+        return checked
+
+    def assert_locals(self):
+        """Every link and nested instance where its container's Placement and its own
+        LocalPlacement put it (what a save stores, per instance)."""
+        for w in self.walks:
+            for o in inside(w):
+                container = next(i for i in o.InList if da.is_sub_assembly(i))
+                self.assertTrue(th.same(container.Placement.multiply(o.LocalPlacement), o.Placement, 1e-12), o.Label)
+
+    def assert_legs_closed(self, walks, prefix=""):
+        for w in walks:
+            frame = named(w, "Frame")
+            for k in (1, 2, 3, 4):
+                hip, crank, rocker = (named(w, "Leg%d.%s" % (k, p)) for p in ("Hip", "Crank", "Rocker"))
+                self.assertTrue(th.same(relative_to(hip, frame), self.walker_pose("Leg%d.Hip" % k), 1e-9), hip.Label)
+                err = math.remainder(angle_in(rocker, hip) - th.freudenstein(angle_in(crank, hip)), 2 * math.pi)
+                self.assertLess(abs(err), 1e-8, rocker.Label)
+
+    def walker_pose(self, label):
+        """A part's pose in walker.FCStd, relative to its frame: what the walker's own file says."""
+        frame = next(p for p in da.parts(self.wdoc.getObject("Walker")) if p.Label == "Frame")
+        obj = next(o for o in self.wdoc.Objects if o.Label == label)
+        return relative_to(obj, frame)
+
+
+class FlexibleParade(Parade):
+
+    def test_dof_is_the_walkers_sum_and_a_nested_crank_drags_alone(self):
+        walker_dof = da.check(self.wdoc.getObject("Walker"))["dof"]
+        self.assertEqual(walker_dof, 4)
+        c = da.check(self.asm)
+        self.assertEqual(c["dof"], 2 * walker_dof, c["message"])
+        self.assertEqual(c["part_dof"]["Walk2.Leg3.Crank"], 1)
+        self.assertEqual(c["part_dof"]["Walk1.Frame"], 0)
+        self.assertEqual(sorted(j.Label for j in c["redundant"]),
+                         ["Walk%d.Leg%d.Revolute003" % (w, k) for w in (1, 2) for k in (1, 2, 3, 4)])
+        # The frames sit on their stands, 0.2 above each boss's top: the Fixed joints' offset.
+        for w, (x, y) in zip(self.walks, STANDS):
+            self.assertTrue(th.same(named(w, "Frame").Placement,
+                                    App.Placement(App.Vector(x, y, 0.3), App.Rotation()), 1e-9), w.Label)
+        # Inside each walker: the hips where walker.FCStd has them against the frame (bolted on),
+        # and each leg a four-bar (its crank free: the snap onto the stands turned it as it needed).
+        self.assert_legs_closed(self.walks)
+        crank, hip, rocker = (named(self.walks[1], "Leg3." + p) for p in ("Crank", "Hip", "Rocker"))
+        start = angle_in(crank, hip)
+        before = placements(da.placed_parts(self.asm))
+        r = da.drag(self.asm, crank, turned_about_pin(crank, 40), steps=20)
+        self.assertTrue(r.converged)
+        self.assertAlmostEqual(math.remainder(angle_in(crank, hip) - start - math.radians(40), 2 * math.pi), 0,
+                               delta=1e-9)
+        err = math.remainder(angle_in(rocker, hip) - th.freudenstein(angle_in(crank, hip)), 2 * math.pi)
+        self.assertLess(abs(err), 1e-8)
+        leg3 = named(self.walks[1], "Leg3")
+        for o in da.placed_parts(self.asm):
+            if o not in da.instance_parts(leg3) or o == hip:
+                # The other legs only polished to the solve's tolerance (the snap left them within it).
+                self.assertTrue(th.same(o.Placement, before[o.Name][0], 1e-9), o.Label)
+        self.assertEqual(self.assert_joints_hold(), 2 + 2 * (4 + 4 * 4))
+        self.assert_locals()
+        self.assert_files_unchanged()
+
+    def test_saved_and_reopened_every_placement_kept(self):
+        crank = named(self.walks[0], "Leg2.Crank")
+        self.assertTrue(da.drag(self.asm, crank, turned_about_pin(crank, 70), steps=10).converged)
+        saved = {o.Label: (o.Placement, o.LocalPlacement, getattr(o, "SourceName", None), getattr(o, "Rigid", None))
+                 for w in self.walks for o in inside(w)}
+        saved.update({w.Label: (w.Placement, None, None, w.Rigid) for w in self.walks})
+        path = self.doc.FileName
+        self.doc.save()
+        for name in list(App.listDocuments()):
+            App.closeDocument(name)
+        doc = App.openDocument(path)
+        asm = doc.getObject("Parade")
+        walks = da.sub_assemblies(asm)
+        self.assertEqual([w.Label for w in walks], ["Walk1", "Walk2"])
+        seen = 0
+        for w in walks:
+            for o in [w] + inside(w):
+                pl, local, source, rigid = saved.pop(o.Label)
+                self.assertTrue(th.same(o.Placement, pl, 1e-12), o.Label)
+                if local is not None:
+                    self.assertTrue(th.same(o.LocalPlacement, local, 1e-12), o.Label)
+                self.assertEqual(getattr(o, "SourceName", None), source, o.Label)
+                self.assertEqual(getattr(o, "Rigid", None), rigid, o.Label)
+                seen += 1
+        self.assertEqual(saved, {})
+        self.assertEqual(seen, 2 * (1 + 1 + 4 * 5))
+        self.assertEqual(da.check(asm)["dof"], 8)
+        before = placements(da.placed_parts(asm))
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        for o in da.placed_parts(asm):
+            self.assertTrue(th.same(o.Placement, before[o.Name][0], 1e-9), o.Label)
+        self.asm, self.walks = asm, walks
+        self.assert_joints_hold()
+        self.assert_files_unchanged()
+
+    def test_dcl_round_trip_names_every_level(self):
+        dcl = os.path.join(self.tmp.name, "parade.dcl")
+        da.export_dcl(self.asm, dcl)
+        with open(dcl) as f:
+            text = f.read()
+        for label in ("Walk2.Leg4.Revolute003", "Walk1.Fixed"):
+            self.assertIn('"%s"' % label, text)
+        before = placements(da.placed_parts(self.asm))
+        crank = named(self.walks[1], "Leg1.Crank")
+        self.assertTrue(da.drag(self.asm, crank, turned_about_pin(crank, -50), steps=10).converged)
+        self.assertFalse(th.same(crank.Placement, before[crank.Name][0], 1e-3))
+        da.import_dcl(self.asm, dcl)
+        for o in da.placed_parts(self.asm):
+            self.assertTrue(th.same(o.Placement, before[o.Name][0], 1e-9), o.Label)
+        self.assert_locals()
+
+    def test_moving_a_walker_carries_every_level(self):
+        w = self.walks[0]
+        local = {o.Name: o.Placement for o in inside(w)}
+        move = App.Placement(App.Vector(3, -2, 1), App.Rotation(App.Vector(0, 0, 1), 30))
+        w.Placement = move.multiply(w.Placement)
+        for o in inside(w):
+            self.assertTrue(th.same(o.Placement, move.multiply(local[o.Name]), 1e-12), o.Label)
+        self.assert_locals()
+        # Solve puts it back on its stand, whole.
+        self.assertTrue(da.solve(self.asm).converged)
+        self.assertTrue(th.same(named(w, "Frame").Placement, App.Placement(App.Vector(0, 0, 0.3), App.Rotation()),
+                                1e-9))
+        self.assert_joints_hold()
+
+    def test_three_levels_a_festival_of_parades(self):
+        self.doc.save()
+        doc = App.newDocument("festival")
+        doc.saveAs(os.path.join(self.tmp.name, "festival.FCStd"))
+        asm = da.create_assembly(doc, "Festival")
+        ground = doc.addObject("Part::Feature", "Ground")
+        ground.Shape = parts.frame([(0, 0)])
+        da.add_part(asm, ground, grounded=True)
+        parade = da.insert_sub_assembly(asm, self.doc.FileName, rigid=False, name="P1",
+                                        placement=App.Placement(App.Vector(0, 0, 1), App.Rotation()))
+        # The track's first boss, bottom circle, on the ground's boss top.
+        edge = parts.circle_edge(self.track.Shape, App.Vector(0, 0, 0))
+        da.add_joint(asm, "Fixed", (ground, parts.circle_edge(ground.Shape, App.Vector(0, 0, 0.1))),
+                     (parade, "Track." + edge), offset=0.5)
+        self.assertTrue(da.solve(asm).converged)
+        c = da.check(asm)
+        self.assertEqual(c["dof"], 8, c["message"])
+        self.assertEqual(c["part_dof"]["P1.Walk2.Leg4.Crank"], 1)
+        crank, _ = da.resolve(asm, asm, "P1.Walk2.Leg4.Crank.Edge1")
+        hip, _ = da.resolve(asm, parade, "Walk2.Leg4.Hip.Edge1")
+        rocker = named(parade, "Walk2.Leg4.Rocker")
+        self.assertEqual((crank.Label, hip.Label), ("P1.Walk2.Leg4.Crank", "P1.Walk2.Leg4.Hip"))
+        # The track's boss bottom on the ground's boss top, 0.5 up: the parade 0.6 above where its
+        # file has it. What does not move in the parade (its frames and hips) where the parade has
+        # it against the track, to 1e-8: each solve (the parade's, this one) holds a Fixed joint's
+        # angle to 1e-9, which 6 to 8 along a frame makes a few 1e-9. Each leg a four-bar.
+        track = named(parade, "Track")
+        self.assertTrue(th.same(track.Placement, App.Placement(App.Vector(0, 0, 0.6), App.Rotation()), 1e-9))
+        fixed = [o for o in da.placed_parts(asm)[2:] if c["part_dof"][o.Label] == 0]
+        self.assertEqual(len(fixed), 2 * (1 + 4))
+        for o in fixed:
+            there = next(p for p in self.doc.Objects if p.Label == o.Label[len("P1."):])
+            self.assertTrue(th.same(relative_to(o, track), relative_to(there, self.track), 1e-8), o.Label)
+        self.assert_legs_closed([named(parade, "Walk1"), named(parade, "Walk2")])
+        before = placements(da.placed_parts(asm))
+        self.assertTrue(da.drag(asm, crank, turned_about_pin(crank, 25), steps=10).converged)
+        err = math.remainder(angle_in(rocker, hip) - th.freudenstein(angle_in(crank, hip)), 2 * math.pi)
+        self.assertLess(abs(err), 1e-8)
+        # The rest polished to the solve's tolerance at most (a few 1e-9, as above).
+        moved = {o.Name for o in da.instance_parts(named(parade, "Walk2.Leg4"))} - {hip.Name}
+        for o in da.placed_parts(asm):
+            if o.Name not in moved:
+                self.assertTrue(th.same(o.Placement, before[o.Name][0], 1e-8), o.Label)
+        self.assertEqual(self.assert_joints_hold(asm), 1 + 2 + 2 * (4 + 4 * 4))
+        self.assert_files_unchanged()
+
+
+class RigidParade(Parade):
+    # Rigid walkers (their legs flexible inside): Walk1 turns on a revolute, Walk2 is bolted on.
+    RIGID, STANDS = True, ("Revolute", "Fixed")
+
+    def test_a_rigid_walker_is_its_file_solved_and_one_body(self):
+        c = da.check(self.asm)
+        self.assertEqual(c["dof"], 1, c["message"])
+        self.assertEqual(c["part_dof"], {"Track": 0, "Walk1": 1, "Walk2": 0})
+        # Every part and nested instance, at any depth: the instance's Placement times its pose
+        # in walker.FCStd (the walker's own solve, in its frame).
+        for w in self.walks:
+            for o in inside(w):
+                there = next(p for p in self.wdoc.Objects if p.Label == o.Label.split(".", 1)[1])
+                self.assertTrue(th.same(o.Placement, w.Placement.multiply(there.Placement), 1e-9), o.Label)
+        self.assert_locals()
+
+    def test_dragging_a_nested_part_turns_the_walker_whole(self):
+        w1 = self.walks[0]
+        objs = inside(w1)
+        rel = {o.Name: relative_to(o, w1) for o in objs}
+        others = placements(inside(self.walks[1]))
+        rocker = named(w1, "Leg2.Rocker")
+        grab = rocker.Placement.multVec(App.Vector(1.25, 0, 0.1))
+        pivot = App.Vector(0, 0, 0)
+        d = da.PointDrag(self.asm, rocker, grab)
+        for k in range(1, 11):
+            d.move(pivot + App.Rotation(App.Vector(0, 0, 1), 3 * k).multVec(grab - pivot))
+        d.finish()
+        self.assertGreater(math.degrees(w1.Placement.Rotation.Angle), 5)
+        for o in objs:
+            self.assertTrue(th.same(relative_to(o, w1), rel[o.Name], 1e-12), o.Label)
+        for o in inside(self.walks[1]):
+            self.assertTrue(th.same(o.Placement, others[o.Name][0], 1e-12), o.Label)
+        self.assert_joints_hold()
+        self.assert_locals()
+        # Saved and reopened: every placement of every level back.
+        saved = placements([self.walks[1], w1] + objs + inside(self.walks[1]))
+        path = self.doc.FileName
+        self.doc.save()
+        for name in list(App.listDocuments()):
+            App.closeDocument(name)
+        doc = App.openDocument(path)
+        for name, (pl, local) in saved.items():
+            o = doc.getObject(name)
+            self.assertTrue(th.same(o.Placement, pl, 1e-12), o.Label)
+            if local is not None:
+                self.assertTrue(th.same(o.LocalPlacement, local, 1e-12), o.Label)
+        self.assertEqual(da.check(doc.getObject("Parade"))["dof"], 1)
+        self.assert_files_unchanged()
+
+    def test_a_nested_instance_is_as_its_file_says(self):
+        leg = named(self.walks[0], "Leg1")
+        self.assertFalse(leg.Rigid)
+        self.assertEqual(leg.getEditorMode("Rigid"), ["ReadOnly"])
+        with self.assertRaisesRegex(ValueError, "Walk1.Leg1 is nested in Walk1: it is rigid or flexible as Leg1 is "
+                                                "in Walker \\(set it there\\)"):
+            da.set_rigid(leg, True)
+        self.doc.UndoMode = 1
+        undo = self.doc.UndoCount
+        da.set_rigid(self.walks[0], False)  # the top one is the designer's: one undo step
+        self.assertEqual(self.doc.UndoCount, undo + 1)
+        c = da.check(self.asm)
+        # Walk1 flexible: its frame's turn on the revolute, and each of its legs' crank; Walk2: 0.
+        self.assertEqual(c["dof"], 1 + 4, c["message"])
+        self.assertEqual(c["part_dof"]["Walk1.Leg1.Crank"], 1)
+
+
+class FlexibleWalkersOfRigidLegs(Parade):
+    # The walker's legs rigid in walker.FCStd (leg 1 on a revolute, 2-4 bolted: 1 DOF); two such
+    # walkers placed flexible: a rigid leg nested in a flexible walker is one body of the parade.
+    RIGID_LEGS, HIPS = True, ("Revolute", "Fixed", "Fixed", "Fixed")
+
+    def test_nested_rigid_legs(self):
+        self.assertEqual(da.check(self.wdoc.getObject("Walker"))["dof"], 1)
+        c = da.check(self.asm)
+        self.assertEqual(c["dof"], 2, c["message"])
+        self.assertEqual(c["part_dof"]["Walk2.Leg1"], 1)
+        self.assertEqual(c["part_dof"]["Walk2.Leg2"], 0)
+        self.assertNotIn("Walk2.Leg1.Crank", c["part_dof"])
+        leg = named(self.walks[1], "Leg1")
+        self.assertTrue(leg.Rigid)
+        objs = da.instance_parts(leg)
+        rel = {o.Name: relative_to(o, leg) for o in objs}
+        others = placements(inside(self.walks[0]))
+        crank = named(leg, "Crank")
+        frame = named(self.walks[1], "Frame")
+        start = relative_to(leg, frame)
+        self.assertTrue(da.drag(self.asm, crank, turned_about_pin(crank, 35), steps=10).converged)
+        # The leg turned whole about its hip pin (the revolute under it), nothing inside it moved.
+        turn = start.inverse().multiply(relative_to(leg, frame))
+        self.assertAlmostEqual(math.degrees(turn.Rotation.Angle), 35, delta=1e-7)
+        self.assertLess((turn.Rotation.Axis - App.Vector(0, 0, 1)).Length, 1e-9)
+        for o in objs:
+            self.assertTrue(th.same(relative_to(o, leg), rel[o.Name], 1e-12), o.Label)
+        for o in inside(self.walks[0]):
+            self.assertTrue(th.same(o.Placement, others[o.Name][0], 1e-12), o.Label)
+        self.assert_joints_hold()
+        self.assert_locals()
+        self.assert_files_unchanged()
+
+
+class Cycles(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.leg, self.walker, self.wdoc = make_walker_file(self.tmp.name)
+
+    def tearDown(self):
+        for name in list(App.listDocuments()):
+            App.closeDocument(name)
+        self.tmp.cleanup()
+
+    def unchanged(self, doc):
+        return (len(doc.Objects), doc.UndoCount)
+
+    def test_placed_inside_itself_directly_or_through_files(self):
+        walker = self.wdoc.getObject("Walker")
+        before = self.unchanged(self.wdoc)
+        with self.assertRaisesRegex(ValueError, r"^Walker cannot be placed inside Walker: it would contain itself "
+                                                r"\(Walker \(walker.FCStd\)\)$"):
+            da.insert_sub_assembly(walker, walker)
+        self.assertEqual(self.unchanged(self.wdoc), before)
+        # The leg of leg.FCStd given the walker that places it: through the file.
+        legdoc = App.getDocument("leg")
+        leg = legdoc.getObject("Assembly") if legdoc.getObject("Assembly") else da.top_assemblies(legdoc)[0]
+        before = self.unchanged(legdoc)
+        with self.assertRaisesRegex(ValueError, r"^Walker cannot be placed inside Leg: it would contain itself "
+                                                r"\(Walker > Leg1 > Leg \(leg.FCStd\)\)$"):
+            da.insert_sub_assembly(leg, self.walker)
+        self.assertEqual(self.unchanged(legdoc), before)
+        # Two files down: a parade of walkers placed in the leg.
+        pdoc, parade, _, _ = make_parade(self.tmp.name, self.walker, rigid=True)
+        pdoc.save()
+        with self.assertRaisesRegex(ValueError, r"\(Parade > Walk1 > Walker > Leg1 > Leg \(leg.FCStd\)\)$"):
+            da.insert_sub_assembly(leg, pdoc.FileName)
+        self.assertEqual(len(legdoc.Objects), before[0])
+
+    def test_a_cycle_made_behind_the_workbenchs_back_is_refused_by_name(self):
+        # As a file edited elsewhere could make it: the walker's Leg3 now places the walker.
+        walker = self.wdoc.getObject("Walker")
+        leg3 = next(s for s in da.sub_assemblies(walker) if s.Label == "Leg3")
+        pdoc, parade, _, walks = make_parade(self.tmp.name, self.walker, rigid=True)
+        leg3.Assembly = walker
+        for call in (lambda: da.check(walker), lambda: da.solve(walker)):
+            with self.assertRaisesRegex(ValueError, r"^Leg3: Walker would contain itself \(Walker > Walker\): an "
+                                                    "assembly cannot be placed inside itself"):
+                call()
+        # Rigid walkers in the parade: the walker's own solve meets it, one level down.
+        before = placements(da.placed_parts(parade))
+        with self.assertRaisesRegex(ValueError, r"Leg3: Walker would contain itself"):
+            da.solve(parade)
+        for o in da.placed_parts(parade):
+            self.assertTrue(th.same(o.Placement, before[o.Name][0], 0), o.Label)
+
+
+class Transactions(unittest.TestCase):
+    def test_placing_a_walker_is_one_undo_step_and_refusals_change_nothing(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            leg, walker, wdoc = make_walker_file(tmp)
+            doc = App.newDocument("one")
+            doc.UndoMode = 1
+            doc.saveAs(os.path.join(tmp, "one.FCStd"))
+            asm = da.create_assembly(doc, "Top")
+            count, undo = len(doc.Objects), doc.UndoCount
+            w = da.insert_sub_assembly(asm, walker, rigid=False, name="W")
+            self.assertEqual(len(doc.Objects), count + 1 + 1 + 4 * 5)
+            self.assertEqual(doc.UndoCount, undo + 1)
+            with self.assertRaisesRegex(ValueError, r"W has no part Leg9 \(parts: Frame, Leg1 \(a sub-assembly\)"):
+                da.add_joint(asm, "Fixed", (w, "Leg9.Hip.Edge1"), (w, "Frame.Edge1"))
+            with self.assertRaisesRegex(ValueError, r"W.Leg2 has no part Foot"):
+                da.add_joint(asm, "Fixed", (asm, "W.Leg2.Foot.Edge1"), (w, "Frame.Edge1"))
+            self.assertEqual(doc.UndoCount, undo + 1)
+            doc.undo()
+            self.assertEqual(len(doc.Objects), count)
+            for name in list(App.listDocuments()):
+                App.closeDocument(name)
+
+
+if True:  # freecadcmd runs the script as a module of another name
+    suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
+                               for c in (FlexibleParade, RigidParade, FlexibleWalkersOfRigidLegs, Cycles, Transactions))
+    result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
+    failed = len(result.failures) + len(result.errors)
+    print("%d passed, %d failed" % (result.testsRun - failed, failed))
+    sys.exit(1 if failed else 0)
