@@ -9,7 +9,8 @@ crank's way: a design that collides), side-rods.FCStd (twenty parts) and the cou
 couplings.py (three-gears, planetary, steering, vice), and prints the time of each snap. Then the
 reused sub-assembly: leg.FCStd (a four-bar leg on its hip plate) placed four times on a frame,
 linked from that file, in walker.FCStd (flexible: each leg moves, here each at another crank
-angle) and walker-rigid.FCStd (rigid: each leg moves as one part)."""
+angle) and walker-rigid.FCStd (rigid: each leg moves as one part); and nested: walker.FCStd placed
+twice on a track in parade.FCStd (flexible walkers of flexible legs, 8 degrees of freedom)."""
 import math
 import os
 import sys
@@ -215,6 +216,37 @@ def build_walkers(out):
         App.closeDocument(d.Name)
 
 
+STANDS = ((0, 0), (12, 0))
+
+
+def build_parade(out):
+    """parade.FCStd: walker.FCStd (itself four legs of leg.FCStd) placed twice on a track,
+    flexible, each walker's frame bolted to its stand (a Fixed joint from the stand's top to the
+    frame's first boss, 0.2 above): nested sub-assemblies, 8 degrees of freedom (4 per walker)."""
+    doc = App.newDocument("parade")
+    doc.saveAs(os.path.join(out, "parade.FCStd"))
+    asm = da.create_assembly(doc, "Parade")
+    track = doc.addObject("Part::Feature", "Track")
+    track.Shape = parts.frame(STANDS)
+    da.add_part(asm, track, grounded=True)
+    edge = parts.circle_edge(parts.frame(LEGS), App.Vector(0, 0, 0))
+    for k, (x, y) in enumerate(STANDS):
+        walk = da.insert_sub_assembly(asm, os.path.join(out, "walker.FCStd"), rigid=False, name="Walk%d" % (k + 1),
+                                      placement=App.Placement(App.Vector(x, y, 0.3), App.Rotation()))
+        da.add_joint(asm, "Fixed", pin(track, (x, y, 0), top=True), (walk, "Frame." + edge), offset=0.2)
+    t0 = time.perf_counter()
+    r = da.solve(asm)
+    elapsed = time.perf_counter() - t0
+    print("parade: %s, snap %.1f ms, %d degrees of freedom" % (r.message, 1000 * elapsed, da.check(asm)["dof"]))
+    if not r.converged:
+        sys.exit(1)
+    doc.save()
+    backup = doc.FileName + "1"
+    if os.path.exists(backup):
+        os.remove(backup)
+    App.closeDocument(doc.Name)
+
+
 SAMPLES = (("fourbar", fourbar), ("slider-crank", slider_crank), ("rssr", rssr),
            ("fourbar-clash", fourbar_clash), ("side-rods", side_rods))
 if set(da.COUPLINGS) <= set(da.offered_types(da.engine.load())):
@@ -240,6 +272,7 @@ def main():
         doc.saveAs(os.path.join(out, name + ".FCStd"))
         App.closeDocument(doc.Name)
     build_walkers(out)
+    build_parade(out)
 
 
 main()

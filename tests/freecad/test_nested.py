@@ -198,6 +198,34 @@ class FlexibleParade(Parade):
         self.assert_joints_hold()
         self.assert_files_unchanged()
 
+    def test_saved_where_the_workbench_is_missing_then_reopened_with_it(self):
+        crank = named(self.walks[1], "Leg4.Crank")
+        self.assertTrue(da.drag(self.asm, crank, turned_about_pin(crank, 30), steps=5).converged)
+        saved = placements([o for w in self.walks for o in [w] + inside(w)])
+        path = self.doc.FileName
+        self.doc.save()
+        for name in list(App.listDocuments()):
+            App.closeDocument(name)
+        with tempfile.TemporaryDirectory() as home:
+            th.freecad_session(WITHOUT_WORKBENCH, home, path)
+        doc = App.openDocument(path)
+        nested = [doc.getObject(n) for n in saved if da.is_sub_assembly(doc.getObject(n))
+                  and getattr(doc.getObject(n), "SourceName", "")]
+        self.assertEqual(len(nested), 8)
+        self.assertTrue(all(n.Proxy is None for n in nested))  # lost in that session, found by DispconType
+        for name, (pl, local) in saved.items():
+            o = doc.getObject(name)
+            self.assertTrue(th.same(o.Placement, pl, 1e-12), o.Label)
+            if local is not None:
+                self.assertTrue(th.same(o.LocalPlacement, local, 1e-12), o.Label)
+        asm = doc.getObject("Parade")
+        self.assertEqual(da.check(asm)["dof"], 8)
+        self.assertTrue(da.solve(asm).converged)
+        self.assertTrue(all(isinstance(n.Proxy, da.SubAssemblyProxy) for n in nested))
+        self.asm, self.walks = asm, da.sub_assemblies(asm)
+        self.assert_joints_hold()
+        self.assert_files_unchanged()
+
     def test_dcl_round_trip_names_every_level(self):
         dcl = os.path.join(self.tmp.name, "parade.dcl")
         da.export_dcl(self.asm, dcl)
@@ -273,6 +301,16 @@ class FlexibleParade(Parade):
                 self.assertTrue(th.same(o.Placement, before[o.Name][0], 1e-8), o.Label)
         self.assertEqual(self.assert_joints_hold(asm), 1 + 2 + 2 * (4 + 4 * 4))
         self.assert_files_unchanged()
+
+
+WITHOUT_WORKBENCH = th.BARE_SESSION + """
+subs = [o for o in doc.Objects if "DispconType" in o.PropertiesList and o.DispconType == "SubAssembly"]
+assert len(subs) == 10, [o.Name for o in doc.Objects]
+assert sum(1 for s in subs if getattr(s, "SourceName", "")) == 8 and all(s.Proxy is None for s in subs)
+doc.save()
+print("SESSION OK")
+sys.exit(0)
+"""
 
 
 class RigidParade(Parade):
@@ -376,6 +414,56 @@ class FlexibleWalkersOfRigidLegs(Parade):
         self.assert_files_unchanged()
 
 
+class OneDocument(unittest.TestCase):
+    def test_the_leg_gains_a_part_and_solve_brings_every_level_in(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            doc = App.newDocument("all")
+            leg, g, crank, coupler, rocker = th.fourbar(doc, tmp)
+            leg.Label, g.Label, crank.Label, rocker.Label = "Leg", "Hip", "Crank", "Rocker"
+            self.assertTrue(da.solve(leg).converged)
+            doc, walker, frame, legs = ts.make_walker(tmp, leg, rigid=False, hip_joints=("Fixed", "Fixed"))
+            parade = da.create_assembly(doc, "Parade")
+            track = doc.addObject("Part::Feature", "Track")
+            track.Shape = parts.frame(STANDS)
+            da.add_part(parade, track, grounded=True)
+            edge = parts.circle_edge(frame.Shape, App.Vector(0, 0, 0))
+            walks = []
+            for k, (x, y) in enumerate(STANDS):
+                w = da.insert_sub_assembly(parade, walker, rigid=False, name="Walk%d" % (k + 1),
+                                           placement=App.Placement(App.Vector(x, y, 0.3), App.Rotation()))
+                da.add_joint(parade, "Fixed", (track, parts.circle_edge(track.Shape, App.Vector(x, y, 0.1))),
+                             (w, "Frame." + edge), offset=0.2)
+                walks.append(w)
+            self.assertTrue(da.solve(parade).converged)
+            self.assertEqual(da.check(parade)["dof"], 4)
+            with self.assertRaisesRegex(ValueError, "Walker cannot be placed inside Leg: it would contain itself "
+                                                    "\\(Walker > Leg1 > Leg \\(all\\)\\)"):
+                da.insert_sub_assembly(leg, walker)
+            pedal = doc.addObject("Part::Feature", "Pedal")
+            pedal.Shape = parts.link(0.5)
+            pedal.Placement = crank.Placement.multiply(App.Placement(App.Vector(1, 0, 0.1), App.Rotation()))
+            da.add_part(leg, pedal)
+            da.add_joint(leg, "Fixed", (crank, parts.circle_edge(crank.Shape, App.Vector(1, 0, 0.1))),
+                         (pedal, parts.circle_edge(pedal.Shape, App.Vector(0, 0, 0))))
+            with self.assertRaisesRegex(ValueError, "Walk1.Leg1: Leg has parts this instance lacks \\(Pedal\\)"):
+                da.check(parade)
+            self.assertTrue(da.solve(parade).converged)
+            self.assertEqual(sorted(len(da.instance_parts(named(w, "Leg%d" % k))) for w in walks for k in (1, 2)),
+                             [5] * 4)
+            c = da.check(parade)
+            self.assertEqual(c["dof"], 4, c["message"])
+            # The pedal bolted on its crank in each place, by the leg's own joint, per instance.
+            pedal2 = named(walks[1], "Leg2.Pedal")
+            crank2 = named(walks[1], "Leg2.Crank")
+            self.assertTrue(th.same(relative_to(pedal2, crank2), relative_to(pedal, crank), 1e-9))
+            self.assertTrue(da.drag(parade, crank2, turned_about_pin(crank2, 30), steps=5).converged)
+            self.assertTrue(th.same(relative_to(pedal2, crank2), relative_to(pedal, crank), 1e-9))
+            for gap, tilt, label in gaps(parade):
+                self.assertLess(gap, 1e-9, label)
+            for name in list(App.listDocuments()):
+                App.closeDocument(name)
+
+
 class Cycles(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
@@ -454,7 +542,8 @@ class Transactions(unittest.TestCase):
 
 if True:  # freecadcmd runs the script as a module of another name
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
-                               for c in (FlexibleParade, RigidParade, FlexibleWalkersOfRigidLegs, Cycles, Transactions))
+                               for c in (FlexibleParade, RigidParade, FlexibleWalkersOfRigidLegs, OneDocument,
+                                                                       Cycles, Transactions))
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
     failed = len(result.failures) + len(result.errors)
     print("%d passed, %d failed" % (result.testsRun - failed, failed))
