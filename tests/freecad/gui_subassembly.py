@@ -17,7 +17,7 @@ os.environ["DISPCON_SUB_IMPORT_ONLY"] = "1"
 import FreeCAD as App  # noqa: E402
 import FreeCADGui as Gui  # noqa: E402
 import gui_workbench as gw  # noqa: E402  (puts the workbench on sys.path)
-from dispcon_fc.qt import QtGui, QtWidgets  # noqa: E402
+from dispcon_fc.qt import QtCore, QtGui, QtWidgets  # noqa: E402
 import test_subassembly as ts  # noqa: E402
 
 
@@ -180,4 +180,102 @@ class Walker(unittest.TestCase):
         self.assertTrue(os.path.getsize(path) > 10000)
 
 
-gw.run_in_gui([Walker], "status-subassembly")
+class Parade(unittest.TestCase):
+    """Nested sub-assemblies: walker.FCStd (four legs of leg.FCStd, flexible) placed twice on a
+    track, flexible; the tree shows each walker's legs inside it, a nested leg's coupler dragged
+    with the mouse, a screenshot (parade.png)."""
+
+    @classmethod
+    def setUpClass(cls):
+        os.environ["DISPCON_NESTED_IMPORT_ONLY"] = "1"
+        import test_nested as tn
+
+        cls.tn = tn
+        cls.tmp = tempfile.TemporaryDirectory()
+        leg, walker, wdoc = tn.make_walker_file(cls.tmp.name)
+        App.closeDocument(wdoc.Name)
+        cls.doc, cls.asm, cls.track, cls.walks = tn.make_parade(cls.tmp.name, walker, rigid=False)
+        App.setActiveDocument(cls.doc.Name)
+        Gui.ActiveDocument = Gui.getDocument(cls.doc.Name)
+        cls.view = Gui.getDocument(cls.doc.Name).ActiveView
+        cls.view.viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
+        gw.settle()
+
+    @classmethod
+    def tearDownClass(cls):
+        Gui.Selection.clearSelection()
+        for name in list(App.listDocuments()):
+            App.closeDocument(name)
+        cls.tmp.cleanup()
+        gw.settle()
+
+    def tree_item(self, label):
+        for tree in gw.mw().findChildren(QtWidgets.QTreeWidget):
+            items = tree.findItems(label, QtCore.Qt.MatchExactly | QtCore.Qt.MatchRecursive, 0)
+            if items:
+                return items[0]
+        return None
+
+    def test_the_tree_nests_and_a_nested_leg_drags_with_the_mouse(self):
+        import dispcon_fc.assembly as da
+        from dispcon_fc import dragging, viewproviders
+
+        tn = self.tn
+        walk2 = self.walks[1]
+        leg3 = tn.named(walk2, "Leg3")
+        # The tree: Walk2.Leg3 under Walk2, with the flexible instance's icon; its links under it.
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(tn.named(leg3, "Coupler"))
+        gw.settle()
+        item = self.tree_item("Walk2.Leg3")
+        self.assertIsNotNone(item)
+        parent = item.parent()
+        grandparent = parent.parent()
+        children = [item.child(k) for k in range(item.childCount())]
+        self.assertEqual((parent.text(0), grandparent.text(0)), ("Walk2", "Parade"))
+        self.assertIn("Walk2.Leg3.Coupler", [c.text(0) for c in children])
+        self.assertIsInstance(leg3.ViewObject.Proxy, viewproviders.ViewProviderSubAssembly)
+        self.assertTrue(leg3.ViewObject.Proxy.getIcon().endswith("Dispcon_SubAssemblyFlexible.svg"))
+        self.assertEqual(leg3.getEditorMode("Rigid"), ["ReadOnly"])  # the walker's file says it
+        coupler, crank, hip, rocker = (tn.named(leg3, p) for p in ("Coupler", "Crank", "Hip", "Rocker"))
+        others = {o.Name: o.Placement for o in da.placed_parts(self.asm) if o not in da.instance_parts(leg3)}
+        self.view.viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        gw.settle()
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Dispcon_Drag", 1)
+        mode = dragging._active
+        self.assertIsNotNone(mode)
+        try:
+            x0, y0 = (int(v) for v in self.view.getPointOnScreen(coupler.Placement.multVec(App.Vector(1.5, 0, 0.1))))
+            info = self.view.getObjectInfo((x0, y0))
+            self.assertTrue(info and info["Object"] == coupler.Name, info)
+            before = ts.angle_in(crank, hip)
+            gw.mouse(self.view, "press", x0, y0)
+            self.assertIsNotNone(mode.drag, "pressing on Walk2.Leg3's coupler did not start a drag")
+            for k in range(1, 16):
+                gw.mouse(self.view, "move", x0 + k, y0 - k)
+                Gui.updateGui()
+            gw.mouse(self.view, "release", x0 + 15, y0 - 15)
+        finally:
+            Gui.runCommand("Dispcon_Drag", 0)
+        self.assertGreater(abs(ts.angle_in(crank, hip) - before), 0.01, "Walk2.Leg3's crank did not follow")
+        err = ts.math.remainder(ts.angle_in(rocker, hip) - ts.th.freudenstein(ts.angle_in(crank, hip)), 2 * ts.math.pi)
+        self.assertLess(abs(err), 1e-8)
+        for o in da.placed_parts(self.asm):
+            if o.Name in others and o != hip:
+                self.assertTrue(ts.th.same(o.Placement, others[o.Name], 1e-9), "%s moved with Walk2.Leg3" % o.Label)
+        for gap, tilt, label in ts.gaps(self.asm):
+            self.assertLess(gap, 1e-9, label)
+        self.assertEqual(da.check(self.asm)["dof"], 8)
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(leg3)
+        self.view.viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
+        path = gw.shot("parade", self.view)
+        Gui.Selection.clearSelection()
+        self.assertTrue(os.path.getsize(path) > 10000)
+
+
+gw.run_in_gui([Walker, Parade], "status-subassembly")

@@ -540,7 +540,7 @@ class Transactions(unittest.TestCase):
                 App.closeDocument(name)
 
 
-if True:  # freecadcmd runs the script as a module of another name
+if not os.environ.get("DISPCON_NESTED_IMPORT_ONLY"):  # gui_subassembly.py imports the helpers only
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
                                for c in (FlexibleParade, RigidParade, FlexibleWalkersOfRigidLegs, OneDocument,
                                                                        Cycles, Transactions))
