@@ -1080,7 +1080,7 @@ class Samples(unittest.TestCase):
             self.assertNotIn("not supported", run.stdout)
             # The coupling samples (couplings.py) too: the engine has the coupling rows.
             self.assertEqual(sorted(os.listdir(out)), ["fourbar-clash.FCStd", "fourbar.FCStd", "leg.FCStd",
-                                                  "planetary.FCStd", "rssr.FCStd", "side-rods.FCStd",
+                                                  "parade.FCStd", "planetary.FCStd", "rssr.FCStd", "side-rods.FCStd",
                                                   "slider-crank.FCStd", "steering.FCStd", "three-gears.FCStd",
                                                   "vice.FCStd", "walker-rigid.FCStd", "walker.FCStd"])
 
