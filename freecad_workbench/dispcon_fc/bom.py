@@ -1,0 +1,311 @@
+"""The bill of materials of an assembly: each distinct part once, with how many the assembly holds,
+written into a FreeCAD Spreadsheet of the document (one undo step, the same sheet updated when
+run again) and exportable as CSV.
+
+Which parts are the same part:
+- links (App::Link, a part inserted from a file, each part of a placed sub-assembly) to one
+  object are one part, named by that object's label;
+- other parts are one part when their labels differ only by FreeCAD's numbering ("Bolt",
+  "Bolt001", "Bolt002") and their shapes are the same in their own frames (volume, area, faces,
+  edges and box within a millionth of their size): a "link-1" and a "link-3" stay two parts, and
+  two different shapes labelled "Pin" and "Pin001" stay two parts, each under its own label.
+
+Sub-assemblies, as the designer chooses (SUB_ASSEMBLIES):
+- "rows": one row per distinct placed assembly (the same leg placed four times: 4), its parts
+  not listed;
+- "indented": that row followed by its parts (indices 3.1, 3.2, ...), their quantities per one
+  sub-assembly, as a drawing's parts list of a sub-assembly;
+- "expanded": no sub-assembly rows; their parts are counted with the assembly's own (a leg's
+  crank placed four times: 4 more cranks).
+
+Material and mass come only from what the document says: a part's Material (a map with Name and
+Density, a link to a material object, or a name) or a material object (FEM's MaterialSolid,
+App::MaterialObject) whose References name the part. The workbench's own Density property is the
+solver's weight of a part, not a material's, and is not used: without a material density the Mass
+cell stays empty."""
+import csv
+import re
+
+import FreeCAD as App
+
+from . import objects
+from .objects import instance_parts, is_sub_assembly, parts, shape_of, sub_assemblies
+
+SUB_ASSEMBLIES = ("rows", "indented", "expanded")
+COLUMNS = ("Index", "Name", "Quantity", "Material", "Volume (mm³)", "Mass (kg)", "Source")
+# FreeCAD numbers a label that is taken already: "Bolt" then "Bolt001", "Bolt002".
+_NUMBERED = re.compile(r"(?<=\D)\d{3,}$")
+
+
+def label_base(label):
+    """A label without FreeCAD's numbering: "Bolt001" -> "Bolt" ("link-1" stays as it is)."""
+    return _NUMBERED.sub("", label)
+
+
+class Row:
+    """One line of the bill: `index` ("3", or "3.1" under a sub-assembly), `name`, `quantity`,
+    `material` ("" when unknown), `volume` (mm³ of one piece) and `mass` (kg of one piece, None
+    when a density is unknown), `source` (the file a linked part comes from, else ""), `kind`
+    ("part" or "sub-assembly") and `members`, the document's objects it counts."""
+
+    def __init__(self, name, kind, key, material="", volume=None, mass=None, source=""):
+        self.index, self.name, self.kind, self.key = "", name, kind, key
+        self.quantity, self.members = 0, []
+        self.material, self.volume, self.mass, self.source = material, volume, mass, source
+
+    def cells(self):
+        """The row's values in COLUMNS' order (numbers as numbers, unknowns as "")."""
+        return (self.index, self.name, self.quantity, self.material,
+                "" if self.volume is None else self.volume, "" if self.mass is None else self.mass, self.source)
+
+    def __repr__(self):
+        return "Row(%s, %r, %d)" % (self.index, self.name, self.quantity)
+
+
+# -- what a part is ------------------------------------------------------------------------------
+
+def _definition(obj):
+    """The object a part shows: a link's linked object (followed to the end), else the part."""
+    if obj.TypeId == "App::Link" or hasattr(obj, "LinkedObject"):
+        target = obj.getLinkedObject(True)
+        if target is not None and target is not obj:
+            return target
+    return obj
+
+
+def _signature(shape):
+    """What identical shapes share, in their own frame: volume, area, faces, edges, the box."""
+    local = shape.copy()
+    local.Placement = App.Placement()
+    box = local.BoundBox
+    return (local.Volume, local.Area, len(local.Faces), len(local.Edges), box.XLength, box.YLength, box.ZLength)
+
+
+def _same_shape(a, b):
+    if a[2:4] != b[2:4]:
+        return False
+    size = max(abs(v) for v in a[4:] + b[4:]) or 1.0
+    tolerance = 1e-6
+    return (abs(a[0] - b[0]) <= tolerance * size ** 3 and abs(a[1] - b[1]) <= tolerance * size ** 2
+            and all(abs(x - y) <= tolerance * size for x, y in zip(a[4:], b[4:])))
+
+
+def _source(obj, asm):
+    """The file a linked part comes from (its document's file name), or "" for this document's."""
+    if obj.Document is asm.Document:
+        return ""
+    import os
+
+    return os.path.basename(obj.Document.FileName) if obj.Document.FileName else obj.Document.Name
+
+
+def material(obj):
+    """(name, density in kg/mm³ or None) of a part, from what the document says, or ("", None)."""
+    for o in (obj, _definition(obj)):
+        found = _own_material(o)
+        if found is not None:
+            return found
+    for o in obj.Document.Objects:
+        if "References" in o.PropertiesList and isinstance(getattr(o, "Material", None), dict):
+            refs = o.References or []
+            if any(r[0] in (obj, _definition(obj)) for r in refs):
+                return _card(o.Material)
+    return "", None
+
+
+def _own_material(obj):
+    if "Material" not in obj.PropertiesList:
+        return None
+    value = obj.Material
+    if isinstance(value, dict):
+        return _card(value)
+    if hasattr(value, "Material") and isinstance(value.Material, dict):  # a link to a material object
+        return _card(value.Material)
+    if isinstance(value, str) and value:
+        return value, None
+    return None
+
+
+def _card(card):
+    """A material card's name and density (kg/mm³), the density None when missing or unreadable."""
+    name = card.get("Name") or card.get("CardName") or ""
+    density = None
+    text = card.get("Density")
+    if text:
+        try:
+            density = App.Units.Quantity(text).getValueAs("kg/mm^3").Value
+        except Exception:  # no unit, or not a density: not guessed
+            density = None
+        if density is not None and not density > 0:
+            density = None
+    return name, density
+
+
+# -- the bill ----------------------------------------------------------------------------------
+
+class _Counter:
+    """Rows in their first part's order, each part counted into the row it belongs to."""
+
+    def __init__(self, asm):
+        self.asm, self.rows = asm, []
+
+    def add_part(self, obj, times=1):
+        target = _definition(obj)
+        shape = shape_of(obj)
+        sig = _signature(shape)
+        linked = target is not obj
+        for row in self.rows:
+            if row.kind != "part":
+                continue
+            if linked and row.key == ("link", target):
+                break
+            if not linked and row.key[0] == "shape" and row.key[1] == label_base(obj.Label) \
+                    and _same_shape(row.key[2], sig):
+                break
+        else:
+            name, density = material(obj)
+            volume = shape.Volume
+            key = ("link", target) if linked else ("shape", label_base(obj.Label), sig)
+            label = target.Label if linked else label_base(obj.Label)
+            if not linked and any(r.kind == "part" and r.name == label for r in self.rows):
+                label = obj.Label  # another shape under the same name: its own label
+            row = Row(label, "part", key, name, volume, None if density is None else volume * density,
+                      _source(target, self.asm))
+            self.rows.append(row)
+        row.quantity += times
+        row.members.append(obj)
+        return row
+
+    def add_sub_assembly(self, sub):
+        from .subassembly import source_of
+
+        src = source_of(sub)
+        for row in self.rows:
+            if row.key == ("sub", src):
+                break
+        else:
+            row = Row(src.Label, "sub-assembly", ("sub", src), source=_source(src, self.asm))
+            row.children = _Counter(self.asm)
+            for link in instance_parts(sub):
+                row.children.add_part(link)
+            pieces = row.children.rows
+            row.volume = sum(r.volume * r.quantity for r in pieces)
+            if all(r.mass is not None for r in pieces):
+                row.mass = sum(r.mass * r.quantity for r in pieces)
+            self.rows.append(row)
+        row.quantity += 1
+        row.members.append(sub)
+        return row
+
+
+def rows(asm, sub_assemblies_as="indented"):
+    """The bill of `asm` as a list of Row, numbered: its own parts and its sub-assemblies in the
+    tree's order, sub-assemblies as `sub_assemblies_as` says (SUB_ASSEMBLIES)."""
+    if sub_assemblies_as not in SUB_ASSEMBLIES:
+        raise ValueError("sub-assemblies: one of %s, not %r" % (", ".join(SUB_ASSEMBLIES), sub_assemblies_as))
+    if not objects.is_assembly(asm):
+        raise ValueError("%s is not a Dispcon assembly" % getattr(asm, "Label", asm))
+    own = set(o.Name for o in parts(asm))
+    counter = _Counter(asm)
+    for o in asm.Group:
+        if o.Name in own:
+            counter.add_part(o)
+        elif is_sub_assembly(o):
+            if sub_assemblies_as == "expanded":
+                for link in instance_parts(o):
+                    counter.add_part(link)
+            else:
+                counter.add_sub_assembly(o)
+    out = []
+    for k, row in enumerate(counter.rows, 1):
+        row.index = str(k)
+        out.append(row)
+        if row.kind == "sub-assembly" and sub_assemblies_as == "indented":
+            for m, child in enumerate(row.children.rows, 1):
+                child.index = "%d.%d" % (k, m)  # its quantity: in one sub-assembly
+                out.append(child)
+    return out
+
+
+def table(bill):
+    """The header and the rows' cells: what the sheet and the CSV hold."""
+    return [list(COLUMNS)] + [list(r.cells()) for r in bill]
+
+
+# -- the spreadsheet -----------------------------------------------------------------------------
+
+def sheet_of(asm):
+    """The BOM spreadsheet made for `asm` before, or None."""
+    for o in asm.Document.Objects:
+        if getattr(o, "DispconType", "") == "BOM" and getattr(o, "Assembly", None) == asm:
+            return o
+    return None
+
+
+def _column(k):
+    return chr(ord("A") + k)
+
+
+def _cell_text(value):
+    """A cell's content as the spreadsheet reads it: numbers as numbers, text always as text
+    (a leading ' keeps "1.2" an index and "=..." a name, not a formula)."""
+    if isinstance(value, bool):
+        value = str(value)
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return repr(value)
+    return "'" + value if value else ""
+
+
+def write_sheet(asm, sub_assemblies_as="indented"):
+    """Writes the bill of `asm` into its BOM spreadsheet (made the first time, emptied and written
+    again afterwards) in one undo step; returns (sheet, rows)."""
+    from .operations import transaction
+
+    bill = rows(asm, sub_assemblies_as)
+    cells = table(bill)
+    doc = asm.Document
+    with transaction(doc, "Bill of materials"):
+        sheet = sheet_of(asm)
+        if sheet is None:
+            sheet = doc.addObject("Spreadsheet::Sheet", "BOM")
+            objects._mark(sheet, "BOM")
+            sheet.addProperty("App::PropertyLink", "Assembly", "Dispcon", "the assembly this is the bill of")
+            sheet.Assembly = asm
+            sheet.addProperty("App::PropertyEnumeration", "SubAssemblies", "Dispcon",
+                              "sub-assemblies: one row each, with their parts indented, or expanded into parts")
+            sheet.SubAssemblies = list(SUB_ASSEMBLIES)
+            sheet.addProperty("App::PropertyInteger", "BomRows", "Dispcon", "the rows written last (the header's too)")
+            sheet.setEditorMode("BomRows", 2)
+            for k, width in enumerate((60, 180, 70, 140, 110, 90, 140)):
+                sheet.setColumnWidth(_column(k), width)
+        sheet.Label = "BOM of %s" % asm.Label
+        sheet.SubAssemblies = sub_assemblies_as
+        last = _column(len(COLUMNS) - 1)
+        if sheet.BomRows:
+            # The last bill's cells and their styles (clearAll would take the sheet's own
+            # properties with them); any cell a designer added beside the bill stays.
+            sheet.clear("A1:%s%d" % (last, sheet.BomRows))
+        sheet.BomRows = len(cells)
+        for r, values in enumerate(cells, 1):
+            for c, value in enumerate(values):
+                text = _cell_text(value)
+                if text:
+                    sheet.set("%s%d" % (_column(c), r), text)
+        sheet.setStyle("A1:%s1" % last, "bold")
+        for r, row in enumerate(bill, 2):
+            if row.kind == "sub-assembly":
+                sheet.setStyle("A%d:%s%d" % (r, last, r), "bold")
+        sheet.recompute()
+    return sheet, bill
+
+
+def write_csv(bill, path):
+    """Writes the bill (rows()) as CSV at `path`: the sheet's header and cells, comma-separated,
+    numbers in full precision."""
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f)
+        for values in table(bill):
+            w.writerow(["" if v is None else (repr(v) if isinstance(v, float) else v) for v in values])
+    return path
