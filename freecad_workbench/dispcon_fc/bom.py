@@ -24,15 +24,16 @@ App::MaterialObject) whose References name the part. The workbench's own Density
 solver's weight of a part, not a material's, and is not used: without a material density the Mass
 cell stays empty."""
 import csv
+import os
 import re
 
 import FreeCAD as App
 
 from . import objects
-from .objects import instance_parts, is_sub_assembly, parts, shape_of, sub_assemblies
+from .objects import instance_parts, is_sub_assembly, parts, shape_of
 
 SUB_ASSEMBLIES = ("rows", "indented", "expanded")
-COLUMNS = ("Index", "Name", "Quantity", "Material", "Volume (mm³)", "Mass (kg)", "Source")
+COLUMNS = ("Index", "Name", "Quantity", "Material", "Volume (mm³)", "Mass (g)", "Source")
 # FreeCAD numbers a label that is taken already: "Bolt" then "Bolt001", "Bolt002".
 _NUMBERED = re.compile(r"(?<=\D)\d{3,}$")
 
@@ -44,7 +45,7 @@ def label_base(label):
 
 class Row:
     """One line of the bill: `index` ("3", or "3.1" under a sub-assembly), `name`, `quantity`,
-    `material` ("" when unknown), `volume` (mm³ of one piece) and `mass` (kg of one piece, None
+    `material` ("" when unknown), `volume` (mm³ of one piece) and `mass` (g of one piece, None
     when a density is unknown), `source` (the file a linked part comes from, else ""), `kind`
     ("part" or "sub-assembly") and `members`, the document's objects it counts."""
 
@@ -94,13 +95,11 @@ def _source(obj, asm):
     """The file a linked part comes from (its document's file name), or "" for this document's."""
     if obj.Document is asm.Document:
         return ""
-    import os
-
     return os.path.basename(obj.Document.FileName) if obj.Document.FileName else obj.Document.Name
 
 
 def material(obj):
-    """(name, density in kg/mm³ or None) of a part, from what the document says, or ("", None)."""
+    """(name, density in g/mm³ or None) of a part, from what the document says, or ("", None)."""
     for o in (obj, _definition(obj)):
         found = _own_material(o)
         if found is not None:
@@ -127,13 +126,13 @@ def _own_material(obj):
 
 
 def _card(card):
-    """A material card's name and density (kg/mm³), the density None when missing or unreadable."""
+    """A material card's name and density (g/mm³), the density None when missing or unreadable."""
     name = card.get("Name") or card.get("CardName") or ""
     density = None
     text = card.get("Density")
     if text:
         try:
-            density = App.Units.Quantity(text).getValueAs("kg/mm^3").Value
+            density = 1000.0 * App.Units.Quantity(text).getValueAs("kg/mm^3").Value
         except Exception:  # no unit, or not a density: not guessed
             density = None
         if density is not None and not density > 0:

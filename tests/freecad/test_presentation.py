@@ -25,7 +25,7 @@ from dispcon_fc import bom, exploded  # noqa: E402
 import test_headless as th  # noqa: E402
 import test_subassembly as ts  # noqa: E402
 
-STEEL, ALUMINIUM = 7900e-9, 2700e-9  # kg/mm³
+STEEL, ALUMINIUM = 7900e-6, 2700e-6  # g/mm³ (7900 and 2700 kg/m³)
 
 
 def bits(pl):
@@ -95,9 +95,9 @@ class Hardware(unittest.TestCase):
                                ("4", "Pin001", 1, ""), ("5", "link-1", 1, ""), ("6", "link-3", 1, "")])
         plate, bolt, pin, pin2 = bill[:4]
         self.assertAlmostEqual(plate.volume, 100 * 50 * 5, delta=1e-6)
-        self.assertAlmostEqual(plate.mass, 100 * 50 * 5 * ALUMINIUM, delta=1e-12)
+        self.assertAlmostEqual(plate.mass, 100 * 50 * 5 * ALUMINIUM, delta=1e-9)  # 67.5 g
         self.assertAlmostEqual(bolt.volume, math.pi * 9 * 20, delta=1e-6)
-        self.assertAlmostEqual(bolt.mass, math.pi * 9 * 20 * STEEL, delta=1e-12)
+        self.assertAlmostEqual(bolt.mass, math.pi * 9 * 20 * STEEL, delta=1e-9)
         self.assertAlmostEqual(pin2.volume, math.pi * 2.5 ** 2 * 10, delta=1e-6)
         # No material: no mass, whatever the workbench's solver weight (Density) says.
         self.assertIsNone(pin.mass)
@@ -140,7 +140,7 @@ class Hardware(unittest.TestCase):
         self.assertEqual(read[0], list(bom.COLUMNS))
         self.assertEqual([r[:3] for r in read[1:]], [[r.index, r.name, str(r.quantity)] for r in bill])
         self.assertEqual(float(read[2][5]), bill[1].mass)  # all its digits
-        self.assertAlmostEqual(float(read[2][5]), math.pi * 9 * 20 * STEEL, delta=1e-15)
+        self.assertAlmostEqual(float(read[2][5]), math.pi * 9 * 20 * STEEL, delta=1e-9)
         self.assertEqual(read[3][5], "")
         for row in cells(sheet)[1:]:
             self.assertIn([c.lstrip("'") for c in row[:3]], [r[:3] for r in read])

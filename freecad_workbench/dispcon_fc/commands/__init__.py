@@ -5,12 +5,13 @@ import FreeCADGui as Gui
 
 from .. import panels
 from ..resources import icon_path
-from . import analysis, build, joints, motion
+from . import analysis, build, joints, motion, presentation
 from .common import Command, active_assembly  # noqa: F401
 from .motion import _drive, _solve  # noqa: F401  (scripts and tests run them directly)
 
 # (title, module): one toolbar each, and one section of the menu (the joints in a submenu).
-GROUPS = (("Assembly", build), ("Joints", joints), ("Motion", motion), ("Analysis", analysis))
+GROUPS = (("Assembly", build), ("Joints", joints), ("Motion", motion), ("Analysis", analysis),
+          ("Presentation", presentation))
 
 
 def __getattr__(name):

@@ -1,0 +1,256 @@
+"""The bill of materials and the exploded view in real FreeCAD under Xvfb (1280x900): their
+commands in the Presentation toolbar (icons, tooltips, visible at 1280 px), the BOM panel (its
+table, the sub-assemblies choice, Export CSV, OK writing the spreadsheet, shown), the Exploded view
+panel (units, the slider's live preview, the assembly's parts hidden while the view is shown and
+back, to the bit, when it is hidden; Cancel), with screenshots (bom-sheet.png, exploded.png) for
+a person to look at. Quits FreeCAD itself; writes 0 to <out>/status-presentation when every test
+passed."""
+import csv
+import os
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+os.environ["DISPCON_GUI_IMPORT_ONLY"] = "1"
+os.environ["DISPCON_SUB_IMPORT_ONLY"] = "1"
+os.environ["DISPCON_PRESENTATION_IMPORT_ONLY"] = "1"
+
+import FreeCAD as App  # noqa: E402
+import FreeCADGui as Gui  # noqa: E402
+import gui_workbench as gw  # noqa: E402  (puts the workbench on sys.path)
+from dispcon_fc.qt import QtCore, QtGui, QtWidgets  # noqa: E402
+import test_presentation as tp  # noqa: E402
+import test_subassembly as ts  # noqa: E402
+
+COMMANDS = ("Dispcon_BillOfMaterials", "Dispcon_ExplodedView")
+
+
+def coloured(icon, size=32):
+    image = icon.pixmap(size, size).toImage()
+    return sum(1 for x in range(0, size, 2) for y in range(0, size, 2) if QtGui.QColor(image.pixel(x, y)).alpha() > 0)
+
+
+def grab(name):
+    """The main window as it is (a spreadsheet's view is a widget: a grab reads it)."""
+    gw.settle()
+    path = os.path.join(gw.OUT, name + ".png")
+    os.makedirs(gw.OUT, exist_ok=True)
+    gw.mw().grab().save(path)
+    return path
+
+
+class Walker(unittest.TestCase):
+    """The walker of test_subassembly (a frame, the leg of leg.FCStd placed four times), the frame
+    of steel."""
+
+    @classmethod
+    def setUpClass(cls):
+        import dispcon_fc.assembly as da
+
+        cls.da = da
+        cls.tmp = tempfile.TemporaryDirectory()
+        leg = ts.make_leg(cls.tmp.name)
+        cls.doc, cls.asm, cls.frame, cls.subs = ts.make_walker(cls.tmp.name, leg, rigid=False)
+        for sub, deg in zip(cls.subs, (0, 90, 180, 270)):
+            crank = ts.part(sub, "Crank")
+            if deg:
+                assert da.drag(cls.asm, crank, ts.turned_about_pin(crank, deg), steps=max(2, deg // 10)).converged
+        cls.frame.addProperty("App::PropertyMap", "Material")
+        cls.frame.Material = {"Name": "Steel", "Density": "7900 kg/m^3"}
+        cls.frame.ViewObject.ShapeColor = (0.2, 0.4, 0.8, 0.0)
+        cls.doc.UndoMode = 1
+        App.setActiveDocument(cls.doc.Name)
+        Gui.ActiveDocument = Gui.getDocument(cls.doc.Name)
+        cls.view = Gui.getDocument(cls.doc.Name).ActiveView
+        cls.view.viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
+        gw.settle()
+
+    @classmethod
+    def tearDownClass(cls):
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        Gui.Selection.clearSelection()
+        for name in list(App.listDocuments()):
+            App.closeDocument(name)
+        cls.tmp.cleanup()
+        gw.settle()
+
+    def tearDown(self):
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        gw.settle()
+        # Back to the 3D view of the walker (a test may leave the spreadsheet's view in front).
+        App.setActiveDocument(self.doc.Name)
+        Gui.ActiveDocument = Gui.getDocument(self.doc.Name)
+        gw.settle()
+
+    def test_commands_in_their_toolbar_visible_at_1280(self):
+        window = gw.mw()
+        window.showNormal()
+        window.setGeometry(0, 0, 1280, 900)
+        gw.settle()
+        for n in COMMANDS + gw.MAIN:
+            a = gw.action(n)
+            self.assertIsNotNone(a, n)
+            tb = gw.toolbar_of(n)
+            self.assertTrue(tb.isVisible(), n)
+            w = tb.widgetForAction(a)
+            self.assertTrue(w is not None and w.isVisible(), "%s is hidden behind a toolbar's >> at 1280 px" % n)
+            right = w.mapTo(window, QtCore.QPoint(w.width(), 0)).x()
+            self.assertLessEqual(right, window.width(), n)
+        for n in COMMANDS:
+            a = gw.action(n)
+            self.assertEqual(gw.toolbar_of(n).objectName(), "Dispcon Presentation")
+            self.assertGreater(coloured(a.icon()), 20, n)
+            a.icon().pixmap(64, 64).save(os.path.join(gw.OUT, "icon-%s.png" % n[len("Dispcon_"):]))
+            self.assertTrue(a.toolTip().strip())
+        Gui.Selection.clearSelection()
+        gw.settle()
+        self.assertTrue(Gui.isCommandActive("Dispcon_BillOfMaterials"))
+        self.assertTrue(Gui.isCommandActive("Dispcon_ExplodedView"))
+
+    def test_bom_panel_choice_csv_and_the_sheet(self):
+        from dispcon_fc import bom, panels
+        from dispcon_fc.panels.bom import BomPanel
+
+        legs = [p.Label for p in self.da.parts(self.subs[0].Assembly)]
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Dispcon_BillOfMaterials")
+        gw.settle()
+        panel = panels.last_panel
+        self.assertIsInstance(panel, BomPanel)
+        table = panel.table
+        # Indented by default: Frame, Leg x4, then the leg's four parts, one each.
+        self.assertEqual(table.rowCount(), 2 + len(legs))
+        self.assertEqual([table.item(r, 1).text() for r in range(table.rowCount())], ["Frame", "Leg"] + legs)
+        self.assertEqual(table.item(1, 2).text(), "4")
+        self.assertEqual(table.item(0, 3).text(), "Steel")
+        mass = self.frame.Shape.Volume * 7900e-6  # g
+        self.assertAlmostEqual(float(table.item(0, 5).text()), mass, delta=mass * 1e-5)
+        self.assertEqual(table.item(1, 5).text(), "")  # the legs' parts have no material
+        panel.choice.setCurrentIndex(2)  # expanded
+        gw.settle()
+        self.assertEqual([(table.item(r, 1).text(), table.item(r, 2).text()) for r in range(table.rowCount())],
+                         [("Frame", "1")] + [(label, "4") for label in legs])
+        path = os.path.join(self.tmp.name, "walker-bom.csv")
+        panel.export_csv(path)
+        with open(path, newline="", encoding="utf-8") as f:
+            self.assertEqual([r[1:3] for r in list(csv.reader(f))[1:]], [["Frame", "1"]] + [[l, "4"] for l in legs])
+        panel.choice.setCurrentIndex(1)  # back to indented, written so
+        gw.settle()
+        gw.shot("bom-panel", self.view)
+        undo = self.doc.UndoCount
+        panel.accept()
+        gw.settle()
+        self.assertEqual(self.doc.UndoCount, undo + 1)
+        sheet = bom.sheet_of(self.asm)
+        self.assertEqual(tp.cells(sheet)[2][:3], ["'2", "Leg", "4"])
+        self.assertFalse(Gui.Control.activeDialog())
+        # Shown as a designer opens it (double-click in the tree), looked at in bom-sheet.png.
+        Gui.getDocument(self.doc.Name).setEdit(sheet.Name)
+        gw.settle()
+        gw.mw().findChild(QtWidgets.QMdiArea).activeSubWindow().showMaximized()
+        path = grab("bom-sheet")
+        self.assertGreater(os.path.getsize(path), 10000)
+        Gui.getDocument(self.doc.Name).resetEdit()
+        gw.settle()
+        # Run again: the same sheet, no second one.
+        Gui.runCommand("Dispcon_BillOfMaterials")
+        gw.settle()
+        panels.last_panel.accept()
+        gw.settle()
+        self.assertEqual([o for o in self.doc.Objects if o.TypeId == "Spreadsheet::Sheet"], [sheet])
+        # Back to the 3D view.
+        for w in gw.mw().findChild(QtWidgets.QMdiArea).subWindowList():
+            if w.widget() is not None and "Spreadsheet" in type(w.widget()).__name__ or "BOM" in w.windowTitle():
+                w.close()
+        gw.settle()
+
+    def test_exploded_panel_slider_hides_parts_and_toggles_back(self):
+        from dispcon_fc import exploded, panels
+        from dispcon_fc.panels.exploded import ExplodedPanel
+
+        before = tp.placements(self.asm)
+        drawn = self.da.placed_parts(self.asm) + self.da.joints(self.asm)
+        self.assertTrue(all(o.ViewObject.Visibility for o in drawn))
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Dispcon_ExplodedView")
+        gw.settle()
+        panel = panels.last_panel
+        self.assertIsInstance(panel, ExplodedPanel)
+        view = panel.view
+        self.assertTrue(view.ViewObject.Visibility)
+        self.assertFalse(any(o.ViewObject.Visibility for o in drawn), "the assembled parts still show")
+        self.assertTrue(panel.distance.text().endswith("mm"), panel.distance.text())
+        # The slider previews: at 3/10 of its travel, the farthest unit 0.3 x reach away.
+        panel.slider.setValue(300)
+        gw.settle()
+        # (as the box shows it, to its decimals: what is drawn is what is read)
+        want = float(panel.distance.property("rawValue"))
+        self.assertAlmostEqual(want, panel.reach * 0.3, delta=0.01)
+        self.assertEqual(view.Distance.Value, want)
+        self.assertAlmostEqual(max(v.Length for v in view.Offsets), want, delta=1e-9)
+        # Typed: 2 mm, the slider follows.
+        panel.distance.setProperty("rawValue", 2.0)
+        gw.settle()
+        self.assertAlmostEqual(view.Distance.Value, 2.0, delta=1e-12)
+        self.assertEqual(panel.slider.value(), int(round(2.0 / panel.reach * 1000)))
+        panel.expand.setChecked(True)
+        panel.distance.setProperty("rawValue", 4.0)  # far enough apart to see each part
+        gw.settle()
+        # Drawn in the parts' colours: the frame's (blue) on as many faces as it has, first.
+        colours = view.ViewObject.DiffuseColor
+        self.assertEqual(len(colours), len(view.Shape.Faces))
+        n = len(self.frame.Shape.Faces)
+        self.assertEqual(view.Parts[0], self.frame)
+        self.assertEqual(colours[:n], [self.frame.ViewObject.ShapeColor] * n)
+        self.assertNotIn(self.frame.ViewObject.ShapeColor, colours[n:])
+        Gui.SendMsgToActiveView("ViewFit")
+        gw.shot("exploded-panel", self.view)
+        panel.accept()
+        gw.settle()
+        self.assertEqual(tp.placements(self.asm), before)
+        self.assertTrue(view.ViewObject.Proxy.getIcon().endswith("Dispcon_ExplodedView.svg"))
+        Gui.SendMsgToActiveView("ViewFit")
+        gw.settle()
+        path = gw.shot("exploded", self.view)
+        self.assertGreater(os.path.getsize(path), 10000)
+        # Hidden (Space in the tree): the assembled parts and markers again, every placement to the bit.
+        view.ViewObject.Visibility = False
+        gw.settle()
+        self.assertTrue(all(o.ViewObject.Visibility for o in drawn))
+        self.assertEqual(tp.placements(self.asm), before)
+        gw.shot("exploded-hidden", self.view)
+        # Shown again: the parts hidden again.
+        view.ViewObject.Visibility = True
+        gw.settle()
+        self.assertFalse(any(o.ViewObject.Visibility for o in drawn))
+        view.ViewObject.Visibility = False
+        gw.settle()
+
+    def test_cancel_removes_a_new_view_and_shows_the_parts(self):
+        from dispcon_fc import exploded
+        from dispcon_fc.panels import exploded as ep
+
+        for v in exploded.views_of(self.asm):
+            self.doc.removeObject(v.Name)
+        drawn = self.da.placed_parts(self.asm) + self.da.joints(self.asm)
+        for o in drawn:
+            o.ViewObject.Visibility = True
+        count = len(self.doc.Objects)
+        panel = ep.open_panel(self.asm)
+        gw.settle()
+        self.assertEqual(len(self.doc.Objects), count + 1)
+        panel.slider.setValue(500)
+        gw.settle()
+        panel.reject()
+        gw.settle()
+        self.assertEqual(len(self.doc.Objects), count)
+        self.assertEqual(exploded.views_of(self.asm), [])
+        self.assertTrue(all(o.ViewObject.Visibility for o in drawn))
+
+
+gw.run_in_gui([Walker], "status-presentation")
