@@ -84,6 +84,8 @@ def add_part(asm, obj, grounded=False):
     _assembly(asm)
     if not (hasattr(obj, "Shape") or obj.TypeId == "App::Link") or objects.is_joint(obj) or obj == asm:
         raise ValueError("%s has no shape: only solids can be parts" % obj.Label)
+    if getattr(obj, "DispconType", "") == "ExplodedView":
+        raise ValueError("%s draws the assembly's parts apart; it is not a part" % obj.Label)
     with transaction(asm.Document, "Add part"):
         objects.part_properties(obj)
         obj.Grounded = grounded

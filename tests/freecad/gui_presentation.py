@@ -253,4 +253,46 @@ class Walker(unittest.TestCase):
         self.assertTrue(all(o.ViewObject.Visibility for o in drawn))
 
 
-gw.run_in_gui([Walker], "status-presentation")
+class Reopened(unittest.TestCase):
+    def test_saved_while_exploded_reopens_with_its_view_and_toggles_back(self):
+        import dispcon_fc.assembly as da
+        from dispcon_fc import exploded
+
+        tmp = tempfile.TemporaryDirectory()
+        try:
+            doc = App.newDocument("fourbar")
+            asm = ts.th.fourbar(doc, tmp.name)[0]
+            self.assertTrue(da.solve(asm).converged)
+            assembled = os.path.join(tmp.name, "assembled.FCStd")
+            doc.saveCopy(assembled)
+            view = exploded.new_exploded_view(asm, distance=1.5)
+            gw.settle()
+            self.assertFalse(any(p.ViewObject.Visibility for p in da.parts(asm)))
+            path = os.path.join(tmp.name, "exploded.FCStd")
+            doc.saveAs(path)
+            App.closeDocument(doc.Name)
+            plain = App.openDocument(assembled)
+            want = tp.placements(da.top_assemblies(plain)[0])
+            App.closeDocument(plain.Name)
+            doc = App.openDocument(path)
+            gw.settle()
+            asm = da.top_assemblies(doc)[0]
+            view = exploded.views_of(asm)[0]
+            self.assertIsInstance(view.ViewObject.Proxy, exploded.ViewProviderExplodedView)
+            self.assertTrue(view.ViewObject.Visibility)
+            self.assertFalse(any(p.ViewObject.Visibility for p in da.parts(asm)))  # as saved
+            self.assertEqual(tp.placements(asm), want)
+            view.ViewObject.Visibility = False
+            gw.settle()
+            self.assertTrue(all(o.ViewObject.Visibility for o in da.parts(asm) + da.joints(asm)))
+            self.assertEqual(tp.placements(asm), want)
+            App.closeDocument(doc.Name)
+        finally:
+            for name in list(App.listDocuments()):
+                if name.startswith(("fourbar", "assembled", "exploded")):
+                    App.closeDocument(name)
+            tmp.cleanup()
+            gw.settle()
+
+
+gw.run_in_gui([Walker, Reopened], "status-presentation")

@@ -263,6 +263,8 @@ class Blocks(unittest.TestCase):
         self.assertEqual(view.Mode, "Radial")
         with self.assertRaisesRegex(ValueError, "mode is one of"):
             exploded.set_explosion(view, mode="Sideways")
+        with self.assertRaisesRegex(ValueError, "it is not a part"):
+            da.add_part(self.asm, view)
         self.assertEqual(len(self.doc.Objects), count)
         self.assertEqual(placements(self.asm), self.before)
 
