@@ -301,6 +301,12 @@ class ViewProviderExplodedView(objects.Stateless):
         if len(colours) == len(obj.Shape.Faces) and colours:
             vobj.DiffuseColor = colours
 
+    def onDelete(self, vobj, subelements):
+        # Deleted while shown (the Delete key): the assembled parts come back with it gone.
+        if vobj.Visibility:
+            self.swap(False)
+        return True
+
     def doubleClicked(self, vobj):
         from .panels.exploded import open_panel
 

@@ -228,8 +228,14 @@ class Walker(unittest.TestCase):
         view.ViewObject.Visibility = True
         gw.settle()
         self.assertFalse(any(o.ViewObject.Visibility for o in drawn))
-        view.ViewObject.Visibility = False
+        # Deleted while shown (the Delete key): the parts come back.
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(view)
+        Gui.runCommand("Std_Delete")
         gw.settle()
+        self.assertEqual(exploded.views_of(self.asm), [])
+        self.assertTrue(all(o.ViewObject.Visibility for o in drawn))
+        self.assertEqual(tp.placements(self.asm), before)
 
     def test_cancel_removes_a_new_view_and_shows_the_parts(self):
         from dispcon_fc import exploded
