@@ -78,6 +78,9 @@ class Hardware(unittest.TestCase):
             p.Label = "Pin"
             p.Shape = Part.makeCylinder(radius, 10)
             da.add_part(self.asm, p)
+        # A density without its unit is not guessed at: the name kept, no mass.
+        p.addProperty("App::PropertyMap", "Material")
+        p.Material = {"Name": "Brass?", "Density": "8500"}
         self.links = [da.import_part(self.asm, th.parts.write_step(th.parts.link(n), os.path.join(self.tmp.name,
                                                                                               "link-%d.step" % n)))
                       for n in (1, 3)]
@@ -92,7 +95,7 @@ class Hardware(unittest.TestCase):
         bill = bom.rows(self.asm)
         got = [(r.index, r.name, r.quantity, r.material) for r in bill]
         self.assertEqual(got, [("1", "Plate", 1, "Aluminium"), ("2", "Bolt", 4, "Steel"), ("3", "Pin", 1, ""),
-                               ("4", "Pin001", 1, ""), ("5", "link-1", 1, ""), ("6", "link-3", 1, "")])
+                               ("4", "Pin001", 1, "Brass?"), ("5", "link-1", 1, ""), ("6", "link-3", 1, "")])
         plate, bolt, pin, pin2 = bill[:4]
         self.assertAlmostEqual(plate.volume, 100 * 50 * 5, delta=1e-6)
         self.assertAlmostEqual(plate.mass, 100 * 50 * 5 * ALUMINIUM, delta=1e-9)  # 67.5 g
@@ -101,6 +104,7 @@ class Hardware(unittest.TestCase):
         self.assertAlmostEqual(pin2.volume, math.pi * 2.5 ** 2 * 10, delta=1e-6)
         # No material: no mass, whatever the workbench's solver weight (Density) says.
         self.assertIsNone(pin.mass)
+        self.assertIsNone(pin2.mass)
         self.assertEqual(self.links[0].Density, 1.0)
         self.assertIsNone(bill[4].mass)
 
