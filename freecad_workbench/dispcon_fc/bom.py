@@ -14,9 +14,10 @@ Sub-assemblies, as the designer chooses (SUB_ASSEMBLIES):
 - "rows": one row per distinct placed assembly (the same leg placed four times: 4), its parts
   not listed;
 - "indented": that row followed by its parts (indices 3.1, 3.2, ...), their quantities per one
-  sub-assembly, as a drawing's parts list of a sub-assembly;
-- "expanded": no sub-assembly rows; their parts are counted with the assembly's own (a leg's
-  crank placed four times: 4 more cranks).
+  sub-assembly, as a drawing's parts list of a sub-assembly, and a sub-assembly nested in it the
+  same way a level down (3.3, then 3.3.1, ...);
+- "expanded": no sub-assembly rows; their parts (and those of the sub-assemblies nested in them)
+  are counted with the assembly's own (a leg's crank placed four times: 4 more cranks).
 
 Material and mass come only from what the document says: a part's Material (a map with Name and
 Density, a link to a material object, or a name) or a material object (FEM's MaterialSolid,
@@ -185,8 +186,12 @@ class _Counter:
         else:
             row = Row(src.Label, "sub-assembly", ("sub", src), source=_source(src, self.asm))
             row.children = _Counter(self.asm)
-            for link in instance_parts(sub):
-                row.children.add_part(link)
+            links = set(o.Name for o in instance_parts(sub))
+            for o in sub.Group:  # its parts, and the sub-assemblies nested in it as rows of their own
+                if o.Name in links:
+                    row.children.add_part(o)
+                elif is_sub_assembly(o):
+                    row.children.add_sub_assembly(o)
             pieces = row.children.rows
             row.volume = sum(r.volume * r.quantity for r in pieces)
             if all(r.mass is not None for r in pieces):
@@ -211,19 +216,22 @@ def rows(asm, sub_assemblies_as="indented"):
             counter.add_part(o)
         elif is_sub_assembly(o):
             if sub_assemblies_as == "expanded":
-                for link in instance_parts(o):
+                for link in objects.nested_parts(o):
                     counter.add_part(link)
             else:
                 counter.add_sub_assembly(o)
     out = []
-    for k, row in enumerate(counter.rows, 1):
-        row.index = str(k)
-        out.append(row)
-        if row.kind == "sub-assembly" and sub_assemblies_as == "indented":
-            for m, child in enumerate(row.children.rows, 1):
-                child.index = "%d.%d" % (k, m)  # its quantity: in one sub-assembly
-                out.append(child)
+    _number(counter.rows, "", sub_assemblies_as == "indented", out)
     return out
+
+
+def _number(rows, prefix, indented, out):
+    """Numbers rows (1, 2, ...; under a sub-assembly 2.1, 2.2, a nested one's 2.3.1) into out."""
+    for k, row in enumerate(rows, 1):
+        row.index = prefix + str(k)
+        out.append(row)
+        if row.kind == "sub-assembly" and indented:
+            _number(row.children.rows, row.index + ".", indented, out)  # quantities in one of it
 
 
 def table(bill):

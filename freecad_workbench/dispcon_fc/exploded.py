@@ -13,7 +13,8 @@ expects of a view.) Showing the view hides the parts and the joints' markers, hi
 them again (viewproviders.ViewProviderExplodedView).
 
 What moves (units): each part of the assembly; each placed sub-assembly as one unit (all its
-parts by one offset), or each of its parts alone when ExpandSubAssemblies is on. Where a unit's
+parts, those of the sub-assemblies nested in it too, by one offset), or each of those parts alone
+when ExpandSubAssemblies is on. Where a unit's
 centre is: the centre of its bounding box. The offsets:
 - Radial: each unit moves away from the assembly's centre (the centre of the box around every
   part) along the line from that centre to its own, in proportion to its distance from it, the
@@ -24,7 +25,7 @@ centre is: the centre of its bounding box. The offsets:
 import FreeCAD as App
 
 from . import objects
-from .objects import instance_parts, is_sub_assembly, parts, shape_of
+from .objects import is_sub_assembly, parts, shape_of
 
 MODES = ("Radial", "Direction")
 
@@ -85,7 +86,7 @@ def units(asm, expand_sub_assemblies=False):
         if o.Name in own:
             out.append([o])
         elif is_sub_assembly(o):
-            links = instance_parts(o)
+            links = objects.nested_parts(o)  # those of the instances nested in it too
             if expand_sub_assemblies:
                 out += [[link] for link in links]
             elif links:

@@ -360,9 +360,43 @@ class ExplodedWalker(unittest.TestCase):
             tmp.cleanup()
 
 
+class Parade(unittest.TestCase):
+    """walker.FCStd (a frame and four legs of leg.FCStd) placed twice on a track: nested."""
+
+    def test_nested_sub_assemblies_in_the_bill_and_the_exploded_view(self):
+        os.environ["DISPCON_NESTED_IMPORT_ONLY"] = "1"
+        import test_nested as tn
+
+        tmp = tempfile.TemporaryDirectory()
+        try:
+            leg, walker, wdoc = tn.make_walker_file(tmp.name)
+            leg_parts = [p.Label for p in da.parts(da.top_assemblies(App.openDocument(leg))[0])]
+            doc, asm, track, walks = tn.make_parade(tmp.name, walker, rigid=False)
+            indented = [(r.index, r.name, r.quantity) for r in bom.rows(asm, "indented")]
+            self.assertEqual(indented, [("1", "Track", 1), ("2", "Walker", 2), ("2.1", "Frame", 1), ("2.2", "Leg", 4)]
+                             + [("2.2.%d" % (k + 1), label, 1) for k, label in enumerate(leg_parts)])
+            expanded = [(r.name, r.quantity) for r in bom.rows(asm, "expanded")]
+            self.assertEqual(expanded, [("Track", 1), ("Frame", 2)] + [(label, 8) for label in leg_parts])
+            rows = bom.rows(asm, "indented")
+            self.assertAlmostEqual(rows[1].volume, rows[2].volume + 4 * rows[3].volume, delta=1e-9)
+            # Exploded: each walker (its frame and its four legs' parts) by one offset.
+            before = placements(asm)
+            view = exploded.new_exploded_view(asm, distance=5)
+            by_part = dict(zip([p.Name for p in view.Parts], view.Offsets))
+            self.assertEqual(len(by_part), 1 + 2 * (1 + 4 * 4))
+            for w in walks:
+                moved = {tuple(by_part[p.Name]) for p in da.nested_parts(w)}
+                self.assertEqual(len(moved), 1)
+            self.assertEqual(placements(asm), before)
+            for name in list(App.listDocuments()):
+                App.closeDocument(name)
+        finally:
+            tmp.cleanup()
+
+
 if __name__ == "__main__" or not os.environ.get("DISPCON_PRESENTATION_IMPORT_ONLY"):
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
-                               for c in (Hardware, Walker, Blocks, SavedExploded, ExplodedWalker))
+                               for c in (Hardware, Walker, Blocks, SavedExploded, ExplodedWalker, Parade))
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
     failed = len(result.failures) + len(result.errors)
     print("%d passed, %d failed" % (result.testsRun - failed, failed))
