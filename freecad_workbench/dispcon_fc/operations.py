@@ -429,19 +429,26 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None,
 _PHASE_MEASURE = ("Reversed", "Ratio", "Radius", "Pitch", "LeftHanded")
 
 
+def _door(joint, kind):
+    """The adapter of the joint's assembly as it stands, to check a new value of the joint at the
+    engine (the model's door) before anything changes; None when there is nothing to check yet: a
+    joint changing its type to `kind` meets the door at its first solve, and one the adapter
+    skipped (a part deleted) is told so by its solve."""
+    asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
+    if asm is None or joint.JointType != kind:
+        return None
+    adapter = Adapter(asm)
+    return adapter if joint in adapter.joints else None
+
+
 def _check_phase(joint, kind, phase):
     """A coupling's new phase, checked by the engine (the model's door) before anything changes:
     the joint added again with it to a model of its assembly as it stands (a joint changing its
     type to a coupling meets the door at its first solve)."""
     if kind not in objects.COUPLINGS:
         raise ValueError("%s: only a coupling (%s) has a phase" % (joint.Label, ", ".join(objects.COUPLINGS)))
-    if joint.JointType != kind:
-        return
-    asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
-    if asm is None:
-        return
-    adapter = Adapter(asm)
-    if joint not in adapter.joints:  # skipped (a part deleted): its solve says so
+    adapter = _door(joint, kind)
+    if adapter is None:
         return
     from .adapter import phase_to_engine
 
@@ -461,11 +468,8 @@ def _check_shift(joint, kind, shift, frame=None):
         x, y = (float(d) for d in shift)
     except (TypeError, ValueError):
         raise ValueError("%s: a frame's translation offset is (x, y) in mm, not %r" % (joint.Label, shift)) from None
-    asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
-    if asm is None or joint.JointType != kind:
-        return  # a joint changing its type meets the door at its first solve
-    adapter = Adapter(asm)
-    if joint not in adapter.joints:  # skipped (a part deleted): its solve says so
+    adapter = _door(joint, kind)
+    if adapter is None:
         return
     from .adapter import moved_point, turned_frame
 
@@ -490,11 +494,8 @@ def _check_frame(joint, kind, frame):
                          % (joint.Label, kind, ", ".join(objects.FRAME_ROTATED)))
     if len(frame) != 3:
         raise ValueError("%s: a frame's rotation offset is (yaw, pitch, roll) in degrees, not %r" % (joint.Label, frame))
-    asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
-    if asm is None or joint.JointType != kind:
-        return  # a joint changing its type meets the door at its first solve
-    adapter = Adapter(asm)
-    if joint not in adapter.joints:  # skipped (a part deleted): its solve says so
+    adapter = _door(joint, kind)
+    if adapter is None:
         return
     from .adapter import turned_frame
 

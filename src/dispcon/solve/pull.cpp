@@ -453,17 +453,22 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   bool moved = false;       // a step was kept
   bool may_release = true;  // no bound let go since the last kept step
   bool jumped = false;      // the last step tried found the valid poses off its start (Rises)
+  // One pull step from the current poses (kept in `before`), damped by mu, the held bounds found
+  // again: an iteration.
+  auto pull_step = [&] {
+    save_poses(s, group, before);
+    damping = mu;
+    ++out.iterations;
+    holds.find(s, group, joint, band);
+    return polisher.step(s, work, band, kRegularised, o.max_rotation_step, false, false, &soft,
+                         &holds.let_go);
+  };
   // Whether a pull step from the current poses, undone, lets go of a held bound (its impulses
   // push it outward: Holds::release); when it does the pull goes on without it.
   auto release_probe = [&] {
     if (out.iterations >= o.max_iterations) return false;
     const Measure at = now;
-    save_poses(s, group, before);
-    damping = mu;
-    ++out.iterations;
-    holds.find(s, group, joint, band);
-    const bool stepped = polisher.step(s, work, band, kRegularised, o.max_rotation_step, false,
-                                       false, &soft, &holds.let_go);
+    const bool stepped = pull_step();
     const bool released =
         stepped && !polisher.cut_short() && polisher.has_multipliers() && holds.release(work.y_);
     load_poses(s, group, before);
@@ -476,12 +481,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     const Measure kept = now;
     const double h0 = h;
     jumped = false;
-    save_poses(s, group, before);
-    damping = mu;
-    ++out.iterations;
-    holds.find(s, group, joint, band);
-    const bool stepped = polisher.step(s, work, band, kRegularised, o.max_rotation_step, false,
-                                       false, &soft, &holds.let_go);
+    const bool stepped = pull_step();
     if (stepped) now = measure(s, group, joint, joint_r);
     if (stepped && widen(s, group, joint, joint_r, o.tolerance, band, holds)) {
       // A bound the step went past is met as a row from now on (the linkage slides along it
