@@ -1011,7 +1011,9 @@ def export_dcl(asm, path):
 
 def import_dcl(asm, path):
     """Places the assembly's parts as a .dcl file says (the file's objects named as export_dcl
-    names them): the way back from the command line."""
+    names them): the way back from the command line. Joints are never made or edited: a joint
+    frame's offsets (FrameX...FrameRoll) travel in the file only as part 2's moved point and
+    turned axes (the format has no statement for them), so they stay as the document holds them."""
     _assembly(asm)
     adapter = Adapter(asm)
     with adapter.engine_errors():

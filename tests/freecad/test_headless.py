@@ -1284,6 +1284,64 @@ class FrameTranslation(FrameCase):
             self.assertTrue(da.solve(asm).converged)
             self.assertPlaced(arm.Placement, placed, 1e-9)
 
+    def test_a_moved_and_turned_frame_through_a_dcl_file(self):
+        """FrameX 0.3, FrameY -0.2 and a yaw of 30 degrees exported to a .dcl and imported into a
+        fresh document holding the same parts and joint. The .dcl format has no statement for a
+        joint frame's offset (shared/spec/format.md), so the file holds part 2's point, axis and
+        twist reference moved and turned by it: the command line solves it to the same poses, the
+        import places the parts there and leaves the joint's properties as the designer set them,
+        and a Solve afterwards moves nothing (the joint and the file agree)."""
+        def built(doc):
+            asm, base, arm = arm_on_base(doc)
+            arm.Placement = App.Placement(App.Vector(0.2, 0.1, 0.3), App.Rotation(App.Vector(0, 0, 1), 20))
+            j = da.add_joint(asm, "Fixed", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)),
+                             frame=(30, 0, 0), shift=(0.3, -0.2))
+            return asm, arm, j
+
+        def frame_of(j):
+            return [getattr(j, n).Value for n in ("FrameX", "FrameY", "FrameYaw", "FramePitch", "FrameRoll")]
+
+        def assertSame(pl, expected):
+            self.assertLessEqual((pl.Base - expected.Base).Length, 1e-9, (pl, expected))
+            self.assertLessEqual(pl.Rotation.multiply(expected.Rotation.inverted()).Angle, 1e-9, (pl, expected))
+
+        asm, arm, j = built(self.doc)
+        self.assertTrue(da.solve(asm).converged)
+        set_by_hand = frame_of(j)
+        self.assertEqual(set_by_hand, [0.3, -0.2, 30, 0, 0])
+        solved = arm.Placement
+        # Part 2 stands where the offsets put it: its picked point 0.3, -0.2 off part 1's in the
+        # joint's frame (part 1's twist reference, and the axis times it), turned by the yaw.
+        base = self.doc.getObject("Base")
+        x, y, z = self.joint_axes(base, j)
+        off = arm.Placement.multVec(j.Point2) - base.Placement.multVec(j.Point1)
+        self.assertLess((off - (x * 0.3 - y * 0.2)).Length, 1e-9)
+        fresh = App.newDocument("frame_dcl")
+        try:
+            with tempfile.TemporaryDirectory() as tmp:
+                path = os.path.join(tmp, "moved.dcl")
+                da.export_dcl(asm, path)
+                self.assertEqual(frame_of(j), set_by_hand)  # exporting changes nothing
+                # The command line's side: the file alone solves to the workbench's pose.
+                m = da.engine.load().load(path)
+                self.assertTrue(m.assemble().converged)
+                m.save(path)
+                asm2, arm2, j2 = built(fresh)
+                self.assertGreater((arm2.Placement.Base - solved.Base).Length, 0.1)  # not solved yet
+                da.import_dcl(asm2, path)
+                assertSame(arm2.Placement, solved)
+                self.assertEqual(frame_of(j2), set_by_hand)
+                r = da.solve(asm2)
+                self.assertTrue(r.converged)
+                self.assertEqual(r.iterations, 0)
+                assertSame(arm2.Placement, solved)
+                # Into the original document too: nothing of the joint lost, the pose the same.
+                da.import_dcl(asm, path)
+                self.assertEqual(frame_of(j), set_by_hand)
+                assertSame(arm.Placement, solved)
+        finally:
+            App.closeDocument(fresh.Name)
+
 
 class MarkerLayout(unittest.TestCase):
     """markers.spread, the screen layout of the joints' markers, against what it promises."""
