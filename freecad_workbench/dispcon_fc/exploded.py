@@ -155,6 +155,15 @@ def views_of(asm):
             if getattr(o, "DispconType", "") == "ExplodedView" and getattr(o, "Assembly", None) == asm]
 
 
+def follow(asm):
+    """Redraws every exploded view of `asm` from the parts' placements as they are now, in
+    whatever undo step is open: a Solve's or a drag's (operations.solve, _Motion.finish), so the
+    view shows the new pose at once, not at the next recompute, and undo takes the view back with
+    the parts. Writes no placement."""
+    for view in views_of(asm):
+        view.recompute()
+
+
 def is_exploded_view(obj):
     return getattr(obj, "DispconType", "") == "ExplodedView"
 

@@ -10,7 +10,7 @@ import re
 
 import FreeCAD as App
 
-from . import engine, geometry, objects, subassembly
+from . import engine, exploded, geometry, objects, subassembly
 from .adapter import ALREADY_HELD, Adapter, Result, _vec
 from .objects import joints, placed_parts, shape_of
 
@@ -610,6 +610,8 @@ def solve(asm, undo_step=True):
         result = Result(adapter, r)
         if _new_news(asm.LastSolve, result.message):
             asm.LastSolve = result.message
+        if r.converged and r.iterations > 0:
+            exploded.follow(asm)  # in this undo step: undo takes the view back with the parts
     asm.Document.recompute()
     return result
 
@@ -672,11 +674,13 @@ class _Motion:
 
     def finish(self):
         if self.live:
+            exploded.follow(self.asm)  # in the drag's undo step (or the panel's it is part of)
             if self.transaction is not None:
                 self.transaction.commit()
         elif self.unwritten:
             with transaction(self.doc, self.name):
                 self.adapter.write_back()
+                exploded.follow(self.asm)
             self.unwritten = False
         else:
             return

@@ -325,6 +325,75 @@ class SavedExploded(unittest.TestCase):
             tmp.cleanup()
 
 
+class FollowsTheAssembly(unittest.TestCase):
+    """An exploded view redrawn in a Solve's and a drag's own undo step: at the new pose as soon as
+    they return, back with the parts at undo, against the offsets computed here (radial, from the
+    parts' centres), the placements written only by the solve and the drag."""
+
+    def setUp(self):
+        self.doc = App.newDocument("follows")
+        self.doc.UndoMode = 1
+        self.asm, self.base, self.arm = th.arm_on_base(self.doc)
+        self.arm.Placement = App.Placement(App.Vector(0.2, 0.1, 0.3), App.Rotation(App.Vector(0, 0, 1), 20))
+        da.add_joint(self.asm, "Revolute", th.pin(self.base, (0, 0, 0)), th.pin(self.arm, (0, 0, 0)))
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def assertDrawnAtThePose(self, view, distance):
+        own = [p.Shape.BoundBox.Center for p in da.parts(self.asm)]
+        box = App.BoundBox()
+        for p in da.parts(self.asm):
+            box.add(p.Shape.BoundBox)
+        far = max((c - box.Center).Length for c in own)
+        self.assertEqual(len(view.Offsets), len(own))
+        for c, got, offset in zip(own, centres(view), view.Offsets):
+            want = (c - box.Center) * (distance / far)
+            self.assertLess((offset - want).Length, 1e-9)
+            self.assertLess((got - (c + want)).Length, 1e-9)
+
+    def test_a_solve_and_a_drag_redraw_the_view_in_their_undo_step(self):
+        view = exploded.new_exploded_view(self.asm, distance=3)
+        drawn = [tuple(v) for v in view.Offsets], [tuple(c) for c in centres(view)]
+        before = placements(self.asm)
+        n = self.doc.UndoCount
+        r = da.solve(self.asm)
+        self.assertTrue(r.converged and r.iterations > 0, r.message)
+        self.assertNotEqual(placements(self.asm), before)
+        self.assertDrawnAtThePose(view, 3)
+        self.assertNotEqual([tuple(c) for c in centres(view)], drawn[1])
+        self.assertEqual(self.doc.UndoCount, n + 1)  # the view's redraw is the Solve's step
+        # Undo: the parts and the view together, with no recompute between.
+        self.doc.undo()
+        self.assertEqual(placements(self.asm), before)
+        self.assertEqual(([tuple(v) for v in view.Offsets], [tuple(c) for c in centres(view)]), drawn)
+        self.doc.redo()
+        self.assertDrawnAtThePose(view, 3)
+        # A drag as the GUI makes one (live=False: the placements written once, at release).
+        solved = placements(self.asm)
+        grab = self.arm.Placement.multVec(App.Vector(1.5, 0, 0))
+        n = self.doc.UndoCount
+        d = da.PointDrag(self.asm, self.arm, grab, live=False)
+        self.assertTrue(d.move(grab + App.Vector(-0.8, 0.9, 0)))
+        self.assertEqual(placements(self.asm), solved)  # nothing written before the release
+        drawn = [tuple(v) for v in view.Offsets], [tuple(c) for c in centres(view)]
+        d.finish()
+        self.assertNotEqual(placements(self.asm), solved)
+        self.assertDrawnAtThePose(view, 3)
+        self.assertNotEqual([tuple(c) for c in centres(view)], drawn[1])
+        self.assertEqual(self.doc.UndoCount, n + 1)
+        self.doc.undo()
+        self.assertEqual(placements(self.asm), solved)
+        self.assertEqual(([tuple(v) for v in view.Offsets], [tuple(c) for c in centres(view)]), drawn)
+        # A live drag (a script's): the same at its finish.
+        turned = App.Placement(self.arm.Placement.Base, self.arm.Placement.Rotation)
+        turned.rotate(self.base.Placement.multVec(App.Vector(0, 0, 0)), App.Vector(0, 0, 1), 35)
+        n = self.doc.UndoCount
+        self.assertTrue(da.drag(self.asm, self.arm, turned).converged)
+        self.assertDrawnAtThePose(view, 3)
+        self.assertEqual(self.doc.UndoCount, n + 1)
+
+
 class ExplodedWalker(unittest.TestCase):
     def test_a_leg_moves_as_one_or_each_part_alone(self):
         tmp = tempfile.TemporaryDirectory()
@@ -396,7 +465,8 @@ class Parade(unittest.TestCase):
 
 if __name__ == "__main__" or not os.environ.get("DISPCON_PRESENTATION_IMPORT_ONLY"):
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
-                               for c in (Hardware, Walker, Blocks, SavedExploded, ExplodedWalker, Parade))
+                               for c in (Hardware, Walker, Blocks, SavedExploded, FollowsTheAssembly, ExplodedWalker,
+                                                             Parade))
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
     failed = len(result.failures) + len(result.errors)
     print("%d passed, %d failed" % (result.testsRun - failed, failed))
