@@ -53,17 +53,12 @@ class Walker(unittest.TestCase):
         cls.tmp = tempfile.TemporaryDirectory()
         leg = ts.make_leg(cls.tmp.name)
         cls.doc, cls.asm, cls.frame, cls.subs = ts.make_walker(cls.tmp.name, leg, rigid=False)
-        for sub, deg in zip(cls.subs, (0, 90, 180, 270)):
-            crank = ts.part(sub, "Crank")
-            if deg:
-                assert da.drag(cls.asm, crank, ts.turned_about_pin(crank, deg), steps=max(2, deg // 10)).converged
+        ts.turn_cranks(cls.asm, cls.subs)
         cls.frame.addProperty("App::PropertyMap", "Material")
         cls.frame.Material = {"Name": "Steel", "Density": "7900 kg/m^3"}
         cls.frame.ViewObject.ShapeColor = (0.2, 0.4, 0.8, 0.0)
         cls.doc.UndoMode = 1
-        App.setActiveDocument(cls.doc.Name)
-        Gui.ActiveDocument = Gui.getDocument(cls.doc.Name)
-        cls.view = Gui.getDocument(cls.doc.Name).ActiveView
+        cls.view = gw.activate(cls.doc)
         cls.view.viewIsometric()
         Gui.SendMsgToActiveView("ViewFit")
         gw.settle()
@@ -72,19 +67,15 @@ class Walker(unittest.TestCase):
     def tearDownClass(cls):
         if Gui.Control.activeDialog():
             Gui.Control.closeDialog()
-        Gui.Selection.clearSelection()
-        for name in list(App.listDocuments()):
-            App.closeDocument(name)
+        gw.close_documents()
         cls.tmp.cleanup()
-        gw.settle()
 
     def tearDown(self):
         if Gui.Control.activeDialog():
             Gui.Control.closeDialog()
         gw.settle()
         # Back to the 3D view of the walker (a test may leave the spreadsheet's view in front).
-        App.setActiveDocument(self.doc.Name)
-        Gui.ActiveDocument = Gui.getDocument(self.doc.Name)
+        gw.activate(self.doc)
         gw.settle()
 
     def test_commands_in_their_toolbar_visible_at_1280(self):

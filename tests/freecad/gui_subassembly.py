@@ -36,24 +36,16 @@ class Walker(unittest.TestCase):
         leg = ts.make_leg(cls.tmp.name)
         cls.doc, cls.asm, cls.frame, cls.subs = ts.make_walker(cls.tmp.name, leg, rigid=False)
         # Each leg's crank at its own angle: the four places move independently.
-        for sub, deg in zip(cls.subs, (0, 90, 180, 270)):
-            crank = ts.part(sub, "Crank")
-            if deg:
-                assert da.drag(cls.asm, crank, ts.turned_about_pin(crank, deg), steps=max(2, deg // 10)).converged
-        App.setActiveDocument(cls.doc.Name)
-        Gui.ActiveDocument = Gui.getDocument(cls.doc.Name)
-        cls.view = Gui.getDocument(cls.doc.Name).ActiveView
+        ts.turn_cranks(cls.asm, cls.subs)
+        cls.view = gw.activate(cls.doc)
         cls.view.viewTop()
         Gui.SendMsgToActiveView("ViewFit")
         gw.settle()
 
     @classmethod
     def tearDownClass(cls):
-        Gui.Selection.clearSelection()
-        for name in list(App.listDocuments()):
-            App.closeDocument(name)
+        gw.close_documents()
         cls.tmp.cleanup()
-        gw.settle()
 
     def test_command_in_the_assembly_toolbar_with_icon_and_tooltip(self):
         a = gw.action("Dispcon_InsertSubAssembly")
@@ -97,8 +89,7 @@ class Walker(unittest.TestCase):
         finally:
             Gui.Selection.clearSelection()
             App.closeDocument(doc.Name)
-            App.setActiveDocument(self.doc.Name)
-            Gui.ActiveDocument = Gui.getDocument(self.doc.Name)
+            gw.activate(self.doc)
 
     def test_tree_icons_and_the_rigid_toggle(self):
         from dispcon_fc import viewproviders
@@ -195,20 +186,15 @@ class Parade(unittest.TestCase):
         leg, walker, wdoc = tn.make_walker_file(cls.tmp.name)
         App.closeDocument(wdoc.Name)
         cls.doc, cls.asm, cls.track, cls.walks = tn.make_parade(cls.tmp.name, walker, rigid=False)
-        App.setActiveDocument(cls.doc.Name)
-        Gui.ActiveDocument = Gui.getDocument(cls.doc.Name)
-        cls.view = Gui.getDocument(cls.doc.Name).ActiveView
+        cls.view = gw.activate(cls.doc)
         cls.view.viewIsometric()
         Gui.SendMsgToActiveView("ViewFit")
         gw.settle()
 
     @classmethod
     def tearDownClass(cls):
-        Gui.Selection.clearSelection()
-        for name in list(App.listDocuments()):
-            App.closeDocument(name)
+        gw.close_documents()
         cls.tmp.cleanup()
-        gw.settle()
 
     def tree_item(self, label):
         for tree in gw.mw().findChildren(QtWidgets.QTreeWidget):

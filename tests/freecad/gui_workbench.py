@@ -118,6 +118,21 @@ def close_dialog():
     settle()
 
 
+def activate(doc):
+    """`doc` the active document, of the application and of the GUI: its 3D view."""
+    App.setActiveDocument(doc.Name)
+    Gui.ActiveDocument = Gui.getDocument(doc.Name)
+    return Gui.getDocument(doc.Name).ActiveView
+
+
+def close_documents():
+    """Every open document closed (a class's set-up made several), the selection cleared first."""
+    Gui.Selection.clearSelection()
+    for name in list(App.listDocuments()):
+        App.closeDocument(name)
+    settle()
+
+
 def same(p, q, tol=1e-9):
     """Two placements equal within tol."""
     return (p.Base - q.Base).Length <= tol and p.Rotation.multiply(q.Rotation.inverted()).Angle <= tol

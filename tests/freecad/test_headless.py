@@ -1143,6 +1143,15 @@ class FrameCase(unittest.TestCase):
         self.assertTrue(da.solve(asm).converged)
         return asm, base, arm, j
 
+    def reopened(self, tmp, name):
+        """The document saved as `name` in `tmp` and opened again: its assembly, joint and arm."""
+        path = os.path.join(tmp, name)
+        self.doc.saveAs(path)
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        asm = next(o for o in self.doc.Objects if da.is_assembly(o))
+        return asm, da.joints(asm)[0], self.doc.getObject("Arm")
+
     def assertPlaced(self, pl, expected, tol=1e-7):
         self.assertLess((pl.Base - expected.Base).Length, tol, (pl, expected))
         self.assertLess(pl.Rotation.multiply(expected.Rotation.inverted()).Angle, tol, (pl, expected))
@@ -1193,13 +1202,7 @@ class FrameRotation(FrameCase):
             da.edit_joint(j, joint_type="Ball", frame=(10, 0, 0))
         self.assertEqual(j.JointType, "Fixed")
         with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "frame.FCStd")
-            self.doc.saveAs(path)
-            App.closeDocument(self.doc.Name)
-            self.doc = App.openDocument(path)
-            asm = next(o for o in self.doc.Objects if da.is_assembly(o))
-            j = da.joints(asm)[0]
-            arm = self.doc.getObject("Arm")
+            asm, j, arm = self.reopened(tmp, "frame.FCStd")
             self.assertEqual((j.FrameYaw.Value, j.FramePitch.Value, j.FrameRoll.Value), (-45, 0, 10))
             self.assertTrue(da.solve(asm).converged)
             self.assertPlaced(arm.Placement, placed, 1e-9)
@@ -1273,13 +1276,7 @@ class FrameTranslation(FrameCase):
         self.assertEqual(len(da.joints(asm)), 1)  # the refused joint undone
         self.assertPlaced(arm.Placement, placed, 1e-12)
         with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "moved.FCStd")
-            self.doc.saveAs(path)
-            App.closeDocument(self.doc.Name)
-            self.doc = App.openDocument(path)
-            asm = next(o for o in self.doc.Objects if da.is_assembly(o))
-            j = da.joints(asm)[0]
-            arm = self.doc.getObject("Arm")
+            asm, j, arm = self.reopened(tmp, "moved.FCStd")
             self.assertEqual((j.FrameX.Value, j.FrameY.Value), (0.1, 0.2))
             self.assertTrue(da.solve(asm).converged)
             self.assertPlaced(arm.Placement, placed, 1e-9)
@@ -1300,10 +1297,6 @@ class FrameTranslation(FrameCase):
 
         def frame_of(j):
             return [getattr(j, n).Value for n in ("FrameX", "FrameY", "FrameYaw", "FramePitch", "FrameRoll")]
-
-        def assertSame(pl, expected):
-            self.assertLessEqual((pl.Base - expected.Base).Length, 1e-9, (pl, expected))
-            self.assertLessEqual(pl.Rotation.multiply(expected.Rotation.inverted()).Angle, 1e-9, (pl, expected))
 
         asm, arm, j = built(self.doc)
         self.assertTrue(da.solve(asm).converged)
@@ -1329,16 +1322,16 @@ class FrameTranslation(FrameCase):
                 asm2, arm2, j2 = built(fresh)
                 self.assertGreater((arm2.Placement.Base - solved.Base).Length, 0.1)  # not solved yet
                 da.import_dcl(asm2, path)
-                assertSame(arm2.Placement, solved)
+                self.assertPlaced(arm2.Placement, solved, 1e-9)
                 self.assertEqual(frame_of(j2), set_by_hand)
                 r = da.solve(asm2)
                 self.assertTrue(r.converged)
                 self.assertEqual(r.iterations, 0)
-                assertSame(arm2.Placement, solved)
+                self.assertPlaced(arm2.Placement, solved, 1e-9)
                 # Into the original document too: nothing of the joint lost, the pose the same.
                 da.import_dcl(asm, path)
                 self.assertEqual(frame_of(j), set_by_hand)
-                assertSame(arm.Placement, solved)
+                self.assertPlaced(arm.Placement, solved, 1e-9)
         finally:
             App.closeDocument(fresh.Name)
 

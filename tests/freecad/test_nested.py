@@ -16,7 +16,7 @@ sys.path.insert(0, HERE)
 os.environ["DISPCON_SUB_IMPORT_ONLY"] = "1"  # test_subassembly's helpers, not its tests
 
 import test_subassembly as ts  # noqa: E402
-from test_subassembly import App, angle_in, da, digest, gaps, parts, th, turned_about_pin  # noqa: E402
+from test_subassembly import App, add_pedal, angle_in, da, digest, gaps, parts, th, turned_about_pin  # noqa: E402
 
 STANDS = ((0, 0), (12, 0))
 
@@ -439,12 +439,7 @@ class OneDocument(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, "Walker cannot be placed inside Leg: it would contain itself "
                                                     "\\(Walker > Leg1 > Leg \\(all\\)\\)"):
                 da.insert_sub_assembly(leg, walker)
-            pedal = doc.addObject("Part::Feature", "Pedal")
-            pedal.Shape = parts.link(0.5)
-            pedal.Placement = crank.Placement.multiply(App.Placement(App.Vector(1, 0, 0.1), App.Rotation()))
-            da.add_part(leg, pedal)
-            da.add_joint(leg, "Fixed", (crank, parts.circle_edge(crank.Shape, App.Vector(1, 0, 0.1))),
-                         (pedal, parts.circle_edge(pedal.Shape, App.Vector(0, 0, 0))))
+            pedal = add_pedal(leg, crank)
             with self.assertRaisesRegex(ValueError, "Walk1.Leg1: Leg has parts this instance lacks \\(Pedal\\)"):
                 da.check(parade)
             self.assertTrue(da.solve(parade).converged)

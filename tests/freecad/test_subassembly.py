@@ -102,6 +102,26 @@ def turned_about_pin(obj, degrees):
     return App.Placement(pl.Base, App.Rotation(App.Vector(0, 0, 1), degrees).multiply(pl.Rotation))
 
 
+def turn_cranks(asm, subs, degrees=(0, 90, 180, 270)):
+    """Each leg's crank turned by its own angle about its hip pin (the places move
+    independently), each drag converged."""
+    for sub, deg in zip(subs, degrees):
+        crank = part(sub, "Crank")
+        if deg:
+            assert da.drag(asm, crank, turned_about_pin(crank, deg), steps=max(2, deg // 10)).converged
+
+
+def add_pedal(leg, crank):
+    """The leg gains a part after it was placed: a pedal fixed on its crank's far pin."""
+    pedal = leg.Document.addObject("Part::Feature", "Pedal")
+    pedal.Shape = parts.link(0.5)
+    pedal.Placement = crank.Placement.multiply(App.Placement(App.Vector(1, 0, 0.1), App.Rotation()))
+    da.add_part(leg, pedal)
+    da.add_joint(leg, "Fixed", (crank, parts.circle_edge(crank.Shape, App.Vector(1, 0, 0.1))),
+                 (pedal, parts.circle_edge(pedal.Shape, App.Vector(0, 0, 0))))
+    return pedal
+
+
 def angle_in(obj, frame):
     x = frame.Placement.inverse().multiply(obj.Placement).Rotation.multVec(App.Vector(1, 0, 0))
     return math.atan2(x.y, x.x)
@@ -350,12 +370,7 @@ class SameDocument(unittest.TestCase):
             self.assertEqual(da.check(asm)["dof"], 2)
             # The leg gains a part (a pedal on its crank's far pin): Check says Solve brings it in,
             # and Solve does, in each instance.
-            pedal = doc.addObject("Part::Feature", "Pedal")
-            pedal.Shape = parts.link(0.5)
-            pedal.Placement = crank.Placement.multiply(App.Placement(App.Vector(1, 0, 0.1), App.Rotation()))
-            da.add_part(leg, pedal)
-            da.add_joint(leg, "Fixed", (crank, parts.circle_edge(crank.Shape, App.Vector(1, 0, 0.1))),
-                         (pedal, parts.circle_edge(pedal.Shape, App.Vector(0, 0, 0))))
+            add_pedal(leg, crank)
             with self.assertRaisesRegex(ValueError, "Leg1: .* lacks \\(Pedal\\): Solve brings them in"):
                 da.check(asm)
             self.assertTrue(da.solve(asm).converged)
