@@ -208,12 +208,24 @@ class SubAssemblyProxy(_Proxy):
     def attach(self, obj):
         _mark(obj, "SubAssembly")
         sub_assembly_properties(obj)
+        if getattr(obj, "SourceName", ""):
+            nested_rigidity_property(obj)
 
     def onDocumentRestored(self, obj):
         self.attach(obj)
         _view_restored(obj, "SubAssembly")
+        if getattr(obj, "SourceName", ""):
+            from .subassembly import rigid_modes
+
+            rigid_modes(obj)
 
     def onChanged(self, obj, prop):
+        # Made rigid or flexible (the property editor too): the nested instances inside it say
+        # whether their own Rigid means anything now (read only inside a rigid one).
+        if prop == "Rigid" and "Restoring" not in obj.State and getattr(obj, "Group", None):
+            from .subassembly import rigid_modes
+
+            rigid_modes(obj)
         # Moving the instance carries its parts along (their placements in its frame stay).
         if prop == "Placement":
             for link in getattr(obj, "Group", []):
@@ -233,6 +245,15 @@ def sub_assembly_properties(obj):
          True)
     _add(obj, "App::PropertyPlacement", "Placement", "Sub-assembly", "where the instance's frame is")
     _add(obj, "App::PropertyBool", "Grounded", "Dispcon", "never moves")
+
+
+def nested_rigidity_property(obj):
+    """A nested instance's Rigid is its place's (editable) and RigidInFile what its placed file
+    said when it took it (hidden): equal, the place follows the file; different, it was set here.
+    A nested instance saved before either was editable took its file's rigidity: it follows."""
+    _add(obj, "App::PropertyBool", "RigidInFile", "Sub-assembly",
+         "whether the placed file had this place rigid when it was last taken (Rigid unlike it: set here)", obj.Rigid)
+    obj.setEditorMode("RigidInFile", 2)
 
 
 class PartProxy(_Proxy):
@@ -429,6 +450,15 @@ def part_properties(obj):
                         "no-physics ability to rotate (0: from the part's size)")
     if not hasattr(obj, "Density"):
         obj.addProperty("App::PropertyFloat", "Density", "Dispcon", "mass per unit volume").Density = 1.0
+    if obj.TypeId != "App::Link":  # a link's part number is its linked object's, in its file
+        part_number_property(obj)
+
+
+def part_number_property(obj):
+    """PartNumber, the bill of materials' part number of a part defined here (its description is
+    FreeCAD's own Label2)."""
+    _add(obj, "App::PropertyString", "PartNumber", "Bill of materials",
+         "the part number the bill of materials lists (its description: the Description, Label2)")
 
 
 def _kind(obj):
@@ -470,6 +500,10 @@ def adopt(obj):
     kind = _kind(obj)
     if kind is None and obj.TypeId == "Part::FeaturePython" and "Grounded" in obj.PropertiesList:
         kind = "Part"  # one of the workbench's parts (the parts carry no DispconType)
+    if kind == "ExplodedView":
+        from .exploded import adopt_view
+
+        return adopt_view(obj)
     proxy = {"Assembly": AssemblyProxy, "Joint": JointProxy, "SubAssembly": SubAssemblyProxy,
              "Part": PartProxy}.get(kind)
     if proxy is None:

@@ -16,12 +16,15 @@ times keeps four sets of poses and solving the parent never changes the linked f
 Nested, to any depth (as FreeCAD 1.x's AssemblyLinks): an instance of an assembly that has
 sub-assemblies of its own holds, beside its links, one nested instance per such sub-assembly
 (a group of the same kind, its SourceName the Name of the sub-assembly it mirrors, its
-LocalPlacement its frame in the instance's), and so on down. A nested instance is rigid or
-flexible as the sub-assembly it mirrors is in the placed assembly; each level means what it
-means at the top: a rigid instance is one body (everything inside it solved once, in its frame),
-a flexible one's links are bodies and its placed assembly's joints join the solve. Every pose of
-every level is stored in the parent's document. An assembly placed inside itself, directly or
-through files, is refused, naming the chain."""
+LocalPlacement its frame in the instance's), and so on down. Each level means what it means at
+the top: a rigid instance is one body (everything inside it solved once, in its frame, as its
+file has it), a flexible one's links are bodies and its placed assembly's joints join the solve.
+Rigid is a property of each place, at every level: a nested instance starts as its counterpart
+is in the placed file (RigidInFile keeps what the file said), follows the file while it was not
+set here (Rigid equal to RigidInFile), and keeps what the designer set here otherwise; inside a
+rigid instance it means nothing (the rigid one is its file as it is) and is read only. Every pose
+and setting of every level is stored in the parent's document. An assembly placed inside itself,
+directly or through files, is refused, naming the chain."""
 import os
 
 import FreeCAD as App
@@ -205,6 +208,7 @@ def insert_sub_assembly(asm, source, label=None, placement=None, rigid=True, nam
         for s in objects.sub_assemblies(source):
             _new_nested(sub, s, s.Name, s.Label, s.Placement)
         asm.addObject(sub)
+        _as_in_file(sub)
     return sub
 
 
@@ -226,8 +230,8 @@ def nested_properties(inst):
                  "the Name of the sub-assembly this nested instance mirrors in the assembly its container places")
     objects._add(inst, "App::PropertyPlacement", "LocalPlacement", "Sub-assembly",
                  "this nested instance's frame in its container's frame (stored here, per instance)")
+    objects.nested_rigidity_property(inst)
     inst.setEditorMode("SourceName", 1)
-    inst.setEditorMode("Rigid", 1)  # the placed assembly's sub-assembly says it (there, not here)
 
 
 def _new_nested(container, like, source_name, label, local):
@@ -240,7 +244,7 @@ def _new_nested(container, like, source_name, label, local):
     inst.Label = "%s.%s" % (container.Label, label)
     inst.SourceName = source_name
     inst.Assembly = source_of(like)
-    inst.Rigid = bool(like.Rigid)
+    inst.Rigid = inst.RigidInFile = rigid_of(like)
     inst.LocalPlacement = local
     inst.Placement = container.Placement.multiply(local)
     for link in objects.instance_parts(like):
@@ -250,6 +254,84 @@ def _new_nested(container, like, source_name, label, local):
         _new_nested(inst, n, n.SourceName, _mirror_label(n), n.LocalPlacement)
     container.addObject(inst)
     return inst
+
+
+def _as_in_file(new):
+    """New nested instances (`new` and those inside it, in their containers by now) rigid or
+    flexible as the placed file has their places (`like` may have been another place's copy),
+    their Rigid editable or not; then returns `new`."""
+    for o in [new] + [d for d in tree(new).values() if objects.is_sub_assembly(d)]:
+        f = file_rigid(o)
+        if f is not None and (f != bool(o.Rigid) or f != _held(o)):
+            o.Rigid = o.RigidInFile = f
+    rigid_modes(new)
+    return new
+
+
+def _top(inst):
+    """(the instance placed by the designer that holds `inst`, the SourceNames from it down to
+    `inst`): (Walk2, ["Leg3"]) for Walk2.Leg3; (inst, []) for a top one; (None, path) when a
+    container is gone."""
+    path = []
+    while inst is not None and is_nested(inst):
+        path.insert(0, inst.SourceName)
+        inst = container_of(inst)
+    return inst, path
+
+
+def counterpart(inst):
+    """What a nested instance is in the file its top instance places: the instance at the same
+    path there (Walk2.Leg3 of a festival's P1: the parade's Walk2.Leg3), or None when gone."""
+    top, path = _top(inst)
+    if top is None or not path:
+        return None
+    try:
+        src = source_of(top)
+    except ValueError:
+        return None
+    return source_tree(src).get(tuple(path))
+
+
+def file_rigid(inst):
+    """Whether the placed file has a nested instance's place rigid (None: not nested, or gone)."""
+    c = counterpart(inst) if is_nested(inst) else None
+    return rigid_of(c) if c is not None and objects.is_sub_assembly(c) else None
+
+
+def _held(inst):
+    return bool(inst.RigidInFile) if "RigidInFile" in inst.PropertiesList else bool(inst.Rigid)
+
+
+def rigid_of(inst):
+    """Whether an instance moves as one part here: its Rigid; a nested one not set here (Rigid
+    as its file had it when it took it, RigidInFile) follows its file as it is now."""
+    if not is_nested(inst):
+        return bool(inst.Rigid)
+    if bool(inst.Rigid) != _held(inst):
+        return bool(inst.Rigid)  # set in this place
+    f = file_rigid(inst)
+    return bool(inst.Rigid) if f is None else f
+
+
+def locked_by(inst):
+    """The rigid instance `inst` is inside (the nearest), or None: inside a rigid one, a nested
+    instance is as that one's file has it, whatever it says."""
+    c = container_of(inst) if is_nested(inst) else None
+    while c is not None and objects.is_sub_assembly(c):
+        if rigid_of(c):
+            return c
+        c = container_of(c) if is_nested(c) else None
+    return None
+
+
+def rigid_modes(inst):
+    """The property editor shows each nested instance's Rigid inside `inst` (and its own) editable,
+    or read only where a rigid instance holds it."""
+    for o in [inst] + [d for d in tree(inst).values() if objects.is_sub_assembly(d)]:
+        if is_nested(o):
+            mode = 1 if locked_by(o) is not None else 0
+            if o.getEditorMode("Rigid") != ([] if mode == 0 else ["ReadOnly"]):
+                o.setEditorMode("Rigid", mode)
 
 
 def _mirror_label(nested):
@@ -309,14 +391,22 @@ def _in_step(inst):
         return False
     for n in objects.sub_assemblies(inst):
         m = mirror_of(n, inst)
-        if m is None or bool(m.Rigid) != bool(n.Rigid) or not _same_source(n, m) or not _in_step(n):
+        if m is None or _file_changed(n) or not _same_source(n, m) or not _in_step(n):
             return False
     return True
 
 
+def _file_changed(n):
+    """Whether the placed file now has a nested instance's place rigid where it had it flexible,
+    or the other way round (RigidInFile)."""
+    f = file_rigid(n)
+    return f is not None and f != _held(n)
+
+
 def out_of_step(asm):
     """The instances of `asm` whose placed assembly (or one nested in it) gained or lost parts or
-    sub-assemblies since they were made, or whose nested instances' rigidity changed there."""
+    sub-assemblies since they were made, or whose nested instances' rigidity changed in their
+    placed file."""
     return [sub for sub in objects.sub_assemblies(asm) if not _in_step(sub)]
 
 
@@ -345,22 +435,25 @@ def _bring(inst, chain):
             if is_nested(inst):  # like the container's mirror's own nested instance, where it has one
                 m = mirror_of(inst)
                 like = next((n for n in objects.sub_assemblies(m) if n.SourceName == s.Name), s) if m else s
-            _new_nested(inst, like, s.Name, s.Label, like.LocalPlacement if like is not s else s.Placement)
+            _as_in_file(_new_nested(inst, like, s.Name, s.Label, like.LocalPlacement if like is not s else s.Placement))
     for n in objects.sub_assemblies(inst):
         m = mirror_of(n, inst)
         if m is not None and not _same_source(n, m):  # it places another assembly now: made again
             _remove(n)
-            n = _new_nested(inst, m, m.Name, m.Label, m.Placement)
-        if m is not None and bool(m.Rigid) != bool(n.Rigid):
-            n.Rigid = bool(m.Rigid)
+            n = _as_in_file(_new_nested(inst, m, m.Name, m.Label, m.Placement))
+        if _file_changed(n):  # the file's new word, unless this place was set otherwise
+            f = file_rigid(n)
+            if bool(n.Rigid) == _held(n):
+                n.Rigid = f
+            n.RigidInFile = f
         _bring(n, chain + [src])
 
 
 def bring_in_step(asm):
     """Each instance of `asm` (and each nested one) gets a link for a part its placed assembly
     gained and a nested instance for a sub-assembly it gained, loses those of what it lost (a
-    joint of the parent on one is then skipped and named), and its nested instances take the
-    rigidity of the sub-assemblies they mirror."""
+    joint of the parent on one is then skipped and named), and its nested instances not set
+    rigid or flexible in their place take the rigidity their placed file now gives them."""
     for sub in out_of_step(asm):
         _bring(sub, [asm])
 
@@ -379,20 +472,32 @@ def instance_link_properties(link):
 
 
 def set_rigid(sub, rigid=True):
-    """Makes an instance move as one part (True) or join its parts' joints to the parent's solve
-    (False), in one undo step. A nested instance is as the sub-assembly it mirrors is: refused."""
+    """Makes an instance, at any level, move as one part (True) or join its parts' joints to the
+    parent's solve (False) in this place, in one undo step; None (a nested instance): as its
+    placed file has it again. Refused, changing nothing, inside a rigid instance (that one is
+    its file as it is: make it flexible first)."""
     from .operations import transaction
 
     if not objects.is_sub_assembly(sub):
-        raise ValueError("%s is not a sub-assembly" % sub.Label)
-    if is_nested(sub):
-        container = container_of(sub)
-        m = mirror_of(sub)
-        raise ValueError("%s is nested in %s: it is rigid or flexible as %s is in %s (set it there)"
-                         % (sub.Label, container.Label if container else "?", m.Label if m else sub.SourceName,
-                            source_of(container).Label if container else "?"))
-    with transaction(sub.Document, "Rigid" if rigid else "Flexible"):
-        sub.Rigid = bool(rigid)
+        raise ValueError("%s is not a sub-assembly" % getattr(sub, "Label", sub))
+    if rigid is None and not is_nested(sub):
+        raise ValueError("%s: rigid is True or False (None, as its file has it, is for a nested instance)"
+                         % sub.Label)
+    if rigid is not None and not isinstance(rigid, (bool, int)):
+        raise ValueError("%s: rigid is True or False, not %r" % (sub.Label, rigid))
+    lock = locked_by(sub)
+    if lock is not None:
+        raise ValueError("%s is inside %s, which is rigid: it moves as %s has it (make %s flexible first)"
+                         % (sub.Label, lock.Label, _where(source_of(lock).Document), lock.Label))
+    with transaction(sub.Document, "Rigid" if rigid else "Flexible" if rigid is not None else "Rigid as in its file"):
+        if rigid is None:
+            f = file_rigid(sub)
+            if f is None:
+                raise ValueError("%s: its placed file no longer has it (Solve brings it in step)" % sub.Label)
+            sub.Rigid = sub.RigidInFile = f
+        elif bool(sub.Rigid) != bool(rigid):
+            sub.Rigid = bool(rigid)
+        rigid_modes(sub)
     return sub
 
 
@@ -464,7 +569,7 @@ def _add_level(adapter, container, physics, once, chain):
     rigid_once, part_once = once
     extra = []
     mirrors = None
-    if not objects.is_assembly(container):  # nested instances: rigid or flexible as what they mirror
+    if not objects.is_assembly(container):  # nested instances: each of what they mirror
         mirrors = {s.Name: s for s in objects.sub_assemblies(source_of(container))}
     for sub in objects.sub_assemblies(container):
         src = source_of(sub)
@@ -473,13 +578,10 @@ def _add_level(adapter, container, physics, once, chain):
         if lacking:
             raise ValueError("%s: %s has parts this instance lacks (%s): Solve brings them in"
                              % (sub.Label, src.Label, ", ".join(lacking)))
-        if mirrors is None:
-            rigid = sub.Rigid
-        elif sub.SourceName in mirrors:
-            rigid = mirrors[sub.SourceName].Rigid
-        else:
+        if mirrors is not None and sub.SourceName not in mirrors:
             raise ValueError("%s: %s no longer has the sub-assembly it mirrors: Solve brings it in step"
                              % (sub.Label, source_of(container).Label))
+        rigid = rigid_of(sub)  # this place's (a nested one not set here: as its file has it now)
         inside = tree(sub)
         if rigid:
             if key(src) not in rigid_once:

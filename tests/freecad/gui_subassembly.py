@@ -223,7 +223,7 @@ class Parade(unittest.TestCase):
         self.assertIn("Walk2.Leg3.Coupler", [c.text(0) for c in children])
         self.assertIsInstance(leg3.ViewObject.Proxy, viewproviders.ViewProviderSubAssembly)
         self.assertTrue(leg3.ViewObject.Proxy.getIcon().endswith("Dispcon_SubAssemblyFlexible.svg"))
-        self.assertEqual(leg3.getEditorMode("Rigid"), ["ReadOnly"])  # the walker's file says it
+        self.assertEqual(leg3.getEditorMode("Rigid"), [])  # each place's own, at every level
         coupler, crank, hip, rocker = (tn.named(leg3, p) for p in ("Coupler", "Crank", "Hip", "Rocker"))
         others = {o.Name: o.Placement for o in da.placed_parts(self.asm) if o not in da.instance_parts(leg3)}
         self.view.viewTop()
@@ -264,4 +264,98 @@ class Parade(unittest.TestCase):
         self.assertTrue(os.path.getsize(path) > 10000)
 
 
-gw.run_in_gui([Walker, Parade], "status-subassembly")
+def rigid_row_editable(obj):
+    """Whether the property editor shows obj's Rigid as a value to edit: its row found by name on
+    the Data tab once obj is selected (the editor fills its rows from a timer; None when it is not
+    shown), and its editor mode (FreeCAD's editor reads it to make the row read only)."""
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(obj)
+    for tabs in gw.mw().findChildren(QtWidgets.QTabWidget):
+        names = [tabs.tabText(i) for i in range(tabs.count())]
+        if "Data" in names and "View" in names:
+            tabs.setCurrentIndex(names.index("Data"))
+    deadline = time.monotonic() + 5
+    while time.monotonic() < deadline:
+        gw.settle()
+        time.sleep(0.05)
+        for tree in gw.mw().findChildren(QtWidgets.QTreeView):
+            model = tree.model()
+            if model is None or type(tree).__name__ == "TreeWidget":
+                continue
+            stack = [model.index(r, 0) for r in range(model.rowCount())]
+            while stack:
+                index = stack.pop()
+                if model.data(index) == "Rigid":
+                    return obj.getEditorMode("Rigid") == []
+                stack += [model.index(r, 0, index) for r in range(model.rowCount(index))]
+    return None
+
+
+class PerPlace(unittest.TestCase):
+    """The parade's walkers, flexible: leg 2 made rigid in Walk1 only, through its Rigid in the
+    property editor (editable there, read only inside a rigid walker), its icon in the tree, the
+    degrees of freedom counted from leg.FCStd's (7), a screenshot (parade-per-place.png)."""
+
+    @classmethod
+    def setUpClass(cls):
+        os.environ["DISPCON_NESTED_IMPORT_ONLY"] = "1"
+        import test_nested as tn
+
+        cls.tn = tn
+        cls.tmp = tempfile.TemporaryDirectory()
+        leg, walker, wdoc = tn.make_walker_file(cls.tmp.name)
+        App.closeDocument(wdoc.Name)
+        cls.doc, cls.asm, cls.track, cls.walks = tn.make_parade(cls.tmp.name, walker, rigid=False, name="perplace")
+        cls.doc.UndoMode = 1
+        cls.view = gw.activate(cls.doc)
+        cls.view.viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
+        gw.settle()
+
+    @classmethod
+    def tearDownClass(cls):
+        gw.close_documents()
+        cls.tmp.cleanup()
+
+    def test_a_leg_rigid_in_one_walker_only(self):
+        import dispcon_fc.assembly as da
+
+        tn = self.tn
+        w1leg2, w2leg2 = tn.named(self.walks[0], "Leg2"), tn.named(self.walks[1], "Leg2")
+        self.assertIs(rigid_row_editable(w1leg2), True)
+        # What the property editor's checkbox does: the property set, in its own undo step.
+        self.doc.openTransaction("Rigid")
+        w1leg2.Rigid = True
+        self.doc.commitTransaction()
+        gw.settle()
+        self.assertTrue(w1leg2.ViewObject.Proxy.getIcon().endswith("Dispcon_SubAssembly.svg"))
+        self.assertTrue(w2leg2.ViewObject.Proxy.getIcon().endswith("Dispcon_SubAssemblyFlexible.svg"))
+        leg_dof = da.check(da.top_assemblies(App.getDocument("leg"))[0])["dof"]
+        c = da.check(self.asm)
+        self.assertEqual(c["dof"], 7 * leg_dof, c["message"])
+        self.assertEqual(c["part_dof"]["Walk1.Leg2"], 0)
+        self.assertTrue(da.solve(self.asm).converged)
+        for gap, tilt, label in ts.gaps(self.asm):
+            self.assertLess(gap, 1e-9, label)
+        # Walk1 made rigid: inside it, the legs' Rigid read only (walker.FCStd's as it is).
+        da.set_rigid(self.walks[0], True)
+        gw.settle()
+        self.assertIs(rigid_row_editable(w1leg2), False)
+        self.assertEqual(da.check(self.asm)["dof"], 4 * leg_dof)
+        self.doc.undo()
+        gw.settle()
+        self.assertFalse(self.walks[0].Rigid)
+        self.assertIs(rigid_row_editable(w1leg2), True)
+        # The tree shows both places' icons; Walk1.Leg2 selected, its Rigid ticked in the editor.
+        for w in self.walks:
+            Gui.Selection.addSelection(tn.named(w, "Leg2.Coupler"))
+        gw.settle()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(w1leg2)
+        gw.settle()
+        path = gw.shot("parade-per-place", self.view)
+        Gui.Selection.clearSelection()
+        self.assertGreater(os.path.getsize(path), 10000)
+
+
+gw.run_in_gui([Walker, Parade, PerPlace], "status-subassembly")

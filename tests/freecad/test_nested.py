@@ -257,20 +257,7 @@ class FlexibleParade(Parade):
         self.assert_joints_hold()
 
     def test_three_levels_a_festival_of_parades(self):
-        self.doc.save()
-        doc = App.newDocument("festival")
-        doc.saveAs(os.path.join(self.tmp.name, "festival.FCStd"))
-        asm = da.create_assembly(doc, "Festival")
-        ground = doc.addObject("Part::Feature", "Ground")
-        ground.Shape = parts.frame([(0, 0)])
-        da.add_part(asm, ground, grounded=True)
-        parade = da.insert_sub_assembly(asm, self.doc.FileName, rigid=False, name="P1",
-                                        placement=App.Placement(App.Vector(0, 0, 1), App.Rotation()))
-        # The track's first boss, bottom circle, on the ground's boss top.
-        edge = parts.circle_edge(self.track.Shape, App.Vector(0, 0, 0))
-        da.add_joint(asm, "Fixed", (ground, parts.circle_edge(ground.Shape, App.Vector(0, 0, 0.1))),
-                     (parade, "Track." + edge), offset=0.5)
-        self.assertTrue(da.solve(asm).converged)
+        asm, parade = festival(self)
         c = da.check(asm)
         self.assertEqual(c["dof"], 8, c["message"])
         self.assertEqual(c["part_dof"]["P1.Walk2.Leg4.Crank"], 1)
@@ -363,21 +350,202 @@ class RigidParade(Parade):
         self.assertEqual(da.check(doc.getObject("Parade"))["dof"], 1)
         self.assert_files_unchanged()
 
-    def test_a_nested_instance_is_as_its_file_says(self):
+    def test_inside_a_rigid_walker_a_leg_is_as_its_file_says(self):
         leg = named(self.walks[0], "Leg1")
         self.assertFalse(leg.Rigid)
         self.assertEqual(leg.getEditorMode("Rigid"), ["ReadOnly"])
-        with self.assertRaisesRegex(ValueError, "Walk1.Leg1 is nested in Walk1: it is rigid or flexible as Leg1 is "
-                                                "in Walker \\(set it there\\)"):
-            da.set_rigid(leg, True)
         self.doc.UndoMode = 1
         undo = self.doc.UndoCount
+        with self.assertRaisesRegex(ValueError, r"^Walk1.Leg1 is inside Walk1, which is rigid: it moves as "
+                                                r"walker.FCStd has it \(make Walk1 flexible first\)$"):
+            da.set_rigid(leg, True)
+        self.assertEqual((leg.Rigid, self.doc.UndoCount), (False, undo))
         da.set_rigid(self.walks[0], False)  # the top one is the designer's: one undo step
         self.assertEqual(self.doc.UndoCount, undo + 1)
+        self.assertEqual(leg.getEditorMode("Rigid"), [])  # its container flexible: this place's to set
         c = da.check(self.asm)
         # Walk1 flexible: its frame's turn on the revolute, and each of its legs' crank; Walk2: 0.
         self.assertEqual(c["dof"], 1 + 4, c["message"])
         self.assertEqual(c["part_dof"]["Walk1.Leg1.Crank"], 1)
+        da.set_rigid(leg, True)  # now it can be: Walk1's frame and three legs move
+        self.assertEqual(da.check(self.asm)["dof"], 1 + 3)
+        self.doc.undo()
+        self.doc.undo()
+        self.assertEqual((self.walks[0].Rigid, leg.Rigid, leg.getEditorMode("Rigid")), (True, False, ["ReadOnly"]))
+        self.assertEqual(da.check(self.asm)["dof"], 1)
+
+
+class PerPlaceRigidity(Parade):
+    """The parade's two walkers (flexible, each leg a flexible instance of leg.FCStd): a leg made
+    rigid in one walker only. The degrees of freedom are counted here from leg.FCStd's own check
+    (a flexible leg bolted by its hip: the leg's; a rigid one: 0, six held by six), not from the
+    parade's; the drag, the .dcl file (solved by the engine alone) and a save agree."""
+
+    def leg_dof(self):
+        return da.check(da.top_assemblies(App.getDocument("leg"))[0])["dof"]
+
+    def expected_dof(self, walks=None):
+        legs = [named(w, "Leg%d" % k) for w in (walks or self.walks) for k in (1, 2, 3, 4)]
+        return sum(0 if ts_rigid(leg) else self.leg_dof() for leg in legs)
+
+    def test_one_walkers_leg_rigid_the_other_walkers_flexible(self):
+        self.assertEqual(self.leg_dof(), 1)
+        w1leg2, w2leg2 = named(self.walks[0], "Leg2"), named(self.walks[1], "Leg2")
+        self.assertEqual((w1leg2.Rigid, w1leg2.getEditorMode("Rigid")), (False, []))
+        self.doc.UndoMode = 1
+        undo = self.doc.UndoCount
+        da.set_rigid(w1leg2, True)
+        self.assertEqual(self.doc.UndoCount, undo + 1)
+        self.assertEqual((w1leg2.Rigid, w1leg2.RigidInFile, w2leg2.Rigid), (True, False, False))
+        c = da.check(self.asm)
+        self.assertEqual(self.expected_dof(), 7)
+        self.assertEqual(c["dof"], self.expected_dof(), c["message"])
+        self.assertEqual(c["part_dof"]["Walk1.Leg2"], 0)
+        self.assertNotIn("Walk1.Leg2.Crank", c["part_dof"])
+        self.assertEqual(c["part_dof"]["Walk2.Leg2.Crank"], 1)
+        self.assertEqual(sorted(j.Label for j in c["redundant"]),
+                         sorted("Walk%d.Leg%d.Revolute003" % (w, k) for w in (1, 2) for k in (1, 2, 3, 4)
+                                if (w, k) != (1, 2)))
+        # The .dcl file: the rigid leg one body, its joints not there; the engine alone counts 7.
+        dcl = os.path.join(self.tmp.name, "parade.dcl")
+        da.export_dcl(self.asm, dcl)
+        with open(dcl) as f:
+            text = f.read()
+        self.assertNotIn('"Walk1.Leg2.Revolute"', text)
+        self.assertIn('"Walk2.Leg2.Revolute"', text)
+        from dispcon_fc import engine
+
+        self.assertEqual(engine.load().load(dcl).check(tolerance=1e-9).dof, 7)
+        # Solved: the rigid leg as leg.FCStd has it, in its hip's frame (its crank at the file's angle).
+        self.assertTrue(da.solve(self.asm).converged)
+        legdoc = App.getDocument("leg")
+        hip = named(w1leg2, "Hip")
+        for part in ("Crank", "Coupler", "Rocker"):
+            there = next(o for o in legdoc.Objects if o.Label == part)
+            here = relative_to(named(w1leg2, part), hip)
+            self.assertTrue(th.same(here, relative_to(there, legdoc.getObject(hip.LinkedObject.Name)), 1e-9), part)
+        # Dragging the rigid leg's crank moves nothing (the leg bolted on whole); the other
+        # walker's leg 2 turns its crank as a four-bar, the rest staying.
+        crank1, crank2 = named(w1leg2, "Crank"), named(w2leg2, "Crank")
+        before = placements(da.placed_parts(self.asm))
+        da.drag(self.asm, crank1, turned_about_pin(crank1, 30), steps=5)
+        for o in da.placed_parts(self.asm):
+            self.assertTrue(th.same(o.Placement, before[o.Name][0], 1e-9), o.Label)
+        hip2, rocker2 = named(w2leg2, "Hip"), named(w2leg2, "Rocker")
+        start = angle_in(crank2, hip2)
+        self.assertTrue(da.drag(self.asm, crank2, turned_about_pin(crank2, 30), steps=5).converged)
+        self.assertAlmostEqual(math.remainder(angle_in(crank2, hip2) - start - math.radians(30), 2 * math.pi), 0,
+                               delta=1e-9)
+        err = math.remainder(angle_in(rocker2, hip2) - th.freudenstein(angle_in(crank2, hip2)), 2 * math.pi)
+        self.assertLess(abs(err), 1e-8)
+        for o in da.instance_parts(w1leg2):
+            self.assertTrue(th.same(o.Placement, before[o.Name][0], 1e-9), o.Label)
+        self.assert_joints_hold()
+        self.assert_locals()
+        # Saved and reopened: each place's setting kept.
+        path = self.doc.FileName
+        self.doc.save()
+        for name in list(App.listDocuments()):
+            App.closeDocument(name)
+        doc = App.openDocument(path)
+        walks = da.sub_assemblies(doc.getObject("Parade"))
+        self.assertEqual([(named(w, "Leg2").Rigid, named(w, "Leg2").RigidInFile) for w in walks],
+                         [(True, False), (False, False)])
+        self.assertEqual(named(walks[0], "Leg2").getEditorMode("Rigid"), [])
+        self.assertEqual(da.check(doc.getObject("Parade"))["dof"], self.expected_dof(walks))
+        self.assert_files_unchanged()
+
+    def test_places_not_set_follow_their_file_places_set_keep_theirs(self):
+        da.set_rigid(named(self.walks[0], "Leg2"), True)
+        # walker.FCStd's Leg3 made rigid there: both walkers' Leg3 follow (neither set here).
+        walker = self.wdoc.getObject("Walker")
+        da.set_rigid(next(s for s in da.sub_assemblies(walker) if s.Label == "Leg3"), True)
+        self.wdoc.save()
+        from dispcon_fc import subassembly
+
+        self.assertEqual(subassembly.out_of_step(self.asm), self.walks)
+        self.assertEqual(da.check(self.asm)["dof"], 8 - 1 - 2)  # taken as the file says before a Solve
+        self.assertTrue(da.solve(self.asm).converged)
+        got = {(w.Label, k): (named(w, "Leg%d" % k).Rigid, named(w, "Leg%d" % k).RigidInFile)
+               for w in self.walks for k in (2, 3)}
+        self.assertEqual(got, {("Walk1", 2): (True, False), ("Walk1", 3): (True, True),
+                               ("Walk2", 2): (False, False), ("Walk2", 3): (True, True)})
+        self.assertEqual(da.check(self.asm)["dof"], self.expected_dof())
+        self.assertEqual(self.expected_dof(), 5)
+        # Set flexible in this place against its file, then as its file has it again.
+        w2leg3 = named(self.walks[1], "Leg3")
+        da.set_rigid(w2leg3, False)
+        self.assertEqual(da.check(self.asm)["dof"], 6)
+        da.set_rigid(w2leg3, None)
+        self.assertEqual((w2leg3.Rigid, da.check(self.asm)["dof"]), (True, 5))
+        with self.assertRaisesRegex(ValueError, r"^Walk1: rigid is True or False \(None, as its file has it, is for "
+                                                r"a nested instance\)$"):
+            da.set_rigid(self.walks[0], None)
+
+    def test_a_festival_one_walker_rigid_the_other_flexible(self):
+        # parade.FCStd has Walk2's Leg4 rigid (set in that place): the festival's P1 takes it so.
+        da.set_rigid(named(self.walks[1], "Leg4"), True)
+        self.doc.save()
+        asm, parade = festival(self)
+        self.assertTrue(named(parade, "Walk2.Leg4").Rigid)
+        walker_dof = da.check(self.wdoc.getObject("Walker"))["dof"]
+        self.assertEqual(walker_dof, 4)
+        self.assertEqual(da.check(asm)["dof"], 2 * walker_dof - 1)
+        p1w1, p1w2 = named(parade, "Walk1"), named(parade, "Walk2")
+        asm.Document.UndoMode = 1
+        da.set_rigid(p1w1, True)
+        c = da.check(asm)
+        # Counted here: a rigid walker on its stand 0; the flexible one its flexible legs' (3 of 4).
+        want = sum(0 if ts_rigid(w) else sum(0 if ts_rigid(named(w, "Leg%d" % k)) else self.leg_dof()
+                                             for k in (1, 2, 3, 4)) for w in (p1w1, p1w2))
+        self.assertEqual(want, 3)
+        self.assertEqual(c["dof"], want, c["message"])
+        self.assertEqual(c["part_dof"]["P1.Walk1"], 0)
+        self.assertNotIn("P1.Walk1.Leg1.Crank", c["part_dof"])
+        self.assertEqual(c["part_dof"]["P1.Walk2.Leg1.Crank"], 1)
+        # Inside the rigid walker the legs are as walker.FCStd has them: read only, refused.
+        inner = named(p1w1, "Leg1")
+        self.assertEqual(inner.getEditorMode("Rigid"), ["ReadOnly"])
+        with self.assertRaisesRegex(ValueError, r"^P1.Walk1.Leg1 is inside P1.Walk1, which is rigid: it moves as "
+                                                r"walker.FCStd has it \(make P1.Walk1 flexible first\)$"):
+            da.set_rigid(inner, True)
+        # Solved: the parts of the rigid walker where walker.FCStd has them against its frame.
+        self.assertTrue(da.solve(asm).converged)
+        frame = named(p1w1, "Frame")
+        for k in (1, 2, 3, 4):
+            for part in ("Hip", "Crank", "Rocker"):
+                o = named(p1w1, "Leg%d.%s" % (k, part))
+                self.assertTrue(th.same(relative_to(o, frame), self.walker_pose("Leg%d.%s" % (k, part)), 1e-9), o.Label)
+        da.set_rigid(named(p1w2, "Leg1"), True)
+        self.assertEqual(da.check(asm)["dof"], 2)
+        self.assertTrue(da.solve(asm).converged)
+        # Every joint that holds here: the ground's, the two stands', P1.Walk2's four hips and the
+        # four revolutes of each of its two flexible legs (the rigid ones' hold inside them).
+        self.assertEqual(self.assert_joints_hold(asm), 1 + 2 + 4 + 2 * 4)
+
+
+def ts_rigid(inst):
+    """Whether an instance is rigid in its place (its Rigid, as this test set it)."""
+    return bool(inst.Rigid)
+
+
+def festival(test):
+    """test's parade (saved) placed flexible as P1 in a festival on a grounded boss: (asm, P1)."""
+    test.doc.save()
+    doc = App.newDocument("festival")
+    doc.saveAs(os.path.join(test.tmp.name, "festival.FCStd"))
+    asm = da.create_assembly(doc, "Festival")
+    ground = doc.addObject("Part::Feature", "Ground")
+    ground.Shape = parts.frame([(0, 0)])
+    da.add_part(asm, ground, grounded=True)
+    parade = da.insert_sub_assembly(asm, test.doc.FileName, rigid=False, name="P1",
+                                    placement=App.Placement(App.Vector(0, 0, 1), App.Rotation()))
+    # The track's first boss, bottom circle, on the ground's boss top.
+    edge = parts.circle_edge(test.track.Shape, App.Vector(0, 0, 0))
+    da.add_joint(asm, "Fixed", (ground, parts.circle_edge(ground.Shape, App.Vector(0, 0, 0.1))),
+                 (parade, "Track." + edge), offset=0.5)
+    assert da.solve(asm).converged
+    return asm, parade
 
 
 class FlexibleWalkersOfRigidLegs(Parade):
@@ -537,7 +705,8 @@ class Transactions(unittest.TestCase):
 
 if not os.environ.get("DISPCON_NESTED_IMPORT_ONLY"):  # gui_subassembly.py imports the helpers only
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
-                               for c in (FlexibleParade, RigidParade, FlexibleWalkersOfRigidLegs, OneDocument,
+                               for c in (FlexibleParade, RigidParade, PerPlaceRigidity, FlexibleWalkersOfRigidLegs,
+                                         OneDocument,
                                                                        Cycles, Transactions))
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
     failed = len(result.failures) + len(result.errors)
