@@ -19,6 +19,13 @@ Sub-assemblies, as the designer chooses (SUB_ASSEMBLIES):
 - "expanded": no sub-assembly rows; their parts (and those of the sub-assemblies nested in them)
   are counted with the assembly's own (a leg's crank placed four times: 4 more cranks).
 
+Part number and description are the part's own, where it is defined (a link's: the object it
+links, in its file): its PartNumber property (set_part_info adds it; the workbench's parts have
+it) and FreeCAD's Description (Label2, the tree's Description column); a placed sub-assembly's are
+its assembly's. Two parts of one shape and label but another part number or description are two
+rows. A part defined in another file takes them from that file, which is never written to here:
+set them there.
+
 Material and mass come only from what the document says: a part's Material (a map with Name and
 Density, a link to a material object, or a name) or a material object (FEM's MaterialSolid,
 App::MaterialObject) whose References name the part. The workbench's own Density property is the
@@ -34,7 +41,9 @@ from . import objects
 from .objects import instance_parts, is_sub_assembly, parts, shape_of
 
 SUB_ASSEMBLIES = ("rows", "indented", "expanded")
-COLUMNS = ("Index", "Name", "Quantity", "Material", "Volume (mm³)", "Mass (g)", "Source")
+COLUMNS = ("Index", "Name", "Part number", "Description", "Quantity", "Material", "Volume (mm³)", "Mass (g)",
+           "Source")
+QUANTITY = COLUMNS.index("Quantity")
 # FreeCAD numbers a label that is taken already: "Bolt" then "Bolt001", "Bolt002".
 _NUMBERED = re.compile(r"(?<=\D)\d{3,}$")
 
@@ -45,19 +54,22 @@ def label_base(label):
 
 
 class Row:
-    """One line of the bill: `index` ("3", or "3.1" under a sub-assembly), `name`, `quantity`,
+    """One line of the bill: `index` ("3", or "3.1" under a sub-assembly), `name`, `part_number`
+    and `description` ("" when none), `quantity`,
     `material` ("" when unknown), `volume` (mm³ of one piece) and `mass` (g of one piece, None
     when a density is unknown), `source` (the file a linked part comes from, else ""), `kind`
     ("part" or "sub-assembly") and `members`, the document's objects it counts."""
 
-    def __init__(self, name, kind, key, material="", volume=None, mass=None, source=""):
+    def __init__(self, name, kind, key, material="", volume=None, mass=None, source="", info=("", ""), defined=None):
         self.index, self.name, self.kind, self.key = "", name, kind, key
+        self.part_number, self.description = info
+        self.defined = defined  # the object its part number and description live on
         self.quantity, self.members = 0, []
         self.material, self.volume, self.mass, self.source = material, volume, mass, source
 
     def cells(self):
         """The row's values in COLUMNS' order (numbers as numbers, unknowns as "")."""
-        return (self.index, self.name, self.quantity, self.material,
+        return (self.index, self.name, self.part_number, self.description, self.quantity, self.material,
                 "" if self.volume is None else self.volume, "" if self.mass is None else self.mass, self.source)
 
     def __repr__(self):
@@ -90,6 +102,60 @@ def _same_shape(a, b):
     tolerance = 1e-6
     return (abs(a[0] - b[0]) <= tolerance * size ** 3 and abs(a[1] - b[1]) <= tolerance * size ** 2
             and all(abs(x - y) <= tolerance * size for x, y in zip(a[4:], b[4:])))
+
+
+def part_info(obj):
+    """(part number, description) of a part (of its definition: a link's linked object) or of a
+    placed assembly: its PartNumber and its Label2, "" where none."""
+    target = _definition(obj)
+    number = target.PartNumber if "PartNumber" in target.PropertiesList else ""
+    return (number if isinstance(number, str) else "", target.Label2 or "")
+
+
+def _checked_text(what, value, label):
+    """The one door of a part number or a description: text on one line, its ends' blanks
+    dropped; None (leave it) passes."""
+    if value is None:
+        return None
+    if not isinstance(value, str):
+        raise ValueError("%s: the %s is text, not %r" % (label, what, value))
+    if any(ord(c) < 32 or ord(c) == 127 for c in value):
+        raise ValueError("%s: the %s is one line of text (it holds a line break or a control character)"
+                         % (label, what))
+    return value.strip()
+
+
+def check_part_info(obj, part_number=None, description=None):
+    """The object set_part_info writes on (the part's definition, or the placed assembly of a
+    sub-assembly instance) and the checked values; refused (a ValueError by label) when that
+    object is in another file (a placed file is never written to here) or a value is not one
+    line of text."""
+    from .subassembly import source_of
+
+    target = source_of(obj) if is_sub_assembly(obj) else _definition(obj)
+    number = _checked_text("part number", part_number, obj.Label)
+    text = _checked_text("description", description, obj.Label)
+    if target.Document is not obj.Document:
+        raise ValueError("%s is defined in %s: set its part number and description there (a placed file is never "
+                         "written to from here)" % (target.Label, _source(target, obj)))
+    return target, number, text
+
+
+def set_part_info(obj, part_number=None, description=None, undo_step=True):
+    """Sets the part number (its PartNumber, added if missing) and the description (Label2) of
+    a part where it is defined, or of the assembly a sub-assembly instance places; None leaves
+    one as it is. One undo step; refused, nothing changes. Returns the object written on."""
+    from .operations import _step
+
+    target, number, text = check_part_info(obj, part_number, description)
+    with _step(obj.Document, "Part number", undo_step):
+        if number is not None:
+            objects.part_number_property(target)
+            if target.PartNumber != number:
+                target.PartNumber = number
+        if text is not None and target.Label2 != text:
+            target.Label2 = text
+    return target
 
 
 def _source(obj, asm):
@@ -154,23 +220,24 @@ class _Counter:
         shape = shape_of(obj)
         sig = _signature(shape)
         linked = target is not obj
+        info = part_info(obj)
         for row in self.rows:
             if row.kind != "part":
                 continue
             if linked and row.key == ("link", target):
                 break
             if not linked and row.key[0] == "shape" and row.key[1] == label_base(obj.Label) \
-                    and _same_shape(row.key[2], sig):
+                    and _same_shape(row.key[2], sig) and row.key[3] == info:
                 break
         else:
             name, density = material(obj)
             volume = shape.Volume
-            key = ("link", target) if linked else ("shape", label_base(obj.Label), sig)
+            key = ("link", target) if linked else ("shape", label_base(obj.Label), sig, info)
             label = target.Label if linked else label_base(obj.Label)
             if not linked and any(r.kind == "part" and r.name == label for r in self.rows):
-                label = obj.Label  # another shape under the same name: its own label
+                label = obj.Label  # another shape (or part number) under the same name: its own label
             row = Row(label, "part", key, name, volume, None if density is None else volume * density,
-                      _source(target, self.asm))
+                      _source(target, self.asm), info, target)
             self.rows.append(row)
         row.quantity += times
         row.members.append(obj)
@@ -184,7 +251,8 @@ class _Counter:
             if row.key == ("sub", src):
                 break
         else:
-            row = Row(src.Label, "sub-assembly", ("sub", src), source=_source(src, self.asm))
+            row = Row(src.Label, "sub-assembly", ("sub", src), source=_source(src, self.asm), info=part_info(src),
+                      defined=src)
             row.children = _Counter(self.asm)
             links = set(o.Name for o in instance_parts(sub))
             for o in sub.Group:  # its parts, and the sub-assemblies nested in it as rows of their own
@@ -265,15 +333,23 @@ def _cell_text(value):
     return "'" + value if value else ""
 
 
-def write_sheet(asm, sub_assemblies_as="indented"):
+def write_sheet(asm, sub_assemblies_as="indented", part_info=None):
     """Writes the bill of `asm` into its BOM spreadsheet (made the first time, emptied and written
-    again afterwards) in one undo step; returns (sheet, rows)."""
+    again afterwards) in one undo step; returns (sheet, rows). `part_info` ({part: (part number,
+    description)}, the BOM panel's edits) is set on the parts first, in the same undo step (each
+    checked before anything is written)."""
     from .operations import transaction
 
-    bill = rows(asm, sub_assemblies_as)
-    cells = table(bill)
+    edits = [(obj, number, text) for obj, (number, text) in (part_info or {}).items()]
+    for obj, number, text in edits:
+        check_part_info(obj, number, text)
+    rows(asm, sub_assemblies_as)  # a refused choice, before anything is written
     doc = asm.Document
     with transaction(doc, "Bill of materials"):
+        for obj, number, text in edits:
+            set_part_info(obj, number, text, undo_step=False)
+        bill = rows(asm, sub_assemblies_as)
+        cells = table(bill)
         sheet = sheet_of(asm)
         if sheet is None:
             sheet = doc.addObject("Spreadsheet::Sheet", "BOM")
@@ -285,7 +361,8 @@ def write_sheet(asm, sub_assemblies_as="indented"):
             sheet.SubAssemblies = list(SUB_ASSEMBLIES)
             sheet.addProperty("App::PropertyInteger", "BomRows", "Dispcon", "the rows written last (the header's too)")
             sheet.setEditorMode("BomRows", 2)
-            for k, width in enumerate((60, 180, 70, 140, 110, 90, 140)):
+        if sheet.getContents("C1") != COLUMNS[2]:  # new, or written before the part number's column
+            for k, width in enumerate((60, 180, 110, 200, 70, 140, 110, 90, 140)):
                 sheet.setColumnWidth(_column(k), width)
         sheet.Label = "BOM of %s" % asm.Label
         sheet.SubAssemblies = sub_assemblies_as

@@ -31,10 +31,12 @@ def commands():
     return [
         ("Dispcon_BillOfMaterials", Command(
             "Bill of materials", "Bill of materials: every distinct part with how many the assembly holds, its "
-            "material and mass where the document knows them; OK writes it into a spreadsheet (run again to "
-            "update it), Export CSV into a file.", _bill_of_materials, active=_has_parts)),
+            "part number, description, material and mass where the document knows them (type a part number or "
+            "description in the table); OK writes it into a spreadsheet (run again to update it), Export CSV "
+            "into a file.", _bill_of_materials, active=_has_parts)),
         ("Dispcon_ExplodedView", Command(
-            "Exploded view", "Exploded view: the parts drawn apart, away from the centre or along a direction, "
-            "with a live slider; the assembly itself never moves. Its object in the tree shows it (Space: "
-            "the assembled parts again).", _exploded_view, active=_has_parts)),
+            "Exploded view", "Exploded view: the parts drawn apart in steps applied in order, each moving the "
+            "parts it names away from the centre or along a direction, with a live slider; the assembly itself "
+            "never moves. Its object in the tree shows it (Space: the assembled parts again).", _exploded_view,
+            active=_has_parts)),
     ]

@@ -1,14 +1,18 @@
 """The Bill of materials panel: the bill of the assembly as it will be written (a table), how its
-sub-assemblies are listed, and Export CSV. OK writes it into the assembly's BOM spreadsheet (made
-the first time, rewritten afterwards) as one undo step; Cancel writes nothing."""
+sub-assemblies are listed, and Export CSV. Part number and Description are typed in the table
+(double-click) for parts defined in this document (bom.check_part_info says why not for others:
+a placed file's parts are set in that file). OK writes them on the parts and the bill into the
+assembly's BOM spreadsheet (made the first time, rewritten afterwards) as one undo step; Cancel
+writes nothing."""
 import FreeCADGui as Gui
 
 from .. import bom, panels
 from ..adapter import plural
 from ..feedback import report, status
-from ..qt import QtGui, QtWidgets
+from ..qt import QtCore, QtGui, QtWidgets
 from ..resources import icon_path
 
+EDITABLE = (bom.COLUMNS.index("Part number"), bom.COLUMNS.index("Description"))
 CHOICES = (("rows", "One row each"), ("indented", "A row, its parts below"), ("expanded", "Only their parts"))
 
 
@@ -17,6 +21,8 @@ class BomPanel:
         self.asm, self.doc = asm, asm.Document
         self.closed = False
         self.bill = []
+        self.edits = {}  # {Name of the object written on: (a member, part number, description)}
+        self.filling = False
         self.form = self._build()
         sheet = bom.sheet_of(asm)
         choice = sheet.SubAssemblies if sheet is not None and "SubAssemblies" in sheet.PropertiesList else "indented"
@@ -42,7 +48,8 @@ class BomPanel:
         form.addRow("Sub-assemblies", self.choice)
         self.table = QtWidgets.QTableWidget()
         self.table.setObjectName("table")
-        self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
+        self.table.setEditTriggers(QtWidgets.QAbstractItemView.DoubleClicked
+                                   | QtWidgets.QAbstractItemView.EditKeyPressed)
         self.table.verticalHeader().setVisible(False)
         # As narrow as the Combo View: the columns scroll, the panel does not grow past it.
         self.table.setSizePolicy(QtWidgets.QSizePolicy.Ignored, QtWidgets.QSizePolicy.Expanding)
@@ -57,6 +64,7 @@ class BomPanel:
         self.message.setWordWrap(True)
         top.addWidget(self.message)
         self.choice.currentIndexChanged.connect(lambda *_: self._fill())
+        self.table.itemChanged.connect(self._typed)
         self.export.clicked.connect(lambda *_: self._export())
         return w
 
@@ -71,25 +79,76 @@ class BomPanel:
             self.message.setText(str(e))
             self.message.setStyleSheet("color: #cc0000;")
             return
+        for row in self.bill:  # what was typed and not written yet
+            if row.defined is not None and row.defined.Name in self.edits:
+                _, row.part_number, row.description = self.edits[row.defined.Name]
         cells = bom.table(self.bill)
+        self.filling = True
         self.table.clear()
         self.table.setColumnCount(len(bom.COLUMNS))
         self.table.setRowCount(len(cells) - 1)
         self.table.setHorizontalHeaderLabels(list(bom.COLUMNS))
         for r, values in enumerate(cells[1:]):
+            row = self.bill[r]
+            why = self._not_here(row)
             for c, value in enumerate(values):
                 text = "%.6g" % value if isinstance(value, float) else str(value)
                 item = QtWidgets.QTableWidgetItem(text)
-                if self.bill[r].kind == "sub-assembly":
+                if c in EDITABLE and why is None:
+                    item.setToolTip("Double-click to type the %s (written on %s at OK)"
+                                    % (bom.COLUMNS[c].lower(), row.defined.Label))
+                else:
+                    item.setFlags(item.flags() & ~QtCore.Qt.ItemIsEditable)
+                    if c in EDITABLE:
+                        item.setToolTip(why)
+                if row.kind == "sub-assembly":
                     font = item.font()
                     font.setBold(True)
                     item.setFont(font)
                 self.table.setItem(r, c, item)
         self.table.resizeColumnsToContents()
+        self.filling = False
         self.message.setStyleSheet("")
         self.message.setText("%s. OK writes %s into the spreadsheet 'BOM of %s' (again: updates it)."
                              % (plural(len(self.bill), "row"), "it" if len(self.bill) == 1 else "them",
                                 self.asm.Label))
+
+    def _not_here(self, row):
+        """Why a row's part number and description cannot be typed here (None: they can)."""
+        if not row.members:
+            return "nothing to write it on"
+        try:
+            bom.check_part_info(row.members[0])
+        except ValueError as e:
+            return str(e)
+        return None
+
+    def _typed(self, item):
+        """A part number or description typed: checked by the bill's door, kept for OK and the
+        CSV; refused, said in red and put back."""
+        if self.filling or item.column() not in EDITABLE:
+            return
+        row = self.bill[item.row()]
+        number, text = row.part_number, row.description
+        if item.column() == bom.COLUMNS.index("Part number"):
+            number = item.text()
+        else:
+            text = item.text()
+        try:
+            target, number, text = bom.check_part_info(row.members[0], number, text)
+        except ValueError as e:
+            self.message.setText(str(e))
+            self.message.setStyleSheet("color: #cc0000;")
+            self.filling = True
+            item.setText(row.part_number if item.column() == bom.COLUMNS.index("Part number") else row.description)
+            self.filling = False
+            return
+        self.edits[target.Name] = (row.members[0], number, text)
+        self._fill()
+
+    def part_info(self):
+        """The edits for bom.write_sheet: {member: (part number, description)}."""
+        return {member: (number, text) for member, number, text in self.edits.values()}
 
     def _export(self):
         from ..commands.motion import save_path
@@ -109,7 +168,7 @@ class BomPanel:
 
     def accept(self):
         try:
-            sheet, bill = bom.write_sheet(self.asm, self.sub_assemblies())
+            sheet, bill = bom.write_sheet(self.asm, self.sub_assemblies(), self.part_info())
         except Exception as e:  # written nothing (one transaction, aborted)
             self.message.setText(str(e))
             self.message.setStyleSheet("color: #cc0000;")
