@@ -117,28 +117,49 @@ class Walker(unittest.TestCase):
         # Indented by default: Frame, Leg x4, then the leg's four parts, one each.
         self.assertEqual(table.rowCount(), 2 + len(legs))
         self.assertEqual([table.item(r, 1).text() for r in range(table.rowCount())], ["Frame", "Leg"] + legs)
-        self.assertEqual(table.item(1, 2).text(), "4")
-        self.assertEqual(table.item(0, 3).text(), "Steel")
+        q, pn, desc, mat, mass_col = (bom.COLUMNS.index(c) for c in ("Quantity", "Part number", "Description",
+                                                                    "Material", "Mass (g)"))
+        self.assertEqual(table.item(1, q).text(), "4")
+        self.assertEqual(table.item(0, mat).text(), "Steel")
         mass = self.frame.Shape.Volume * 7900e-6  # g
-        self.assertAlmostEqual(float(table.item(0, 5).text()), mass, delta=mass * 1e-5)
-        self.assertEqual(table.item(1, 5).text(), "")  # the legs' parts have no material
+        self.assertAlmostEqual(float(table.item(0, mass_col).text()), mass, delta=mass * 1e-5)
+        self.assertEqual(table.item(1, mass_col).text(), "")  # the legs' parts have no material
+        # The frame's part number and description typed in the table; the leg's cannot be (leg.FCStd's).
+        self.assertTrue(table.item(0, pn).flags() & QtCore.Qt.ItemIsEditable)
+        self.assertFalse(table.item(1, pn).flags() & QtCore.Qt.ItemIsEditable)
+        self.assertIn("leg.FCStd", table.item(1, pn).toolTip())
+        table.item(0, pn).setText("F-2024-01")
+        gw.settle()
+        table.item(0, desc).setText("Walker frame\nwelded")  # two lines: refused, put back
+        gw.settle()
+        self.assertIn("one line of text", panel.message.text())
+        self.assertEqual(table.item(0, desc).text(), "")
+        table.item(0, desc).setText("Walker frame, welded")
+        gw.settle()
+        self.assertEqual((table.item(0, pn).text(), table.item(0, desc).text()), ("F-2024-01", "Walker frame, welded"))
+        self.assertEqual(self.frame.PartNumber, "")  # nothing written before OK
         panel.choice.setCurrentIndex(2)  # expanded
         gw.settle()
-        self.assertEqual([(table.item(r, 1).text(), table.item(r, 2).text()) for r in range(table.rowCount())],
+        self.assertEqual([(table.item(r, 1).text(), table.item(r, q).text()) for r in range(table.rowCount())],
                          [("Frame", "1")] + [(label, "4") for label in legs])
+        self.assertEqual(table.item(0, pn).text(), "F-2024-01")  # kept across the choice
         path = os.path.join(self.tmp.name, "walker-bom.csv")
         panel.export_csv(path)
         with open(path, newline="", encoding="utf-8") as f:
-            self.assertEqual([r[1:3] for r in list(csv.reader(f))[1:]], [["Frame", "1"]] + [[l, "4"] for l in legs])
+            read = list(csv.reader(f))[1:]
+        self.assertEqual([[r[1], r[q]] for r in read], [["Frame", "1"]] + [[l, "4"] for l in legs])
+        self.assertEqual(read[0][pn:desc + 1], ["F-2024-01", "Walker frame, welded"])
         panel.choice.setCurrentIndex(1)  # back to indented, written so
         gw.settle()
         gw.shot("bom-panel", self.view)
         undo = self.doc.UndoCount
         panel.accept()
         gw.settle()
-        self.assertEqual(self.doc.UndoCount, undo + 1)
+        self.assertEqual(self.doc.UndoCount, undo + 1)  # the part number and the sheet: one step
+        self.assertEqual((self.frame.PartNumber, self.frame.Label2), ("F-2024-01", "Walker frame, welded"))
         sheet = bom.sheet_of(self.asm)
-        self.assertEqual(tp.cells(sheet)[2][:3], ["'2", "Leg", "4"])
+        self.assertEqual(tp.key_cells(tp.cells(sheet)[2]), ["'2", "Leg", "4"])
+        self.assertEqual([c.lstrip("'") for c in tp.cells(sheet)[1][pn:desc + 1]], ["F-2024-01", "Walker frame, welded"])
         self.assertFalse(Gui.Control.activeDialog())
         # Shown as a designer opens it (double-click in the tree), looked at in bom-sheet.png.
         Gui.getDocument(self.doc.Name).setEdit(sheet.Name)
@@ -182,14 +203,16 @@ class Walker(unittest.TestCase):
         # (as the box shows it, to its decimals: what is drawn is what is read)
         want = float(panel.distance.property("rawValue"))
         self.assertAlmostEqual(want, panel.reach * 0.3, delta=0.01)
-        self.assertEqual(view.Distance.Value, want)
+        self.assertEqual(list(view.StepDistances), [want])
         self.assertAlmostEqual(max(v.Length for v in view.Offsets), want, delta=1e-9)
         # Typed: 2 mm, the slider follows.
         panel.distance.setProperty("rawValue", 2.0)
         gw.settle()
-        self.assertAlmostEqual(view.Distance.Value, 2.0, delta=1e-12)
+        self.assertAlmostEqual(view.StepDistances[0], 2.0, delta=1e-12)
         self.assertEqual(panel.slider.value(), int(round(2.0 / panel.reach * 1000)))
-        panel.expand.setChecked(True)
+        # Each part of a leg alone: the legs unticked, their parts ticked.
+        tick(panel, lambda o: not self.da.is_sub_assembly(o))
+        self.assertEqual(len(view.StepParts), 1 + 4 * 4)
         panel.distance.setProperty("rawValue", 4.0)  # far enough apart to see each part
         gw.settle()
         # Drawn in the parts' colours: the frame's (blue) on as many faces as it has, first.
@@ -250,6 +273,95 @@ class Walker(unittest.TestCase):
         self.assertTrue(all(o.ViewObject.Visibility for o in drawn))
 
 
+    def test_exploded_steps_added_reordered_and_removed_in_the_panel(self):
+        from dispcon_fc import exploded
+        from dispcon_fc.panels import exploded as ep
+
+        for v in exploded.views_of(self.asm):
+            exploded.show(v, False)
+            self.doc.removeObject(v.Name)
+        before = tp.placements(self.asm)
+        leg2 = self.subs[1]
+        count, undo = len(self.doc.Objects), self.doc.UndoCount
+        panel = ep.open_panel(self.asm)
+        gw.settle()
+        view = panel.view
+        panel.distance.setProperty("rawValue", 3.0)
+        gw.settle()
+        one = {p.Name: App.Vector(v) for p, v in zip(view.Parts, view.Offsets)}
+        # Add a step with leg 2 selected in the tree: it moves leg 2 (as one) along +Z.
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(leg2)
+        panel.add_button.click()
+        gw.settle()
+        self.assertEqual(panel.step_list.count(), 2)
+        self.assertEqual(panel.step_list.currentRow(), 1)
+        self.assertEqual([panel.parts.item(k).text().strip() for k in range(panel.parts.count())
+                          if panel.parts.item(k).checkState() == QtCore.Qt.Checked], ["Leg2"])
+        panel.distance.setProperty("rawValue", 5.0)
+        gw.settle()
+        self.assertEqual(panel.step_list.item(1).text(), "2. Along a direction, 5 mm: 1 part")
+        legs2 = {p.Name for p in self.da.nested_parts(leg2)}
+        for p, v in zip(view.Parts, view.Offsets):
+            want = one[p.Name] + (App.Vector(0, 0, 5) if p.Name in legs2 else App.Vector())
+            self.assertLess((v - want).Length, 1e-9, p.Label)
+        # Up: leg 2 lifted first, then everything away from the centre (from where leg 2 is drawn).
+        panel.up_button.click()
+        gw.settle()
+        self.assertEqual(list(view.StepModes), ["Direction", "Radial"])
+        self.assertEqual(panel.step_list.item(0).text(), "1. Along a direction, 5 mm: 1 part")
+        self.assertFalse(panel.up_button.isEnabled())
+        # A step with nothing selected: said in the panel, OK disabled, until it is removed.
+        Gui.Selection.clearSelection()
+        panel.add_button.click()
+        gw.settle()
+        self.assertEqual(panel.message.text(), "step 2 moves no part: choose the parts it moves")
+        self.assertFalse(panel.ok_button().isEnabled())
+        self.assertEqual(list(view.StepModes), ["Direction", "Radial"])  # the view as it was
+        Gui.SendMsgToActiveView("ViewFit")
+        gw.shot("exploded-steps-refused", self.view)
+        panel.remove_button.click()
+        gw.settle()
+        self.assertTrue(panel.ok_button().isEnabled())
+        self.assertEqual(panel.step_list.count(), 2)
+        Gui.SendMsgToActiveView("ViewFit")
+        path = gw.shot("exploded-steps", self.view)
+        self.assertGreater(os.path.getsize(path), 10000)
+        panel.accept()
+        gw.settle()
+        self.assertEqual((len(self.doc.Objects), self.doc.UndoCount), (count + 1, undo + 1))
+        self.assertEqual(list(view.StepModes), ["Direction", "Radial"])
+        self.assertEqual(tp.placements(self.asm), before)
+        # Opened again: its two steps, the first chosen.
+        panel = ep.open_panel(self.asm, view)
+        gw.settle()
+        self.assertEqual([panel.step_list.item(k).text()[:2] for k in range(2)], ["1.", "2."])
+        self.assertEqual(panel.mode.itemData(panel.mode.currentIndex()), "Direction")
+        panel.reject()
+        gw.settle()
+        self.assertEqual(list(view.StepModes), ["Direction", "Radial"])
+
+
+def tick(panel, wanted):
+    """Ticks in the panel's parts list the objects `wanted` says (the others unticked), unticking
+    first so no step moves a part twice on the way."""
+    by_name = {o.Name: o for o, _ in panel_choices(panel)}
+    items = [panel.parts.item(k) for k in range(panel.parts.count())]
+    for item in items:
+        if not wanted(by_name[item.data(QtCore.Qt.UserRole)]):
+            item.setCheckState(QtCore.Qt.Unchecked)
+    for item in items:
+        if wanted(by_name[item.data(QtCore.Qt.UserRole)]):
+            item.setCheckState(QtCore.Qt.Checked)
+    gw.settle()
+
+
+def panel_choices(panel):
+    from dispcon_fc import exploded
+
+    return exploded.choices(panel.asm)
+
+
 class Reopened(unittest.TestCase):
     def test_saved_while_exploded_reopens_with_its_view_and_toggles_back(self):
         import dispcon_fc.assembly as da
@@ -292,4 +404,119 @@ class Reopened(unittest.TestCase):
             gw.settle()
 
 
-gw.run_in_gui([Walker, Reopened], "status-presentation")
+# A FreeCAD GUI without the workbench (tp's bare session's environment, this display): opens the
+# document, says what it shows, saves a screenshot of the main window with its 3D view, saves the
+# document and quits.
+BARE_GUI = """
+import json, os, sys
+import FreeCAD as App
+import FreeCADGui as Gui
+try:
+    import dispcon_fc
+    raise SystemExit("the workbench was importable: this session must not have it")
+except ImportError:
+    pass
+from PySide import QtGui
+path, out = os.environ["DISPCON_BARE_DOC"], os.environ["DISPCON_BARE_OUT"]
+seen = {}
+try:
+    Gui.getMainWindow().setGeometry(0, 0, 1280, 900)
+    doc = App.openDocument(path)
+    Gui.updateGui()
+    view = next(o for o in doc.Objects if getattr(o, "DispconType", "") == "ExplodedView")
+    parts = [o for o in doc.Objects if "Grounded" in o.PropertiesList and o.TypeId != "App::DocumentObjectGroupPython"]
+    joints = [o for o in doc.Objects if "JointType" in o.PropertiesList]
+    seen = {"proxy": repr(view.Proxy), "shown": view.ViewObject.Visibility, "solids": len(view.Shape.Solids),
+            "faces": len(view.Shape.Faces), "colours": len(view.ViewObject.DiffuseColor),
+            "parts_shown": [p.ViewObject.Visibility for p in parts], "joints_shown": [j.ViewObject.Visibility for j in joints],
+            "steps": list(view.StepModes)}
+    v3d = Gui.ActiveDocument.ActiveView
+    v3d.viewIsometric()
+    v3d.fitAll()
+    Gui.updateGui()
+    v3d.saveImage(out, 1000, 700, "White")
+    doc.save()
+    seen["saved"] = True
+except Exception as e:
+    seen["error"] = repr(e)
+with open(out + ".json", "w") as f:
+    json.dump(seen, f)
+os._exit(0)
+"""
+
+
+class WithoutTheWorkbench(unittest.TestCase):
+    """A four-bar exploded in two steps, saved from this GUI while the view shows, opened in a
+    FreeCAD GUI without the workbench (looked at: without-workbench.png), saved there, and
+    reopened here: nothing lost, and the view, not the parts under it, drawn there."""
+
+    def test_opened_in_a_gui_without_the_workbench(self):
+        import json
+        import subprocess
+
+        import dispcon_fc.assembly as da
+        from dispcon_fc import exploded
+
+        tmp = tempfile.TemporaryDirectory()
+        try:
+            doc = App.newDocument("fourbar")
+            asm, g, crank, coupler, rocker = ts.th.fourbar(doc, tmp.name)
+            self.assertTrue(da.solve(asm).converged)
+            view = exploded.new_exploded_view(asm, steps=[exploded.Step([coupler], "Direction", 1.5, App.Vector(0, 0, 1)),
+                                                          exploded.Step([g, crank, coupler, rocker], "Radial", 2)])
+            gw.settle()
+            lists, offs = tp.step_lists(view), [tuple(v) for v in view.Offsets]
+            placed = tp.placements(asm)
+            path = os.path.join(tmp.name, "exploded.FCStd")
+            doc.saveAs(path)
+            App.closeDocument(doc.Name)
+            gw.settle()
+            home = os.path.join(tmp.name, "home")
+            os.makedirs(home)
+            out = os.path.join(gw.OUT, "without-workbench.png")
+            macro = os.path.join(home, "bare.py")
+            with open(macro, "w") as f:
+                f.write(BARE_GUI)
+            env = dict(ts.th.bare_env(home), DISPCON_BARE_DOC=path, DISPCON_BARE_OUT=out)
+            subprocess.run(["freecad", macro], env=env, cwd=home, timeout=300,
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+            with open(out + ".json") as f:
+                seen = json.load(f)
+            self.assertNotIn("error", seen)
+            self.assertEqual(seen["proxy"], "None")
+            # Shown as saved: the exploded view, in its parts' colours. (FreeCAD 0.20 shows every
+            # child of a Python group whose view provider it cannot make, whatever was saved: the
+            # assembled parts under it too, as a plain Python group's children are there.)
+            self.assertEqual((seen["shown"], seen["solids"], seen["steps"]), (True, 4, ["Direction", "Radial"]))
+            self.assertEqual(seen["colours"], seen["faces"])
+            self.assertEqual(seen["parts_shown"], [True] * 4)
+            self.assertTrue(seen["saved"])
+            self.assertGreater(os.path.getsize(out), 5000)
+            doc = App.openDocument(path)
+            gw.settle()
+            asm = da.top_assemblies(doc)[0]
+            view = exploded.views_of(asm)[0]  # its proxies back, the parts and markers under it hidden
+            self.assertTrue(view.ViewObject.Visibility)
+            self.assertFalse(any(o.ViewObject.Visibility for o in da.parts(asm) + da.joints(asm)))
+            self.assertIsInstance(view.Proxy, exploded.ExplodedViewProxy)
+            self.assertIsInstance(view.ViewObject.Proxy, exploded.ViewProviderExplodedView)
+            self.assertEqual(tp.step_lists(view), lists)
+            for p in da.parts(asm):  # a save writes a placement to about 1e-15 mm
+                pl = App.Placement(App.Vector(*placed[p.Name][:3]), App.Rotation(*placed[p.Name][3:]))
+                self.assertTrue(ts.th.same(p.Placement, pl, 1e-12), p.Label)
+            doc.recompute()
+            for got, was in zip(view.Offsets, offs):
+                self.assertLess((got - App.Vector(*was)).Length, 1e-9)
+            view.ViewObject.Visibility = False
+            gw.settle()
+            self.assertTrue(all(o.ViewObject.Visibility for o in da.parts(asm) + da.joints(asm)))
+            App.closeDocument(doc.Name)
+        finally:
+            for name in list(App.listDocuments()):
+                if name.startswith(("fourbar", "exploded")):
+                    App.closeDocument(name)
+            tmp.cleanup()
+            gw.settle()
+
+
+gw.run_in_gui([Walker, Reopened, WithoutTheWorkbench], "status-presentation")

@@ -1,10 +1,13 @@
-"""The Exploded view panel: how the assembly's parts are drawn apart (away from its centre, or
-stacked along a direction), how far (a distance with its unit, and a slider that previews it
-live), whether a sub-assembly moves as one. The exploded view is its own object (exploded.py):
-the parts never move, so nothing here can lose the assembled placements.
+"""The Exploded view panel: the view's steps in order (add, remove, move up and down), and the step
+chosen: how it moves its parts (away from the centre, along a direction, stacked along it), how far
+(a distance with its unit, and a slider that previews it live) and which parts (ticked in a list
+of the assembly's parts and sub-assemblies, or taken from the selection). The exploded view is its
+own object (exploded.py): the parts never move, so nothing here can lose the assembled placements.
+The panel only translates: every setting goes to exploded.set_steps, which checks it and says what
+is wrong (the panel shows that, OK disabled until it is fixed).
 
-Like the Drive panel it holds one transaction open: OK keeps the view (a new one, or the settings
-changed) as one undo step; Cancel puts its settings back, or removes the view it made."""
+Like the Drive panel it holds one transaction open: OK keeps the view (a new one, or the steps
+changed) as one undo step; Cancel puts its steps back, or removes the view it made."""
 import FreeCADGui as Gui
 
 from .. import exploded, panels
@@ -17,6 +20,7 @@ from .joint import quantity_box, raw
 DIRECTIONS = (("+Z", (0, 0, 1)), ("-Z", (0, 0, -1)), ("+X", (1, 0, 0)), ("-X", (-1, 0, 0)),
               ("+Y", (0, 1, 0)), ("-Y", (0, -1, 0)))
 SLIDER_STEPS = 1000
+NAME_ROLE = QtCore.Qt.UserRole
 
 
 class ExplodedPanel(TransactionPanel):
@@ -34,18 +38,23 @@ class ExplodedPanel(TransactionPanel):
         self.transaction = _transaction(self.doc)
         try:
             self.view = view or exploded.new_exploded_view(asm, undo_step=False)
+            self.steps = [s.copy() for s in exploded.steps(self.view)]
         except Exception:
             self.transaction.abort()
             raise
         exploded.show(self.view, True)
-        # The slider's full travel: twice the assembly's size (a radial view's farthest part
+        # The slider's full travel: twice the assembly's size (a radial step's farthest part
         # that far out; a stack of a few parts that far apart).
         box = App.BoundBox()
         for p in self.view.Parts:
             box.add(exploded.shape_of(p).BoundBox)
-        self.reach = max(2.0 * box.DiagonalLength, abs(self.view.Distance.Value), 1e-6)
+        self.size = box.DiagonalLength
+        self.reach = max([2.0 * self.size] + [abs(s.distance) for s in self.steps] + [1e-6])
+        self.current = 0
         self.form = self._build()
-        self._load()
+        self._fill_steps()
+        self._load_step()
+        self._say(self._summary())
 
     # -- the form ----------------------------------------------------------------------------
     def _build(self):
@@ -54,86 +63,182 @@ class ExplodedPanel(TransactionPanel):
         w.setWindowTitle("Exploded view")
         w.setWindowIcon(QtGui.QIcon(icon_path("Dispcon_ExplodedView.svg")))
         top = QtWidgets.QVBoxLayout(w)
-        form = QtWidgets.QFormLayout()
+        top.addWidget(QtWidgets.QLabel("Steps, applied in order:"))
+        self.step_list = QtWidgets.QListWidget()
+        self.step_list.setObjectName("steps")
+        self.step_list.setToolTip("Each step moves its parts from where the steps before it left them")
+        self.step_list.setMaximumHeight(110)
+        top.addWidget(self.step_list)
+        buttons = QtWidgets.QGridLayout()
+        self.add_button = _button("addStep", "Add", "A new step after the one chosen, moving the parts selected now")
+        self.remove_button = _button("removeStep", "Remove", "Remove the chosen step")
+        self.up_button = _button("stepUp", "Up", "Apply the chosen step one earlier")
+        self.down_button = _button("stepDown", "Down", "Apply the chosen step one later")
+        for k, b in enumerate((self.add_button, self.remove_button, self.up_button, self.down_button)):
+            buttons.addWidget(b, k // 2, k % 2)
+        top.addLayout(buttons)
+        self.message = QtWidgets.QLabel()  # under the steps: seen without scrolling the panel
+        self.message.setObjectName("message")
+        self.message.setWordWrap(True)
+        top.addWidget(self.message)
+        self.step_box = QtWidgets.QGroupBox("Step")
+        self.step_box.setObjectName("stepBox")
+        top.addWidget(self.step_box)
+        form = QtWidgets.QFormLayout(self.step_box)
         form.setRowWrapPolicy(QtWidgets.QFormLayout.WrapLongRows)
-        top.addLayout(form)
         self.mode = QtWidgets.QComboBox()
         self.mode.setObjectName("mode")
-        self.mode.addItem("Away from the centre", "Radial")
-        self.mode.addItem("Along a direction", "Direction")
-        self.mode.setToolTip("Away from the centre: each part moves out from the assembly's centre, the farthest "
-                             "by the distance. Along a direction: the parts in their order along it, each "
-                             "the distance further than the one before")
-        form.addRow("Explode", self.mode)
+        for mode in exploded.MODES:
+            self.mode.addItem(exploded.MODE_WORDS[mode][0].upper() + exploded.MODE_WORDS[mode][1:], mode)
+        self.mode.setToolTip("Away from the centre: each part out from the assembly's centre, the farthest by the "
+                             "distance. Along a direction: each part the distance along it. Stacked: the parts in "
+                             "their order along it, each the distance further than the one before")
+        form.addRow("Moves", self.mode)
         self.direction = QtWidgets.QComboBox()
         self.direction.setObjectName("direction")
-        for label, _ in DIRECTIONS:
-            self.direction.addItem(label)
-        self.direction.setToolTip("The direction the parts are stacked along (another one: the view's "
-                                  "Direction property)")
+        self.direction.setToolTip("The direction the step moves its parts along (another one: a script's "
+                                  "exploded.set_explosion)")
         form.addRow("Direction", self.direction)
-        self.distance = quantity_box("mm", 0.0, 1e9)
+        self.distance = quantity_box("mm", -1e9, 1e9)
         self.distance.setObjectName("distance")
-        self.distance.setToolTip("Away from the centre: how far the farthest part moves; along a direction: "
-                                 "the step between two parts")
+        self.distance.setToolTip("Away from the centre: how far the farthest part moves; along a direction: how far "
+                                 "each moves; stacked: the step between two parts")
         form.addRow("Distance", self.distance)
         self.slider = QtWidgets.QSlider(QtCore.Qt.Horizontal)
         self.slider.setObjectName("slider")
         self.slider.setRange(0, SLIDER_STEPS)
         self.slider.setToolTip("Drag to see the parts go apart (0 to twice the assembly's size)")
         form.addRow("", self.slider)
-        self.expand = QtWidgets.QCheckBox("Each part of a sub-assembly alone")
-        self.expand.setObjectName("expand")
-        self.expand.setToolTip("Off: a placed sub-assembly moves as one")
-        form.addRow(self.expand)
-        self.lines = QtWidgets.QCheckBox("Lines from each part's place")
+        self.parts = QtWidgets.QListWidget()
+        self.parts.setObjectName("parts")
+        self.parts.setToolTip("Ticked: the step moves it (a sub-assembly as one; a part inside one alone)")
+        self.parts.setMinimumHeight(120)
+        form.addRow("Parts", self.parts)
+        for wide in (self.step_list, self.parts, self.mode, self.direction):
+            # As narrow as the Combo View: the text is cut, the panel does not grow past it.
+            wide.setSizePolicy(QtWidgets.QSizePolicy.Ignored, wide.sizePolicy().verticalPolicy())
+        self.take = _button("takeSelection", "Take the selection",
+                            "The step moves the parts and sub-assemblies selected (in the tree), no others")
+        form.addRow("", self.take)
+        self.lines = QtWidgets.QCheckBox("Lines along each part's way")
         self.lines.setObjectName("lines")
-        form.addRow(self.lines)
-        self.message = QtWidgets.QLabel()
-        self.message.setObjectName("message")
-        self.message.setWordWrap(True)
-        top.addWidget(self.message)
+        top.addWidget(self.lines)
         top.addStretch(1)
-        self.mode.currentIndexChanged.connect(self._changed)
-        self.direction.currentIndexChanged.connect(self._changed)
+        for asm_obj, depth in exploded.choices(self.asm):
+            item = QtWidgets.QListWidgetItem("    " * depth + asm_obj.Label)
+            item.setData(NAME_ROLE, asm_obj.Name)
+            item.setFlags(item.flags() | QtCore.Qt.ItemIsUserCheckable)
+            item.setCheckState(QtCore.Qt.Unchecked)
+            self.parts.addItem(item)
+        self.lines.setChecked(self.view.Lines)
+        self.step_list.currentRowChanged.connect(self._chosen)
+        self.add_button.clicked.connect(lambda *_: self.add_step())
+        self.remove_button.clicked.connect(lambda *_: self.remove_step())
+        self.up_button.clicked.connect(lambda *_: self.move_step(-1))
+        self.down_button.clicked.connect(lambda *_: self.move_step(1))
+        self.mode.currentIndexChanged.connect(self._edited)
+        self.direction.currentIndexChanged.connect(self._edited)
         self.distance.valueChanged.connect(self._distance_typed)
         self.slider.valueChanged.connect(self._slid)
-        self.expand.toggled.connect(self._changed)
-        self.lines.toggled.connect(self._changed)
+        self.parts.itemChanged.connect(self._edited)
+        self.take.clicked.connect(lambda *_: self.take_selection())
+        self.lines.toggled.connect(self._edited)
         return w
 
-    def _load(self):
-        """The form shows the view's settings (no redraw meanwhile)."""
-        v = self.view
+    def _fill_steps(self):
         self.busy = True
-        self.mode.setCurrentIndex(exploded.MODES.index(v.Mode))
-        d = tuple(v.Direction)
+        self.step_list.clear()
+        for k, s in enumerate(self.steps):
+            self.step_list.addItem(_step_text(k, s))
+        if self.steps:
+            self.step_list.setCurrentRow(self.current)
+        self.busy = False
+
+    def _load_step(self):
+        """The step box shows the chosen step (no redraw meanwhile)."""
+        has = bool(self.steps)
+        self.step_box.setEnabled(has)
+        self.remove_button.setEnabled(has)
+        self.up_button.setEnabled(has and self.current > 0)
+        self.down_button.setEnabled(has and self.current < len(self.steps) - 1)
+        if not has:
+            return
+        s = self.steps[self.current]
+        self.busy = True
+        self.step_box.setTitle("Step %d" % (self.current + 1))
+        self.mode.setCurrentIndex(exploded.MODES.index(s.mode) if s.mode in exploded.MODES else 0)
+        self.direction.clear()
+        for label, _ in DIRECTIONS:
+            self.direction.addItem(label)
+        d = tuple(s.direction)
         match = [k for k, (_, vec) in enumerate(DIRECTIONS) if _parallel(vec, d)]
         if not match:
             self.direction.addItem("(%g, %g, %g)" % d)
             match = [self.direction.count() - 1]
         self.direction.setCurrentIndex(match[0])
-        self.distance.setProperty("rawValue", v.Distance.Value)
-        self.slider.setValue(self._steps(v.Distance.Value))
-        self.expand.setChecked(v.ExpandSubAssemblies)
-        self.lines.setChecked(v.Lines)
-        self.direction.setEnabled(v.Mode == "Direction")
+        self.direction.setEnabled(s.mode != "Radial")
+        self.distance.setProperty("rawValue", s.distance)
+        self.slider.setValue(self._steps(s.distance))
+        names = {p.Name for p in s.parts}
+        for k in range(self.parts.count()):
+            item = self.parts.item(k)
+            item.setCheckState(QtCore.Qt.Checked if item.data(NAME_ROLE) in names else QtCore.Qt.Unchecked)
         self.busy = False
-        self._say(self._summary())
 
     def _steps(self, distance):
         return int(round(min(max(distance / self.reach, 0.0), 1.0) * SLIDER_STEPS))
 
-    def _direction(self):
-        k = self.direction.currentIndex()
-        return DIRECTIONS[k][1] if k < len(DIRECTIONS) else tuple(self.view.Direction)
-
     def _summary(self):
-        v = self.view
-        how = ("away from the centre, the farthest part %g mm" % v.Distance.Value if v.Mode == "Radial" else
-               "along %s, %g mm apart" % (self.direction.currentText(), v.Distance.Value))
-        return ("%d parts drawn apart %s. The parts themselves stay assembled: hide the view (Space) to see "
-                "them." % (len(v.Parts), how))
+        moved = sum(1 for v in self.view.Offsets if v.Length > 0)
+        return ("%d of %d parts drawn apart in %d step%s. The parts themselves stay assembled: hide the view "
+                "(Space) to see them." % (moved, len(self.view.Parts), len(self.steps),
+                                          "" if len(self.steps) == 1 else "s"))
+
+    # -- the steps -----------------------------------------------------------------------------
+    def _chosen(self, row):
+        if self.busy or self._gone() or row < 0:
+            return
+        self.current = row
+        self._load_step()
+
+    def add_step(self):
+        """A step after the chosen one: along +Z, a quarter of the assembly's size, moving what is
+        selected (nothing selected: the panel asks for its parts)."""
+        chosen = {o.Name for o in Gui.Selection.getSelection(self.doc.Name)}
+        moving = [o for o, _ in exploded.choices(self.asm) if o.Name in chosen]
+        at = self.current + 1 if self.steps else 0
+        self.steps.insert(at, exploded.Step(moving, "Direction", round(0.25 * self.size, 1), (0, 0, 1)))
+        self.current = at
+        self._refresh()
+
+    def remove_step(self):
+        if not self.steps:
+            return
+        del self.steps[self.current]
+        self.current = max(0, min(self.current, len(self.steps) - 1))
+        self._refresh()
+
+    def move_step(self, by):
+        to = self.current + by
+        if not self.steps or not 0 <= to < len(self.steps):
+            return
+        self.steps.insert(to, self.steps.pop(self.current))
+        self.current = to
+        self._refresh()
+
+    def take_selection(self):
+        chosen = {o.Name for o in Gui.Selection.getSelection(self.doc.Name)}
+        self.busy = True
+        for k in range(self.parts.count()):
+            item = self.parts.item(k)
+            item.setCheckState(QtCore.Qt.Checked if item.data(NAME_ROLE) in chosen else QtCore.Qt.Unchecked)
+        self.busy = False
+        self._edited()
+
+    def _refresh(self):
+        self._fill_steps()
+        self._load_step()
+        self._apply()
 
     # -- the preview -------------------------------------------------------------------------
     def _slid(self, steps):
@@ -143,7 +248,7 @@ class ExplodedPanel(TransactionPanel):
         self.busy = True
         self.distance.setProperty("rawValue", value)
         self.busy = False
-        self._apply()
+        self._edited()
 
     def _distance_typed(self, *_):
         if self.busy or self._gone():
@@ -151,20 +256,31 @@ class ExplodedPanel(TransactionPanel):
         self.busy = True
         self.slider.setValue(self._steps(raw(self.distance)))
         self.busy = False
-        self._apply()
+        self._edited()
 
-    def _changed(self, *_):
+    def _edited(self, *_):
+        """The step box's values into the chosen step, then the preview."""
         if self.busy or self._gone():
             return
+        if self.steps:
+            s = self.steps[self.current]
+            s.mode = self.mode.itemData(self.mode.currentIndex())
+            k = self.direction.currentIndex()
+            if 0 <= k < len(DIRECTIONS):
+                s.direction = exploded.App.Vector(*DIRECTIONS[k][1])
+            s.distance = raw(self.distance)
+            by_name = {o.Name: o for o, _ in exploded.choices(self.asm)}
+            s.parts = [by_name[self.parts.item(k).data(NAME_ROLE)] for k in range(self.parts.count())
+                       if self.parts.item(k).checkState() == QtCore.Qt.Checked]
+            self.direction.setEnabled(s.mode != "Radial")
+            item = self.step_list.item(self.current)
+            if item is not None:
+                item.setText(_step_text(self.current, s))
         self._apply()
 
     def _apply(self):
-        mode = self.mode.itemData(self.mode.currentIndex())
-        self.direction.setEnabled(mode == "Direction")
         try:
-            exploded.set_explosion(self.view, undo_step=False, mode=mode, direction=self._direction(),
-                                   distance=raw(self.distance), expand_sub_assemblies=self.expand.isChecked(),
-                                   lines=self.lines.isChecked())
+            exploded.set_steps(self.view, self.steps, lines=self.lines.isChecked(), undo_step=False)
         except ValueError as e:
             self._say(str(e), True)
             self._set_ok(False)
@@ -192,6 +308,20 @@ class ExplodedPanel(TransactionPanel):
                 exploded.show(self.view, self.was_shown)
         self.doc.recompute()
         Gui.Control.closeDialog()
+
+
+def _button(name, text, tip):
+    b = QtWidgets.QPushButton(text)
+    b.setObjectName(name)
+    b.setToolTip(tip)
+    return b
+
+
+def _step_text(k, s):
+    """"2. Along a direction, 20 mm: 3 parts" for the steps' list."""
+    words = exploded.MODE_WORDS.get(s.mode, s.mode)
+    return "%d. %s%s, %g mm: %d part%s" % (k + 1, words[0].upper(), words[1:], round(s.distance, 6), len(s.parts),
+                                            "" if len(s.parts) == 1 else "s")
 
 
 def _transaction(doc):
