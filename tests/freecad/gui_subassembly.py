@@ -103,30 +103,7 @@ class Walker(unittest.TestCase):
         # Rigid is a checkbox of the property editor (a visible, editable bool).
         self.assertEqual(sub.getTypeIdOfProperty("Rigid"), "App::PropertyBool")
         self.assertEqual(sub.getEditorMode("Rigid"), [])
-        Gui.Selection.clearSelection()
-        Gui.Selection.addSelection(sub)
-        # The property editor opens on the tab FreeCAD last showed (saved in its settings, so another
-        # test or session can leave it on View): Rigid lives on the Data tab.
-        for tabs in gw.mw().findChildren(QtWidgets.QTabWidget):
-            names = [tabs.tabText(i) for i in range(tabs.count())]
-            if "Data" in names and "View" in names:
-                tabs.setCurrentIndex(names.index("Data"))
-        shown = set()
-        # The editor fills its rows from a timer after the selection changes: wait for them.
-        deadline = time.monotonic() + 5
-        while "Rigid" not in shown and time.monotonic() < deadline:
-            gw.settle()
-            time.sleep(0.05)
-            for tree in gw.mw().findChildren(QtWidgets.QTreeView):
-                model = tree.model()
-                if model is None:
-                    continue
-                stack = [model.index(r, 0) for r in range(model.rowCount())]
-                while stack:
-                    index = stack.pop()
-                    shown.add(model.data(index))
-                    stack += [model.index(r, 0, index) for r in range(model.rowCount(index))]
-        self.assertIn("Rigid", shown)
+        self.assertIs(rigid_row_editable(sub), True)  # its row shown on the Data tab, editable
         sub.Rigid = True
         self.assertTrue(proxy.getIcon().endswith("Dispcon_SubAssembly.svg"))
         QtGui.QIcon(proxy.getIcon()).pixmap(64, 64).save(os.path.join(gw.OUT, "icon-sub-assembly-rigid.png"))
@@ -171,10 +148,11 @@ class Walker(unittest.TestCase):
         self.assertTrue(os.path.getsize(path) > 10000)
 
 
-class Parade(unittest.TestCase):
-    """Nested sub-assemblies: walker.FCStd (four legs of leg.FCStd, flexible) placed twice on a
-    track, flexible; the tree shows each walker's legs inside it, a nested leg's coupler dragged
-    with the mouse, a screenshot (parade.png)."""
+class ParadeDocument(unittest.TestCase):
+    """walker.FCStd (four legs of leg.FCStd, flexible) placed twice on a track, flexible, in a
+    document named NAME shown in its 3D view (isometric, fit)."""
+
+    NAME = "parade"
 
     @classmethod
     def setUpClass(cls):
@@ -185,7 +163,8 @@ class Parade(unittest.TestCase):
         cls.tmp = tempfile.TemporaryDirectory()
         leg, walker, wdoc = tn.make_walker_file(cls.tmp.name)
         App.closeDocument(wdoc.Name)
-        cls.doc, cls.asm, cls.track, cls.walks = tn.make_parade(cls.tmp.name, walker, rigid=False)
+        cls.doc, cls.asm, cls.track, cls.walks = tn.make_parade(cls.tmp.name, walker, rigid=False, name=cls.NAME)
+        cls.doc.UndoMode = 1
         cls.view = gw.activate(cls.doc)
         cls.view.viewIsometric()
         Gui.SendMsgToActiveView("ViewFit")
@@ -195,6 +174,11 @@ class Parade(unittest.TestCase):
     def tearDownClass(cls):
         gw.close_documents()
         cls.tmp.cleanup()
+
+
+class Parade(ParadeDocument):
+    """Nested sub-assemblies: the tree shows each walker's legs inside it, a nested leg's coupler
+    dragged with the mouse, a screenshot (parade.png)."""
 
     def tree_item(self, label):
         for tree in gw.mw().findChildren(QtWidgets.QTreeWidget):
@@ -270,6 +254,8 @@ def rigid_row_editable(obj):
     shown), and its editor mode (FreeCAD's editor reads it to make the row read only)."""
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(obj)
+    # The property editor opens on the tab FreeCAD last showed (saved in its settings, so another
+    # test or session can leave it on View): Rigid lives on the Data tab.
     for tabs in gw.mw().findChildren(QtWidgets.QTabWidget):
         names = [tabs.tabText(i) for i in range(tabs.count())]
         if "Data" in names and "View" in names:
@@ -291,31 +277,12 @@ def rigid_row_editable(obj):
     return None
 
 
-class PerPlace(unittest.TestCase):
+class PerPlace(ParadeDocument):
     """The parade's walkers, flexible: leg 2 made rigid in Walk1 only, through its Rigid in the
     property editor (editable there, read only inside a rigid walker), its icon in the tree, the
     degrees of freedom counted from leg.FCStd's (7), a screenshot (parade-per-place.png)."""
 
-    @classmethod
-    def setUpClass(cls):
-        os.environ["DISPCON_NESTED_IMPORT_ONLY"] = "1"
-        import test_nested as tn
-
-        cls.tn = tn
-        cls.tmp = tempfile.TemporaryDirectory()
-        leg, walker, wdoc = tn.make_walker_file(cls.tmp.name)
-        App.closeDocument(wdoc.Name)
-        cls.doc, cls.asm, cls.track, cls.walks = tn.make_parade(cls.tmp.name, walker, rigid=False, name="perplace")
-        cls.doc.UndoMode = 1
-        cls.view = gw.activate(cls.doc)
-        cls.view.viewIsometric()
-        Gui.SendMsgToActiveView("ViewFit")
-        gw.settle()
-
-    @classmethod
-    def tearDownClass(cls):
-        gw.close_documents()
-        cls.tmp.cleanup()
+    NAME = "perplace"
 
     def test_a_leg_rigid_in_one_walker_only(self):
         import dispcon_fc.assembly as da

@@ -290,15 +290,7 @@ class Blocks(unittest.TestCase):
     PLACES = ((0, 0, 0), (30, 0, 0), (0, 40, 0), (0, 0, 50))
 
     def setUp(self):
-        self.doc = App.newDocument("blocks")
-        self.doc.UndoMode = 1
-        self.asm = da.create_assembly(self.doc)
-        for k, p in enumerate(self.PLACES):
-            o = self.doc.addObject("Part::Feature", "Block%d" % k)
-            o.Shape = Part.makeBox(10, 10, 10)
-            o.Placement = App.Placement(App.Vector(*p), App.Rotation(App.Vector(1, 2, 3), 7 * k))
-            da.add_part(self.asm, o, grounded=k == 0)
-        self.before = placements(self.asm)
+        make_blocks(self)
 
     def tearDown(self):
         App.closeDocument(self.doc.Name)
