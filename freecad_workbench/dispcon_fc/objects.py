@@ -296,6 +296,20 @@ def joint_extras(obj):
     _add(obj, "App::PropertyBool", "LeftHanded", "Coupling", "Screw: a left-handed thread")
     phase_property(obj)
     show_properties(obj)
+    read_only_derived(obj)
+
+
+# What the workbench derives and a person reads but never types: the picked geometry in each
+# part's frame (made again from the references at every solve) and the last solve's outcome.
+# Editable, a typed Axis1 or Feature2 silently broke the joint until the next solve remade it.
+DERIVED = ("Point1", "Axis1", "Perp1", "Point2", "Axis2", "Perp2", "Feature1", "Feature2", "Residual", "Violated")
+
+
+def read_only_derived(obj):
+    """The DERIVED properties read only in the property editor (scripts still write them)."""
+    for name in DERIVED:
+        if name in obj.PropertiesList and "ReadOnly" not in obj.getEditorMode(name):
+            obj.setEditorMode(name, 1)
 
 
 # The properties only some joint types use, with those types: the property editor shows a joint

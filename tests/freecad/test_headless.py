@@ -871,6 +871,29 @@ class RobustOperations(unittest.TestCase):
         self.assertEqual([o.Label for o in self.doc.Objects if "Touched" in o.State], [])
         self.assertEqual(len(da.joints(self.doc.getObject(name))), 4)
 
+    def test_derived_joint_properties_are_read_only_in_the_editor(self):
+        # The picked geometry (made again from the references at every solve) and the last
+        # solve's outcome are read in the property editor, never typed there; the settings stay
+        # editable. Kept through a save and a reopen.
+        from dispcon_fc import objects
+
+        asm, g, crank, coupler, rocker = fourbar(self.doc, tempfile.mkdtemp())
+        self.assertTrue(da.solve(asm).converged)
+        j = da.joints(asm)[0]
+        for name in ("Point1", "Axis1", "Perp1", "Point2", "Axis2", "Perp2", "Feature1", "Feature2",
+                     "Residual", "Violated"):
+            self.assertIn("ReadOnly", j.getEditorMode(name), name)
+        for name in ("Offset", "Reversed", "RotationMin", "HasRotationLimits", "JointType", "FrameYaw"):
+            self.assertNotIn("ReadOnly", j.getEditorMode(name), name)
+        j.Point1 = j.Point1  # scripts still write them
+        path = os.path.join(tempfile.mkdtemp(), "readonly.FCStd")
+        name = j.Name
+        self.doc.saveAs(path)
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        self.assertIn("ReadOnly", self.doc.getObject(name).getEditorMode("Axis2"))
+        self.assertEqual(objects.DERIVED[-1], "Violated")
+
     def test_point_on_curve_reads_the_live_curve(self):
         # A revolute between the base's boss and the arm's tip boss, turned into a PointOnCurve:
         # the arm's tip pin must then run on the base's boss edge (radius 0.15) ...
