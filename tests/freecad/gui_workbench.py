@@ -760,6 +760,46 @@ class TestJointPanel(Documents):
     def visible_groups(self, panel):
         return {n for n, g in panel.groups.items() if g.isVisibleTo(panel.form)}
 
+    def test_the_message_is_in_view_and_every_field_has_a_tooltip(self):
+        # At 1280x900 the panel of a type with many fields is taller than the Combo View: what to
+        # pick next (or what is wrong) is read without scrolling, and every field says what it is.
+        from dispcon_fc.panels import joint as jp
+
+        mw().setGeometry(0, 0, 1280, 900)
+        panel, asm, base, arm = self.open("Revolute")
+        scroll = panel.form.parentWidget()
+        while scroll is not None and not isinstance(scroll, QtWidgets.QScrollArea):
+            scroll = scroll.parentWidget()
+        self.assertIsNotNone(scroll, "the panel is in no scroll area")
+        for kind in ("Cylindrical", "Screw", "Revolute"):
+            panel.type_box.setCurrentText(kind)
+            settle()
+            panel._start_picking()
+            settle()
+            scroll.verticalScrollBar().setValue(0)
+            settle()
+            self.assertIn("Pick", panel.message.text(), kind)
+            viewport = scroll.viewport()
+            top = panel.message.mapTo(viewport, QtCore.QPoint(0, 0)).y()
+            self.assertGreaterEqual(top, 0, kind)
+            self.assertLessEqual(top + panel.message.height(), viewport.height(),
+                                 "%s: the message is below the fold (%d + %d px in a %d px view)"
+                                 % (kind, top, panel.message.height(), viewport.height()))
+            self.assertLess(top, panel.groups["reverse"].mapTo(viewport, QtCore.QPoint(0, 0)).y(), kind)
+            # Nothing of it cut off on the right (a coupling's long phase line widened it).
+            self.assertLessEqual(panel.form.minimumSizeHint().width(), viewport.width(),
+                                 "%s: the panel is wider than the Combo View" % kind)
+            self.assertLessEqual(panel.form.width(), viewport.width(), kind)
+            shot("panel-message-%s" % kind.lower())
+            untipped = [w.objectName() or type(w).__name__ + ":" + getattr(w, "text", lambda: "")()
+                        for w in panel.form.findChildren(QtWidgets.QWidget)
+                        if isinstance(w, (QtWidgets.QCheckBox, QtWidgets.QAbstractSpinBox, QtWidgets.QComboBox,
+                                          QtWidgets.QPushButton))
+                        and w.isVisibleTo(panel.form) and not w.toolTip().strip()
+                        and not isinstance(w.parentWidget(), QtWidgets.QAbstractSpinBox)]
+            self.assertEqual(untipped, [], "%s: fields without a tooltip" % kind)
+        self.assertIs(jp.current(), panel)
+
     def test_fields_per_type_and_units(self):
         panel, asm, base, arm = self.open("Revolute")
         self.assertEqual(self.visible_groups(panel), {"reverse", "offset", "frame", "rotation"})

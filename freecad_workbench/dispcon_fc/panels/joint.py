@@ -93,7 +93,14 @@ class JointPanel(TransactionPanel):
         for t in offered_types(engine.load()):
             self.type_box.addItem(QtGui.QIcon(markers_icon(t)), t)
         self.type_box.setCurrentText(joint_type)
+        self.type_box.setToolTip("The kind of joint: changing it keeps the references and moves the parts at once")
         form.addRow("Type", self.type_box)
+        # What to pick next, or what is wrong, right under the type: at the panel's foot it was
+        # below the fold of the Combo View (a Cylindrical's or a Screw's fields) at 1280x900.
+        self.message = QtWidgets.QLabel()
+        self.message.setObjectName("message")
+        self.message.setWordWrap(True)
+        top.addWidget(self.message)
 
         refs = QtWidgets.QGroupBox("References")
         rl = QtWidgets.QVBoxLayout(refs)
@@ -108,6 +115,7 @@ class JointPanel(TransactionPanel):
         self.groups = {}
         g = self._group(top, "reverse", None)
         self.reverse = QtWidgets.QCheckBox("Reverse (flip part 2's axis)")
+        self.reverse.setToolTip("Part 2 faces the other way along the joint's axis (its picked axis flipped)")
         g.layout().addWidget(self.reverse)
         g = self._group(top, "offset", None)
         gl = QtWidgets.QFormLayout()
@@ -160,6 +168,7 @@ class JointPanel(TransactionPanel):
         self.pitch = self._value(top, "pitch", "Pitch", quantity_box("mm", 0, 1e6, 1.0),
                                  "The nut's travel along the screw per turn")
         self.left = QtWidgets.QCheckBox("Left-handed thread")
+        self.left.setToolTip("The nut travels the other way for the same turn")
         self.groups["pitch"].layout().addWidget(self.left)
         # The mesh offset (an angle, or a length for a rack or a screw): 0 where the coupling
         # was made; a new one turns part 2 against part 1 at the preview's solve. The engine's
@@ -169,6 +178,7 @@ class JointPanel(TransactionPanel):
                                  "coupling was made; a rack's or a screw's part 2: how far it is moved")
         self.engine_phase = QtWidgets.QLabel()
         self.engine_phase.setObjectName("enginePhase")
+        self.engine_phase.setWordWrap(True)  # unwrapped, it widened the panel past the Combo View
         self.engine_phase.setToolTip("The engine's constant of the coupling's equation (ratio x turn 1 + turn 2; "
                                      "a rack's or a screw's travel less its turns), kept in the joint: it moves "
                                      "by the offset, and by whole turns as the parts go round")
@@ -177,10 +187,6 @@ class JointPanel(TransactionPanel):
         self.phase_edited = False  # only an offset typed in the panel goes to the joint
         self.phase.valueChanged.connect(self._phase_edited)
 
-        self.message = QtWidgets.QLabel()
-        self.message.setObjectName("message")
-        self.message.setWordWrap(True)
-        top.addWidget(self.message)
         top.addStretch(1)
 
         self.type_box.currentTextChanged.connect(self._type_changed)
@@ -224,15 +230,21 @@ class JointPanel(TransactionPanel):
 
     def _range(self, top, name, check_text, unit, lo, hi):
         g = self._group(top, name, {"rotation": "Turn", "travel": "Travel", "angle": "Angle between axes"}[name])
+        what = {"rotation": "turn about the axis", "travel": "travel along the axis",
+                "angle": "angle between the two axes"}[name]
         check = None
         if check_text:
             check = QtWidgets.QCheckBox(check_text)
+            check.setToolTip("Bound part 2's %s between Min and Max (untick: free)" % what)
             g.layout().addWidget(check)
         gl = QtWidgets.QFormLayout()
         g.layout().addLayout(gl)
         a, b = quantity_box(unit, lo, hi), quantity_box(unit, lo, hi)
         a.setObjectName(name + "Min")
         b.setObjectName(name + "Max")
+        since = "" if name == "angle" else ", measured from where the joint was made"
+        a.setToolTip("The lowest %s%s" % (what, since))
+        b.setToolTip("The highest %s%s" % (what, since))
         gl.addRow("Min", a)
         gl.addRow("Max", b)
         return a, b, check
