@@ -316,6 +316,47 @@ def _pairs_within(pos, radius):
     return np.minimum(i, k), np.maximum(i, k)
 
 
+# spread() stops pushing when the crowding has not shrunk by a hundredth in this many passes.
+STALL = 8
+
+
+def _crowds(n, i, k):
+    """The crowd of each of `n` markers joined by the pairs (i, k): an array of one root marker
+    per crowd (union-find with path halving)."""
+    crowd = list(range(n))
+
+    def top(m):
+        while crowd[m] != m:
+            crowd[m] = crowd[crowd[m]]
+            m = crowd[m]
+        return m
+
+    for a, b in zip(i.tolist(), k.tolist()):
+        ra, rb = top(a), top(b)
+        if ra != rb:
+            crowd[ra] = rb
+    return np.array([top(m) for m in range(n)])
+
+
+def _room(points, radii, gap):
+    """An upper bound of the area within radii[i] of some points[i] (pixels): the cells of a grid
+    a quarter of a gap wide that may hold such a point (a cell whose gap to the point's own cell
+    is within its radius), each counted whole. Points of one radius share one stencil."""
+    cell = 0.25 * gap
+    home = np.floor(points / cell).astype(np.int64)
+    steps = np.ceil(np.asarray(radii, dtype=float) / cell).astype(np.int64)
+    x0, y0 = home.min(axis=0) - steps.max() - 1
+    x1, y1 = home.max(axis=0) + steps.max() + 1
+    grid = np.zeros((int(x1 - x0) + 1, int(y1 - y0) + 1), dtype=bool)
+    for reach in np.unique(steps).tolist():
+        dx, dy = (d.ravel() for d in np.meshgrid(np.arange(-reach - 1, reach + 2), np.arange(-reach - 1, reach + 2)))
+        keep = np.hypot(np.maximum(abs(dx) - 1, 0), np.maximum(abs(dy) - 1, 0)) <= reach
+        dx, dy = dx[keep], dy[keep]
+        own = home[steps == reach]
+        grid[(own[:, 0, None] + dx[None, :] - x0).ravel(), (own[:, 1, None] + dy[None, :] - y0).ravel()] = True
+    return int(grid.sum()) * cell * cell
+
+
 def spread(anchors, gap, seeds=None, iterations=100, box=None):
     """A layout of markers on the screen: `anchors` are the markers' points in pixels [(x, y)],
     `seeds` their first offsets (a stack's side by side, or (0, 0)); returns the offsets [(dx, dy)]
@@ -354,18 +395,8 @@ def spread(anchors, gap, seeds=None, iterations=100, box=None):
             return out
     pos = anchor + seed
     # The crowds: markers joined by chains of pairs nearer than a gap, as seeded.
-    crowd = list(range(n))
-
-    def top(i):
-        while crowd[i] != i:
-            crowd[i] = crowd[crowd[i]]
-            i = crowd[i]
-        return i
-
     near_i, near_k = _pairs_within(pos, gap - 1e-9)
-    for i, k in zip(near_i.tolist(), near_k.tolist()):
-        crowd[top(i)] = top(k)
-    tops = np.array([top(i) for i in range(n)])
+    tops = _crowds(n, near_i, near_k)
     # A crowd that has not the room for its markers a gap apart (packed as closely as discs can
     # be, 0.87 gap^2 each, in its box grown by a gap all round) is left as seeded at once.
     hopeless = set()
@@ -375,12 +406,24 @@ def spread(anchors, gap, seeds=None, iterations=100, box=None):
         x1, y1 = members.max(axis=0)
         if 0.87 * len(members) * gap * gap > (x1 - x0 + 2 * gap) * (y1 - y0 + 2 * gap):
             hopeless.add(c)
+        elif 0.866 * len(members) * gap * gap > _room(anchor[tops == c], caps[tops == c] + 0.5 * gap, gap):
+            # The same count against the room its markers can reach: each stays within its cap
+            # of its joint, so their discs (a gap across) lie within cap and half a gap of the
+            # joints. A chain seen slantwise has a box of room and a strip of it: its passes
+            # pushed to and fro until the last one (most of a layout zoomed in on a chain).
+            hopeless.add(c)
     free = ~np.isin(tops, list(hopeless)) if hopeless else np.ones(n, dtype=bool)
-    # The pairs that can come within a gap: each point's reach is its cap and half a gap.
-    cand_i, cand_k = _pairs_within(anchor, caps + 0.5 * gap)
-    keep = free[cand_i] & free[cand_k]
-    cand_i, cand_k = cand_i[keep], cand_k[keep]
-    for _ in range(iterations):
+    # The pairs that can come within a gap, among the markers that may move: each point's reach
+    # is its cap and half a gap (a hopeless crowd's markers are not even looked at: a chain seen
+    # whole spent most of a layout finding pairs it then threw away).
+    movable = np.flatnonzero(free)
+    cand_i, cand_k = _pairs_within(anchor[movable], (caps + 0.5 * gap)[movable])
+    cand_i, cand_k = movable[cand_i], movable[cand_k]
+    # The passes stop once the crowding left no longer shrinks (by a hundredth in STALL passes):
+    # a crowd that cannot be made readable went back to its seeds after the last pass anyway,
+    # and pushing it on for the remaining passes cost most of a layout zoomed in on a chain.
+    best, since = math.inf, 0
+    for _ in range(iterations) if len(cand_i) else ():
         # All pairs pushed from the same positions.
         dx = pos[cand_k, 0] - pos[cand_i, 0]
         dy = pos[cand_k, 1] - pos[cand_i, 1]
@@ -389,6 +432,13 @@ def spread(anchors, gap, seeds=None, iterations=100, box=None):
         if not near.any():
             break
         i, k, dx, dy, d = cand_i[near], cand_k[near], dx[near], dy[near], d[near]
+        crowding = float((gap - d).sum())
+        if crowding < 0.99 * best:
+            best, since = crowding, 0
+        else:
+            since += 1
+            if since >= STALL:
+                break
         same = d < 1e-9
         if same.any():  # one point: apart along a direction of their own
             turn = 2.399963 * (i[same] + k[same])  # the golden angle: no two pairs alike

@@ -1388,6 +1388,35 @@ class MarkerLayout(unittest.TestCase):
         self.assertEqual(out[:30], [(0.0, 0.0)] * 30)
         self.assertAlmostEqual(math.hypot(out[31][0] - out[30][0] + 5.0, out[31][1] - out[30][1]), gap, delta=1e-3)
 
+    def test_a_slanted_chain_without_room_is_left_as_seeded_without_passes(self):
+        # A chain seen slantwise (a zoomed 400-joint chain in an isometric view): its box has
+        # room for its markers, the strip they can reach has not. It is left as seeded at once,
+        # where it was pushed to and fro for every pass before going back to its seeds anyway.
+        from dispcon_fc import markers
+
+        gap = 46.2
+        chain = [(6.0 * k, 4.0 * k) for k in range(120)]
+        n = len(chain)
+        # The room is an upper bound of the strip within a gap and a half of the joints (at most
+        # its length times three gaps and the ends' discs, cells whole), far below the box.
+        room = markers._room(markers.np.array(chain), [1.5 * gap] * n, gap)
+        length = math.hypot(6.0 * (n - 1), 4.0 * (n - 1))
+        self.assertGreaterEqual(room, length * 3 * gap)
+        self.assertLess(room, 0.5 * (6.0 * n + 2 * gap) * (4.0 * n + 2 * gap))
+        self.assertGreater(0.866 * n * gap * gap, room)  # so: no room for a gap between them
+        passes = []
+        bincount = markers.np.bincount
+        markers.np.bincount = lambda *a, **k: passes.append(1) or bincount(*a, **k)
+        try:
+            out = markers.spread(chain, gap)
+        finally:
+            markers.np.bincount = bincount
+        self.assertEqual(out, [(0.0, 0.0)] * n)
+        self.assertEqual(passes, [], "the hopeless chain was pushed about")
+        # A crowd with room in its strip is still set apart (four markers on one point).
+        out = markers.spread([(0.0, 0.0)] * 4, gap)
+        self.assertTrue(all(math.hypot(*o) > 1.0 for o in out))
+
     def test_hundreds_of_markers_are_set_apart_as_every_pair_says(self):
         # 400 markers in crowds of four over a 2000 x 1400 pixel plane (the layout runs in numpy
         # over a list of the pairs that can come within a gap): measured pair by pair afterwards.
