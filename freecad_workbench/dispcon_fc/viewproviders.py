@@ -12,7 +12,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from . import markers
-from .objects import Stateless, is_joint
+from .objects import Stateless, is_joint, is_sub_assembly, nested_parts
 from .resources import icon_path
 
 
@@ -244,6 +244,9 @@ class Observer:
     def slotChangedObject(self, obj, prop):
         if prop != "Placement":
             return
+        highlight = _HIGHLIGHTS.get(obj.Document.Name)
+        if highlight is not None and obj.Name in highlight.parts:
+            highlight.redraw_later()
         for o in obj.InList:
             proxy = _joint_view(o)
             if proxy is not None:
@@ -262,15 +265,135 @@ class Observer:
     def clearSelection(self, doc):
         self._refresh(doc)
 
+    def slotDeletedDocument(self, doc):
+        _highlight(doc, [])
+
     def _refresh(self, doc_name):
         doc = App.getDocument(doc_name) if doc_name and doc_name in App.listDocuments() else App.ActiveDocument
         if doc is None:
             return
-        selected = {o.Name for o in Gui.Selection.getSelection(doc.Name)}
+        chosen = Gui.Selection.getSelection(doc.Name)
+        selected = {o.Name for o in chosen}
         for o in doc.Objects:
             proxy = _joint_view(o)
             if proxy is not None:
                 proxy.set_selected(o.Name in selected)
+        # A sub-assembly instance (a group: nothing of its own in the 3D view) selected in the
+        # tree: its parts, at any depth, drawn in the selection's green.
+        _highlight(doc, [o for o in chosen if is_sub_assembly(o)])
+
+
+# The instances drawn highlighted, by document name.
+_HIGHLIGHTS = {}
+
+
+class _Highlight:
+    """The edges of a selected instance's parts (every link at any depth) drawn over the view in
+    the selection's green: FreeCAD highlights what a selected object draws, and an instance is a
+    group that draws nothing of its own (its links are drawn at the document's root). State of
+    the view only: a node of the 3D view's scene graph, never a property."""
+
+    def __init__(self, doc, instances):
+        from pivy import coin
+
+        self.doc_name = doc.Name
+        self.instances = [o.Name for o in instances]
+        self.parts = set()
+        self.root = coin.SoSeparator()
+        self.root.setName("dispcon_instance_highlight")
+        self.pending = False
+        view = Gui.getDocument(doc.Name).ActiveView
+        self.graph = view.getSceneGraph()
+        # Held while the highlight is in it (the view can go first with its document).
+        self.graph.ref()
+        self.graph.addChild(self.root)
+        self.redraw()
+
+    def redraw_later(self):
+        if not self.pending:
+            self.pending = True
+            from .qt import QtCore
+
+            QtCore.QTimer.singleShot(0, self.redraw)
+
+    def redraw(self):
+        from pivy import coin
+        import Part
+
+        self.pending = False
+        if self.graph is None or self.doc_name not in App.listDocuments():
+            return
+        doc = App.getDocument(self.doc_name)
+        links = [p for name in self.instances if doc.getObject(name) is not None
+                 for p in nested_parts(doc.getObject(name))]
+        self.parts = {p.Name for p in links}
+        self.root.removeAllChildren()
+        style = coin.SoPickStyle()
+        style.style = coin.SoPickStyle.UNPICKABLE  # never in the way of a click on a part
+        self.root.addChild(style)
+        self.root.addChild(markers._material(markers.SELECTED))
+        lines = coin.SoDrawStyle()
+        lines.lineWidth = 3.0
+        self.root.addChild(lines)
+        on_top = coin.SoAnnotation()
+        self.root.addChild(on_top)
+        points, counts = [], []
+        for link in links:
+            try:
+                shape = Part.getShape(link)
+            except Exception:  # a link whose file is gone: nothing to draw
+                continue
+            if shape.isNull():
+                continue
+            deflection = max(shape.BoundBox.DiagonalLength / 200.0, 1e-6)
+            for edge in shape.Edges:
+                try:
+                    pts = edge.discretize(Deflection=deflection)
+                except Exception:
+                    continue
+                if len(pts) >= 2:
+                    points += [(v.x, v.y, v.z) for v in pts]
+                    counts.append(len(pts))
+        if counts:
+            coords = coin.SoCoordinate3()
+            coords.point.setValues(0, len(points), points)
+            on_top.addChild(coords)
+            line = coin.SoLineSet()
+            line.numVertices.setValues(0, len(counts), counts)
+            on_top.addChild(line)
+
+    def remove(self):
+        graph, self.graph = self.graph, None
+        if graph is not None:
+            graph.removeChild(self.root)
+            graph.unref()
+
+
+def _highlight(doc, instances):
+    """Draws the parts of `instances` (sub-assembly instances of `doc`) highlighted in `doc`'s
+    3D view, and no other instance's."""
+    was = _HIGHLIGHTS.pop(doc.Name, None)
+    names = [o.Name for o in instances]
+    if was is not None and was.instances == names and was.graph is not None:
+        _HIGHLIGHTS[doc.Name] = was
+        return
+    if was is not None:
+        was.remove()
+    if not names or not App.GuiUp:
+        return
+    try:
+        gdoc = Gui.getDocument(doc.Name)
+        if gdoc is None or not hasattr(gdoc.ActiveView, "getSceneGraph"):
+            return
+        _HIGHLIGHTS[doc.Name] = _Highlight(doc, instances)
+    except Exception:  # no 3D view (another kind of view active): nothing drawn
+        return
+
+
+def highlighted(doc):
+    """The names of the instances drawn highlighted in `doc`'s view, and their parts'."""
+    h = _HIGHLIGHTS.get(doc.Name)
+    return (list(h.instances), set(h.parts)) if h is not None else ([], set())
 
 
 class _Screen:

@@ -248,6 +248,65 @@ class Parade(ParadeDocument):
         self.assertTrue(os.path.getsize(path) > 10000)
 
 
+class Highlight(ParadeDocument):
+    """A sub-assembly instance selected in the tree (a group, which FreeCAD draws nothing of) has
+    its parts drawn in the selection's green in the 3D view: a walker, and a leg nested in one."""
+
+    NAME = "highlight"
+
+    def green(self):
+        """The rendered view's selection-green pixels: (count, their box (x0, y0, x1, y1))."""
+        import numpy
+
+        image = gw.rendered(self.view, os.path.join(gw.OUT, "_highlight.png"))
+        mask = (image[:, :, 1] > 150) & (image[:, :, 0] < 110) & (image[:, :, 2] < 110)
+        ys, xs = numpy.nonzero(mask)
+        return int(mask.sum()), ((int(xs.min()), int(ys.min()), int(xs.max()), int(ys.max())) if len(xs) else None)
+
+    def screen(self, links):
+        """The pixel (x, y from the top) of each link's placement, as rendered()."""
+        region = self.view.getViewer().getSoRenderManager().getViewportRegion()
+        height = region.getViewportSizePixels()[1]
+        return [(p[0], height - 1 - p[1]) for p in
+                (self.view.getPointOnScreen(link.Placement.Base) for link in links)]
+
+    def test_a_selected_instance_is_drawn_highlighted_at_any_depth(self):
+        from dispcon_fc import objects, viewproviders
+
+        by_label = {o.Label: o for o in self.doc.Objects}
+        Gui.Selection.clearSelection()
+        gw.settle()
+        self.assertEqual(self.green()[0], 0, "green before anything is selected")
+        for label in ("Walk2.Leg3", "Walk1"):
+            inst = by_label[label]
+            links = objects.nested_parts(inst)
+            Gui.Selection.clearSelection()
+            Gui.Selection.addSelection(inst)
+            gw.settle()
+            self.assertEqual(viewproviders.highlighted(self.doc), ([inst.Name], {p.Name for p in links}))
+            count, box = self.green()
+            self.assertGreater(count, 200, "%s selected: its parts are not highlighted" % label)
+            gw.shot("highlight-%s" % label.replace(".", "-"))
+            # Where its parts are, not elsewhere: every link's origin inside the green's box (a few
+            # pixels of slack), and the box no larger than the links' spread and a part's size.
+            pts = self.screen(links)
+            for x, y in pts:
+                self.assertTrue(box[0] - 4 <= x <= box[2] + 4 and box[1] - 4 <= y <= box[3] + 4,
+                                "%s: a part at (%d, %d) outside the highlight %s" % (label, x, y, box))
+            others = [p for p in objects.placed_parts(self.asm) if p not in links]
+            outside = [(x, y) for x, y in self.screen(others)
+                       if not (box[0] <= x <= box[2] and box[1] <= y <= box[3])]
+            self.assertTrue(outside, "%s: the highlight covers every part of the parade" % label)
+        # Another part selected, then nothing: no highlight left.
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(self.track)
+        gw.settle()
+        self.assertEqual(viewproviders.highlighted(self.doc), ([], set()))
+        Gui.Selection.clearSelection()
+        gw.settle()
+        self.assertEqual(self.green()[0], 0, "green left after the selection was cleared")
+
+
 def rigid_row_editable(obj):
     """Whether the property editor shows obj's Rigid as a value to edit: its row found by name on
     the Data tab once obj is selected (the editor fills its rows from a timer; None when it is not
@@ -325,4 +384,5 @@ class PerPlace(ParadeDocument):
         self.assertGreater(os.path.getsize(path), 10000)
 
 
-gw.run_in_gui([Walker, Parade, PerPlace], "status-subassembly")
+gw.run_in_gui([c for c in (Walker, Parade, Highlight, PerPlace)
+               if not os.environ.get("DISPCON_GUI_ONLY") or os.environ["DISPCON_GUI_ONLY"] in c.__name__], "status-subassembly")
