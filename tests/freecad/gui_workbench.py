@@ -1229,6 +1229,28 @@ class TestCheckPanel(Documents):
         settle()
         return panels.last_panel
 
+    def test_the_check_panel_has_its_icon_and_units(self):
+        # The task box's header shows the Check command's icon (it showed FreeCAD's logo), and
+        # the overlapping parts' volume says its unit.
+        from types import SimpleNamespace
+
+        from dispcon_fc.panels import check
+        from dispcon_fc.resources import icon_path
+
+        panel = self.checked_fourbar()
+
+        def image(icon):
+            return icon.pixmap(24, 24).toImage().convertToFormat(QtGui.QImage.Format_ARGB32)
+
+        self.assertFalse(panel.form.windowIcon().isNull(), "the check panel shows FreeCAD's logo")
+        self.assertEqual(image(panel.form.windowIcon()), image(QtGui.QIcon(icon_path("Dispcon_Check.svg"))))
+        shot("check-panel-icon")
+        a, b = SimpleNamespace(Label="Crank"), SimpleNamespace(Label="Stop")
+        text = QtGui.QTextDocument()
+        text.setHtml(check.report_html(panel.result, [(a, b, 0.125)]))
+        self.assertIn("volume (mm³)", text.toPlainText())
+        self.assertIn("0.125", text.toPlainText())
+
     def test_the_check_panel_exports_its_report_and_a_motion_study(self):
         import json
 

@@ -9,7 +9,8 @@ from ..adapter import plural
 from ..feedback import labels, mark, report, status, study_message
 from ..commands.motion import export_motion_study, save_path, study_joint
 from ..objects import joints as joints_of
-from ..qt import QtWidgets
+from ..qt import QtGui, QtWidgets
+from ..resources import icon_path
 from . import load_ui
 
 
@@ -21,6 +22,8 @@ class CheckPanel:
         c = result if result is not None else operations.check(asm)
         self.result = c
         self.form = load_ui("check.ui")
+        # The task box's header shows the form's icon: without one, FreeCAD's own logo.
+        self.form.setWindowIcon(QtGui.QIcon(icon_path("Dispcon_Check.svg")))
         self.form.summary.setWordWrap(True)
         self.form.summary.setText(_summary(c))
         fit_to_content(self.form.report)
@@ -120,7 +123,7 @@ def report_html(c, overlaps):
                        % (mono, e(a.Label), mono, e(b.Label), mono, v) for a, b, v in overlaps)
         out.append('<p><b>overlapping parts:</b></p><table cellspacing="0" cellpadding="2" style="margin-left: 8px;">'
                    '<tr><th align="left" style="%s">part</th><th align="left" style="%s">part</th>'
-                   '<th align="right" style="%s">volume</th></tr>%s</table>' % (mono, mono, mono, rows))
+                   '<th align="right" style="%s">volume (mm³)</th></tr>%s</table>' % (mono, mono, mono, rows))
     return "".join(out)
 
 
