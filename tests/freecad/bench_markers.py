@@ -2,7 +2,7 @@
 14, tenth round: the markers' layout"): real FreeCAD under Xvfb at 1280x900, not a test (speed is
 measured, never asserted). Two generated assemblies of real solids (samples/freecad/parts.py):
 
-- `chain`: gui_drag.py's chain of parallelograms, 134 cranks: 267 parts, 400 revolutes along a
+- `chain`: tests/freecad/chains.py's chain of parallelograms (gui_drag.py's), 134 cranks: 267 parts, 400 revolutes along a
   line (at fit-all zoom a crowd with no room beside its joints);
 - `grid`: 30 chains of 5 cranks in 6 rows of 5: 270 parts, 390 revolutes over the screen (crowds
   with room, made readable).
@@ -29,51 +29,10 @@ sys.path.insert(0, HERE)
 import FreeCAD as App  # noqa: E402
 import FreeCADGui as Gui  # noqa: E402
 from dispcon_fc.qt import QtWidgets  # noqa: E402
+from chains import chains  # noqa: E402  (the crank chains gui_drag.py drags)
 
 RUNS = int(os.environ.get("DISPCON_BENCH_RUNS", "9"))
 OUT = os.environ.get("DISPCON_GUI_OUT", "/tmp/dispcon-bench-markers")
-
-
-def chains(doc, rows, cols, cranks, name="Grid"):
-    """`rows` x `cols` chains of `cranks` parallelograms (gui_drag.py's crank_chain, each on a
-    ground plate of its own), in one assembly: rows * cols * (2 cranks - 1) parts, (3 cranks - 2)
-    revolutes each."""
-    import dispcon_fc.assembly as da
-    import parts
-
-    pitch, length = 1.5, 1.0
-    asm = da.create_assembly(doc, name)
-    crank_shape, coupler_shape = parts.link(length), parts.link(pitch)
-    tip = App.Rotation(App.Vector(0, 0, 1), 60).multVec(App.Vector(length, 0, 0))
-    for r in range(rows):
-        for c in range(cols):
-            at = App.Vector(c * (cranks * pitch + 2.0), r * 3.0, 0)
-            ground = doc.addObject("Part::Feature", "Ground")
-            ground.Shape = parts.ground([(k * pitch, 0) for k in range(cranks)])
-            ground.Placement = App.Placement(at, App.Rotation())
-            da.add_part(asm, ground, grounded=True)
-            cs, ls = [], []
-            for k in range(cranks):
-                o = doc.addObject("Part::Feature", "Crank")
-                o.Shape = crank_shape
-                o.Placement = App.Placement(at + App.Vector(k * pitch, 0, 0.1), App.Rotation(App.Vector(0, 0, 1), 60))
-                cs.append(da.add_part(asm, o))
-            for k in range(cranks - 1):
-                o = doc.addObject("Part::Feature", "Coupler")
-                o.Shape = coupler_shape
-                o.Placement = App.Placement(at + App.Vector(k * pitch, 0, 0.2 + 0.1 * (k % 2)) + tip, App.Rotation())
-                ls.append(da.add_part(asm, o))
-
-            def pin(o, x, top=False):
-                return (o, parts.circle_edge(o.Shape, App.Vector(x, 0, 0.1 if top else 0.0)))
-
-            for k in range(cranks):
-                da.add_joint(asm, "Revolute", pin(ground, k * pitch, True), pin(cs[k], 0))
-            for k in range(cranks - 1):
-                layer = 0.1 * (k % 2)
-                da.add_joint(asm, "Revolute", pin(cs[k], length, True), pin(ls[k], 0), offset=layer)
-                da.add_joint(asm, "Revolute", pin(cs[k + 1], length, True), pin(ls[k], pitch), offset=layer)
-    return asm
 
 
 def settle():

@@ -24,44 +24,7 @@ from dispcon_fc.qt import QtWidgets  # noqa: E402
 
 os.environ["DISPCON_GUI_IMPORT_ONLY"] = "1"
 import gui_workbench as gw  # noqa: E402  (its helpers only)
-
-
-def crank_chain(doc, cranks):
-    """A 1-DOF chain of parallelograms from real solids: `cranks` cranks on one ground plate's
-    bosses, each pair of neighbours joined by a coupler (alternate couplers one layer higher,
-    so neighbours touch without overlapping): 2 * cranks parts, 3 * cranks - 2 revolutes.
-    Dragging any moving part turns every crank."""
-    import parts
-
-    pitch, length = 1.5, 1.0
-    asm = da.create_assembly(doc, "Chain")
-    ground = doc.addObject("Part::Feature", "Ground")
-    ground.Shape = parts.ground([(k * pitch, 0) for k in range(cranks)])
-    da.add_part(asm, ground, grounded=True)
-    crank_shape, coupler_shape = parts.link(length), parts.link(pitch)
-    tip = App.Rotation(App.Vector(0, 0, 1), 60).multVec(App.Vector(length, 0, 0))
-    cs, ls = [], []
-    for k in range(cranks):
-        c = doc.addObject("Part::Feature", "Crank%d" % k)
-        c.Shape = crank_shape
-        c.Placement = App.Placement(App.Vector(k * pitch, 0, 0.1), App.Rotation(App.Vector(0, 0, 1), 60))
-        cs.append(da.add_part(asm, c))
-    for k in range(cranks - 1):
-        c = doc.addObject("Part::Feature", "Coupler%d" % k)
-        c.Shape = coupler_shape
-        c.Placement = App.Placement(App.Vector(k * pitch, 0, 0.2 + 0.1 * (k % 2)) + tip, App.Rotation())
-        ls.append(da.add_part(asm, c))
-
-    def pin(o, x, top=False):
-        return (o, parts.circle_edge(o.Shape, App.Vector(x, 0, 0.1 if top else 0.0)))
-
-    for k in range(cranks):
-        da.add_joint(asm, "Revolute", pin(ground, k * pitch, True), pin(cs[k], 0))
-    for k in range(cranks - 1):
-        layer = 0.1 * (k % 2)
-        da.add_joint(asm, "Revolute", pin(cs[k], length, True), pin(ls[k], 0), offset=layer)
-        da.add_joint(asm, "Revolute", pin(cs[k + 1], length, True), pin(ls[k], pitch), offset=layer)
-    return asm, cs, ls
+from chains import crank_chain  # noqa: E402
 
 
 def same_placement(p, q, tol=1e-12):
