@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "common.hpp"
 #include "dispcon/solve/diagnostics.hpp"
@@ -67,6 +68,12 @@ void BM_FourBars_slvs_angle(benchmark::State& state) {
   solvespace(state, [](int n) { return bench::fourbars_slvs(n, {}, true); });
 }
 BENCHMARK(BM_FourBars_slvs_angle)->Apply([](auto* b) { fourbar_counts(b, 400); }) -> Iterations(3);
+// The same set-up on four-bars each of its own size, crank angle and rough start
+// (bench::fourbar_variants): the peer of BM_Command_AssembleJson_FourBarsVaried.
+void BM_FourBars_slvs_angle_varied(benchmark::State& state) {
+  solvespace(state, [](int n) { return bench::fourbars_slvs(bench::fourbar_variants(n), true); });
+}
+BENCHMARK(BM_FourBars_slvs_angle_varied)->Arg(400)->Unit(benchmark::kMillisecond)->Iterations(3);
 void BM_FourBars_slvs_rigid(benchmark::State& state) {
   solvespace(state, [](int n) { return bench::fourbars_slvs_rigid(n); });
 }
@@ -186,28 +193,35 @@ void BM_DragStep_GearTrain(benchmark::State& state) {
 }
 BENCHMARK(BM_DragStep_GearTrain)->Arg(10)->Arg(100)->Unit(benchmark::kMicrosecond);
 
-// Both solvers must agree on the four-bars before their times are compared.
+// Both solvers must agree on the four-bars before their times are compared: the copies of one
+// four-bar, and four-bars each of its own (fourbar_variants, the varied file's).
 bool same_answer() {
-  for (int n : {1, 10}) {
-    Model m = bench::fourbars_dispcon(n);
-    SolveOptions o;
-    o.tolerance = 1e-12;
-    if (!assemble(m, o).converged) return false;
-    for (const char* setup : {"2D", "2D angle", "rigid"}) {
-      const bench::SlvsResult s = setup[0] == 'r'   ? bench::fourbars_slvs_rigid(n)
-                                  : setup[2] == 'a' ? bench::fourbars_slvs(n, {}, true)
-                                                    : bench::fourbars_slvs(n);
-      if (s.result != SLVS_RESULT_OKAY) {
-        std::fprintf(stderr, "SolveSpace (%s) failed: result %d\n", setup, s.result);
-        return false;
-      }
-      for (int k = 0; k < n; ++k) {
-        const double diff = std::abs(std::remainder(
-            bench::rocker_angle_dispcon(m, k) - s.rocker[static_cast<size_t>(k)], 2 * M_PI));
-        if (diff > 1e-8) {
-          std::fprintf(stderr, "four-bar %d: dispcon and SolveSpace (%s) differ by %g rad\n", k,
-                       setup, diff);
+  for (const bool varied : {false, true}) {
+    for (int n : {1, 10, 100}) {
+      if (!varied && n > 10) continue;
+      const std::vector<bench::FourBarProblem> problems =
+          varied ? bench::fourbar_variants(n) : bench::fourbar_copies(n);
+      Model m = bench::fourbars_dispcon(problems);
+      SolveOptions o;
+      o.tolerance = 1e-12;
+      if (!assemble(m, o).converged) return false;
+      for (const char* setup : {"2D", "2D angle", "rigid"}) {
+        const bench::SlvsResult s = setup[0] == 'r'   ? bench::fourbars_slvs_rigid(problems)
+                                    : setup[2] == 'a' ? bench::fourbars_slvs(problems, true)
+                                                      : bench::fourbars_slvs(problems);
+        if (s.result != SLVS_RESULT_OKAY) {
+          std::fprintf(stderr, "SolveSpace (%s%s) failed: result %d\n", setup,
+                       varied ? ", varied" : "", s.result);
           return false;
+        }
+        for (int k = 0; k < n; ++k) {
+          const double diff = std::abs(std::remainder(
+              bench::rocker_angle_dispcon(m, k) - s.rocker[static_cast<size_t>(k)], 2 * M_PI));
+          if (diff > 1e-8) {
+            std::fprintf(stderr, "four-bar %d%s: dispcon and SolveSpace (%s) differ by %g rad\n", k,
+                         varied ? " (varied)" : "", setup, diff);
+            return false;
+          }
         }
       }
     }
@@ -215,7 +229,7 @@ bool same_answer() {
   std::fprintf(
       stderr,
       "check: dispcon and SolveSpace (2D, 2D angle and rigid) give the same rocker angles (within "
-      "1e-8 rad)\n");
+      "1e-8 rad), on copies of one four-bar and on 100 four-bars each of its own\n");
   return true;
 }
 

@@ -34,6 +34,16 @@ std::string fourbars_file(int n) {
   std::ofstream(path, std::ios::binary) << write_dcl(bench::fourbars_dispcon(n));
   return path;
 }
+// The same of four-bars each of its own size, crank angle and rough start
+// (bench::fourbar_variants): no number of the file nor of the document repeats from one four-bar
+// to the next.
+std::string fourbars_varied_file(int n) {
+  const std::string path =
+      std::string(DISPCON_BUILD_DIR) + "/fourbars-varied-" + std::to_string(n) + ".dcl";
+  std::ofstream(path, std::ios::binary)
+      << write_dcl(bench::fourbars_dispcon(bench::fourbar_variants(n)));
+  return path;
+}
 
 // The page faults a read takes are counted too: on this VM a page touched for the first time
 // costs 12-20 us, more than the read of a hundred lines, and how many a read meets depends on
@@ -175,14 +185,31 @@ BENCHMARK(BM_Command_AssembleJson_FourBars)
     ->Arg(400)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
+// The same of N four-bars each of its own (fourbars_varied_file): what the 400 copies of one
+// four-bar cost without their repeats (the JSON's memo of numbers finds none), against
+// BM_FourBars_slvs_angle_varied, SolveSpace's angle set-up of the same linkages.
+void BM_Command_AssembleJson_FourBarsVaried(benchmark::State& state) {
+  time_process(state, DISPCON_BIN,
+               {"assemble", fourbars_varied_file(static_cast<int>(state.range(0))), "--json"});
+}
+BENCHMARK(BM_Command_AssembleJson_FourBarsVaried)
+    ->Arg(400)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 // The same command of other builds, named by DISPCON_BENCH_OTHER (paths separated by ':';
 // registered only when set): builds compared in one run, their repetitions alternated with
 // --benchmark_enable_random_interleaving=true (the machine's load changes from minute to minute).
-// The k-th is BM_Command_AssembleJson_FourBars_Other<k>.
+// The k-th is BM_Command_AssembleJson_FourBars_Other<k>, and of the varied file
+// BM_Command_AssembleJson_FourBarsVaried_Other<k>.
 void BM_Command_AssembleJson_FourBars_Other(benchmark::State& state, const std::string& other) {
   time_process(state, other,
                {"assemble", fourbars_file(static_cast<int>(state.range(0))), "--json"});
+}
+void BM_Command_AssembleJson_FourBarsVaried_Other(benchmark::State& state,
+                                                  const std::string& other) {
+  time_process(state, other,
+               {"assemble", fourbars_varied_file(static_cast<int>(state.range(0))), "--json"});
 }
 const int others_registered = [] {
   const char* list = std::getenv("DISPCON_BENCH_OTHER");
@@ -194,6 +221,12 @@ const int others_registered = [] {
     benchmark::RegisterBenchmark(
         ("BM_Command_AssembleJson_FourBars_Other" + std::to_string(k)).c_str(),
         BM_Command_AssembleJson_FourBars_Other, other)
+        ->Arg(400)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(
+        ("BM_Command_AssembleJson_FourBarsVaried_Other" + std::to_string(k)).c_str(),
+        BM_Command_AssembleJson_FourBarsVaried_Other, other)
         ->Arg(400)
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond);

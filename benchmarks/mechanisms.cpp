@@ -1,5 +1,6 @@
 #include "mechanisms.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -38,9 +39,42 @@ BodyId body(Model& m, const std::string& name, const Vec3& at, double angle, boo
 
 }  // namespace
 
-Model fourbars_dispcon(int n, const FourBarProblem& p) {
-  Model m;
+std::vector<FourBarProblem> fourbar_copies(int n, const FourBarProblem& p) {
+  return std::vector<FourBarProblem>(static_cast<size_t>(std::max(0, n)), p);
+}
+
+std::vector<FourBarProblem> fourbar_variants(int n) {
+  std::vector<FourBarProblem> out;
+  // Fractional parts of k times irrational steps: well spread in [0, 1), never repeating.
+  auto spread = [](int k, double step) { return std::fmod(0.5 + k * step, 1.0); };
   for (int k = 0; k < n; ++k) {
+    FourBarProblem p;
+    p.a *= 0.9 + 0.2 * spread(k, 0.6180339887498949);
+    p.b *= 0.9 + 0.2 * spread(k, 0.4142135623730950);
+    p.c *= 0.9 + 0.2 * spread(k, 0.7320508075688772);
+    p.d *= 0.9 + 0.2 * spread(k, 0.2360679774997897);
+    p.t += 0.3 * (2 * spread(k, 0.3166247903554) - 1);
+    // Still a crank-rocker (the crank the shortest, s + l < p + q): a 10 % change leaves 4.4
+    // against 4.95 at worst. The pin B where the coupler and rocker meet, on the branch above
+    // the ground (the benchmark's), then the rough start off it as the benchmark's is (0.92 left,
+    // 0.50 below).
+    const double ax = p.a * std::cos(p.t), ay = p.a * std::sin(p.t);
+    const double dx = p.d - ax, dy = -ay, l = std::hypot(dx, dy);
+    const double along = (p.b * p.b - p.c * p.c + l * l) / (2 * l);
+    const double h = std::sqrt(p.b * p.b - along * along);
+    const double bx = ax + (along * dx - h * dy) / l, by = ay + (along * dy + h * dx) / l;
+    p.bx = bx - (0.6 + 0.5 * spread(k, 0.5772156649015329));
+    p.by = by - (0.3 + 0.4 * spread(k, 0.6931471805599453));
+    out.push_back(p);
+  }
+  return out;
+}
+
+Model fourbars_dispcon(const std::vector<FourBarProblem>& problems) {
+  Model m;
+  const int n = static_cast<int>(problems.size());
+  for (int k = 0; k < n; ++k) {
+    const FourBarProblem& p = problems[static_cast<size_t>(k)];
     const double z = 10.0 * k;
     const std::string s = std::to_string(k);
     const Vec3 A(p.a * std::cos(p.t), p.a * std::sin(p.t), z);
@@ -60,7 +94,8 @@ double rocker_angle_dispcon(const Model& m, int k) {
   return std::atan2(x.y(), x.x());
 }
 
-SlvsResult fourbars_slvs(int n, const FourBarProblem& p, bool crank_angle) {
+SlvsResult fourbars_slvs(const std::vector<FourBarProblem>& problems, bool crank_angle) {
+  const int n = static_cast<int>(problems.size());
   // Group 1: the workplane and the fixed points; group 2: the crank tip A and the pin B.
   std::vector<Slvs_Param> param;
   std::vector<Slvs_Entity> entity;
@@ -95,6 +130,7 @@ SlvsResult fourbars_slvs(int n, const FourBarProblem& p, bool crank_angle) {
   for (int k = 0; k < n; ++k) {
     // Copies side by side in the plane (the problems are independent).
     const double ox = 10.0 * k;
+    const FourBarProblem& p = problems[static_cast<size_t>(k)];
     const Slvs_hEntity O = point(g1, ox, 0);
     const Slvs_hEntity D = point(g1, ox + p.d, 0);
     const Slvs_hEntity far = point(g1, ox + 10 * std::cos(p.t), 10 * std::sin(p.t));
@@ -126,7 +162,7 @@ SlvsResult fourbars_slvs(int n, const FourBarProblem& p, bool crank_angle) {
   for (int k = 0; k < n; ++k) {
     const double bx = param[b_params[static_cast<size_t>(k)] - 1].val - 10.0 * k;
     const double by = param[b_params[static_cast<size_t>(k)]].val;
-    out.rocker.push_back(std::atan2(by, bx - p.d));
+    out.rocker.push_back(std::atan2(by, bx - problems[static_cast<size_t>(k)].d));
   }
   return out;
 }

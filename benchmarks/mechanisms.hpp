@@ -16,7 +16,18 @@ struct FourBarProblem {
   double bx = 2.2, by = 2.0;
 };
 
-dispcon::Model fourbars_dispcon(int n, const FourBarProblem& p = {});
+// The same four-bar n times (the benchmark's file: its numbers repeat from copy to copy).
+std::vector<FourBarProblem> fourbar_copies(int n, const FourBarProblem& p = {});
+// n four-bars each of its own size, crank angle and rough start, so that no two share a number
+// (lengths within 10 % of the problem's above, the crank within 0.3 rad of 0.7, the rough B
+// 0.6-1.1 left and 0.3-0.7 below the pin's place on the same branch): a model whose read, solve
+// and JSON find no repeats to reuse.
+std::vector<FourBarProblem> fourbar_variants(int n);
+
+dispcon::Model fourbars_dispcon(const std::vector<FourBarProblem>& problems);
+inline dispcon::Model fourbars_dispcon(int n, const FourBarProblem& p = {}) {
+  return fourbars_dispcon(fourbar_copies(n, p));
+}
 // The rocker's angle of copy k after a dispcon solve.
 double rocker_angle_dispcon(const dispcon::Model& m, int k);
 
@@ -27,9 +38,15 @@ struct SlvsResult {
 // SolveSpace at its easiest: 2D points in one workplane, distances (4 unknowns per four-bar),
 // the crank's tip on a line at angle t; with `crank_angle`, the crank held by an angle
 // constraint to the ground instead (the set-up: 30 times slower for SolveSpace).
-SlvsResult fourbars_slvs(int n, const FourBarProblem& p = {}, bool crank_angle = false);
+SlvsResult fourbars_slvs(const std::vector<FourBarProblem>& problems, bool crank_angle = false);
+inline SlvsResult fourbars_slvs(int n, const FourBarProblem& p = {}, bool crank_angle = false) {
+  return fourbars_slvs(fourbar_copies(n, p), crank_angle);
+}
 // SolveSpace on dispcon's problem: rigid links in 3D (frames of 7 parameters each).
-SlvsResult fourbars_slvs_rigid(int n, const FourBarProblem& p = {});
+SlvsResult fourbars_slvs_rigid(const std::vector<FourBarProblem>& problems);
+inline SlvsResult fourbars_slvs_rigid(int n, const FourBarProblem& p = {}) {
+  return fourbars_slvs_rigid(fourbar_copies(n, p));
+}
 
 // A closed chain of n links, one fixed, on a circle, perturbed by 0.01.
 dispcon::Model closed_chain(int n);

@@ -15,7 +15,8 @@
 
 namespace bench {
 
-SlvsResult fourbars_slvs_rigid(int n, const FourBarProblem& p) {
+SlvsResult fourbars_slvs_rigid(const std::vector<FourBarProblem>& problems) {
+  const int n = static_cast<int>(problems.size());
   std::vector<Slvs_Param> param;
   std::vector<Slvs_Entity> entity;
   std::vector<Slvs_Constraint> constraint;
@@ -61,6 +62,7 @@ SlvsResult fourbars_slvs_rigid(int n, const FourBarProblem& p) {
   std::vector<Slvs_hParam> rocker_q;  // first quaternion parameter of each rocker
   for (int k = 0; k < n; ++k) {
     const double ox = 10.0 * k;  // copies side by side (the problems are independent)
+    const FourBarProblem& p = problems[static_cast<size_t>(k)];
     const double ax = ox + p.a * std::cos(p.t), ay = p.a * std::sin(p.t);
     const double bx = ox + p.bx, by = p.by, dx = ox + p.d;
     const Slvs_hEntity A = point3(g1, ax, ay, 0);  // the crank's tip: the crank is fixed

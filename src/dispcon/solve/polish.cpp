@@ -29,9 +29,9 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
     reused_ = small_residuals(s, band);
   } else if (reuse && factored_ && kkt_ && !soft) {
     if (!(measured && measured_)) gather_residuals(s, band, nullptr);
-    reused_ =
-        2 * static_cast<size_t>(chord_.rows) == analyzed_pattern_.size() &&
-        std::equal(analyzed_pattern_.begin(), analyzed_pattern_.end(), chord_.pattern.begin());
+    reused_ = 2 * static_cast<size_t>(big_->chord_.rows) == big_->analyzed_pattern_.size() &&
+              std::equal(big_->analyzed_pattern_.begin(), big_->analyzed_pattern_.end(),
+                         big_->chord_.pattern.begin());
   }
   measured_ = false;  // the poses move below
   if (!reused_) {
@@ -39,7 +39,7 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
     work.chord_of_ = nullptr;  // the dense factor and the row lists are rewritten below
     gather(s, band, soft, let_go);
   }
-  const int m = reused_ && !small ? chord_.rows : static_cast<int>(w_->rows_.size());
+  const int m = reused_ && !small ? big_->chord_.rows : static_cast<int>(w_->rows_.size());
   if (m == 0 || nv_ == 0) return false;
   if (reused_ && small) {
     Eigen::Map<Eigen::VectorXd> y(w_->y_.data(), m);
@@ -47,7 +47,7 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
     w_->chol_.solve(w_->dense_.data(), y.data());
     if (!y.allFinite()) return false;
   } else if (reused_) {
-    if (!solve_blocks(chord_.residual)) return false;
+    if (!solve_blocks(big_->chord_.residual)) return false;
   } else if (!factor(s, lambda)) {
     return false;
   }
@@ -205,12 +205,14 @@ bool Polisher::small_residuals(const SolverState& s, const std::vector<double>& 
 double Polisher::gather_residuals(const SolverState& s, const std::vector<double>& band,
                                   std::vector<double>* joint_r) {
   const std::vector<int>& joints = group_->joints;
-  chord_.start(joints.size());
+  big_->chord_.start(joints.size());
   int i = 0;
   return for_each_row(
       s, joints.data(), joints.data() + joints.size(), band, nullptr, false, joint_r,
-      [&](int, int v1, int v2, const PartRows& p, int k) { chord_.add(p.residual[k], v1, v2); },
-      [&] { chord_.joint[static_cast<size_t>(++i)] = chord_.rows; });
+      [&](int, int v1, int v2, const PartRows& p, int k) {
+        big_->chord_.add(p.residual[k], v1, v2);
+      },
+      [&] { big_->chord_.joint[static_cast<size_t>(++i)] = big_->chord_.rows; });
 }
 
 double Polisher::measure(const SolverState& s, const std::vector<double>& band,
@@ -242,32 +244,33 @@ constexpr int kJointValues = 7;  // the residual, p1, p2
 
 void Polisher::keep_measure(const SolverState& s, const std::vector<double>& joint_r) {
   const std::vector<int>& joints = group_->joints;
-  kept_ = measured_ && chord_.joint.size() == joints.size() + 1;
+  kept_ = measured_ && big_->chord_.joint.size() == joints.size() + 1;
   if (!kept_) return;
-  if (joint_touched_.size() != 2 * joints.size()) {  // once: the bodies the joints join
+  if (big_->joint_touched_.size() != 2 * joints.size()) {  // once: the bodies the joints join
     std::vector<int> slot(s.bodies.size(), -1);
-    touched_.clear();
-    joint_touched_.clear();
+    big_->touched_.clear();
+    big_->joint_touched_.clear();
     for (int c : joints) {
       const JointState& js = s.joints[static_cast<size_t>(c)];
       for (int b : {js.b1, js.b2}) {
         int& t = slot[static_cast<size_t>(b)];
         if (t < 0) {
-          t = static_cast<int>(touched_.size());
-          touched_.push_back(b);
+          t = static_cast<int>(big_->touched_.size());
+          big_->touched_.push_back(b);
         }
-        joint_touched_.push_back(t);
+        big_->joint_touched_.push_back(t);
       }
     }
   }
-  kept_pose_.resize(kPoseValues * touched_.size());
-  for (size_t t = 0; t < touched_.size(); ++t) {
-    copy_pose(s.bodies[static_cast<size_t>(touched_[t])], kept_pose_.data() + kPoseValues * t);
+  big_->kept_pose_.resize(kPoseValues * big_->touched_.size());
+  for (size_t t = 0; t < big_->touched_.size(); ++t) {
+    copy_pose(s.bodies[static_cast<size_t>(big_->touched_[t])],
+              big_->kept_pose_.data() + kPoseValues * t);
   }
-  kept_joint_.resize(kJointValues * joints.size());
+  big_->kept_joint_.resize(kJointValues * joints.size());
   for (size_t i = 0; i < joints.size(); ++i) {
     const Joint& j = *s.joints[static_cast<size_t>(joints[i])].joint;
-    double* k = kept_joint_.data() + kJointValues * i;
+    double* k = big_->kept_joint_.data() + kJointValues * i;
     k[0] = joint_r[static_cast<size_t>(joints[i])];
     std::memcpy(k + 1, j.p1.data(), 3 * sizeof(double));
     std::memcpy(k + 4, j.p2.data(), 3 * sizeof(double));
@@ -279,44 +282,45 @@ void Polisher::keep_measure(const SolverState& s, const std::vector<double>& joi
 double Polisher::measure_moved(const SolverState& s, const std::vector<double>& band,
                                std::vector<double>& joint_r) {
   const std::vector<int>& joints = group_->joints;
-  moved_.resize(touched_.size());
-  for (size_t t = 0; t < touched_.size(); ++t) {
-    moved_[t] =
-        !same_pose(s.bodies[static_cast<size_t>(touched_[t])], kept_pose_.data() + kPoseValues * t);
+  big_->moved_.resize(big_->touched_.size());
+  for (size_t t = 0; t < big_->touched_.size(); ++t) {
+    big_->moved_[t] = !same_pose(s.bodies[static_cast<size_t>(big_->touched_[t])],
+                                 big_->kept_pose_.data() + kPoseValues * t);
   }
-  spare_.start(joints.size());
+  big_->spare_.start(joints.size());
   double largest = 0;
   for (size_t i = 0; i < joints.size(); ++i) {
     const auto c = static_cast<size_t>(joints[i]);
     const JointState& js = s.joints[c];
     const Joint& j = *js.joint;
-    const double* k = kept_joint_.data() + kJointValues * i;
-    const bool same = !moved_[static_cast<size_t>(joint_touched_[2 * i])] &&
-                      !moved_[static_cast<size_t>(joint_touched_[2 * i + 1])] && !js.bounded &&
-                      !j.coupling && !j.twist &&
+    const double* k = big_->kept_joint_.data() + kJointValues * i;
+    const bool same = !big_->moved_[static_cast<size_t>(big_->joint_touched_[2 * i])] &&
+                      !big_->moved_[static_cast<size_t>(big_->joint_touched_[2 * i + 1])] &&
+                      !js.bounded && !j.coupling && !j.twist &&
                       std::memcmp(j.p1.data(), k + 1, 3 * sizeof(double)) == 0 &&
                       std::memcmp(j.p2.data(), k + 4, 3 * sizeof(double)) == 0;
     double rc;
     if (same) {
       rc = k[0];
-      const int first = chord_.joint[i], count = chord_.joint[i + 1] - first;
-      std::copy_n(chord_.residual.begin() + first, count, spare_.residual.begin() + spare_.rows);
-      std::copy_n(chord_.pattern.begin() + 2 * first, 2 * count,
-                  spare_.pattern.begin() + 2 * spare_.rows);
-      spare_.rows += count;
+      const int first = big_->chord_.joint[i], count = big_->chord_.joint[i + 1] - first;
+      std::copy_n(big_->chord_.residual.begin() + first, count,
+                  big_->spare_.residual.begin() + big_->spare_.rows);
+      std::copy_n(big_->chord_.pattern.begin() + 2 * first, 2 * count,
+                  big_->spare_.pattern.begin() + 2 * big_->spare_.rows);
+      big_->spare_.rows += count;
     } else {
       rc = for_each_row(
           s, &joints[i], &joints[i] + 1, band, nullptr, false, &joint_r,
           [&](int, int v1, int v2, const PartRows& p, int row) {
-            spare_.add(p.residual[row], v1, v2);
+            big_->spare_.add(p.residual[row], v1, v2);
           },
           [] {});
     }
     joint_r[c] = rc;
     largest = larger_residual(largest, rc);
-    spare_.joint[i + 1] = spare_.rows;
+    big_->spare_.joint[i + 1] = big_->spare_.rows;
   }
-  std::swap(chord_, spare_);
+  std::swap(big_->chord_, big_->spare_);
   return largest;
 }
 

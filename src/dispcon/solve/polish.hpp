@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -48,6 +49,10 @@ struct PolishWork {
   std::vector<int> joint_rows_;  // the rows of the k-th joint with rows: joint_rows_[k] ...
   std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows)
   std::vector<double> soft_;  // each row's own damping (a pull's rows), empty when none
+  // The poses of the group's bodies before the step a thread is taking (solver.cpp's iterate).
+  PoseBuffer before_;
+  // ... and the best poses seen of the group it runs (solver.cpp's Session::Impl::run).
+  PoseBuffer best_;
   // The polisher whose small group's factorisation dense_, u_ and the row lists hold for a chord
   // step (none: nullptr).
   const void* chord_of_ = nullptr;
@@ -206,14 +211,13 @@ class Polisher {
   int nv_ = 0;
   PolishWork* w_ = nullptr;         // the session's scratch space, during step()
   const SolverState* s_ = nullptr;  // the state, during step()
-  SparseLdlt ldlt_;                 // the rows form, ordered (sparse_ldlt.hpp)
   bool kkt_ = false;                // the sparse system is the saddle-point form
   bool factored_ = false;           // ... and its factorisation can serve a chord step
   bool reused_ = false;             // the last step was a chord step
   bool has_multipliers_ = false;    // see has_multipliers()
   double step_scale_ = 1.0;         // see step_scale()
   bool cut_short_ = false;          // see cut_short()
-  bool measured_ = false;           // measure() kept the rows' residuals in chord_
+  bool measured_ = false;           // measure() kept the rows' residuals in big_->chord_
   bool small_chord_ = false;        // see allow_small_chord()
   // The last dense factorisation, with its damping (lambda times the diagonal's scale), may
   // serve a chord step (a solve that persists; whether it leaves free motion: small_free_, -1
@@ -224,6 +228,9 @@ class Polisher {
   // A chord step's right-hand side (the rows' residuals) and the bodies each row joins, which
   // must be the analysed ones (chord_). Per group, not in PolishWork: measured at the start of a
   // frame, before the groups are shared among threads.
+  struct RunSlots {
+    BlockLdlt::Slot diagonal, body1, body2;
+  };
   struct ChordRows {
     std::vector<double> residual;
     std::vector<int> pattern;  // the unknowns of each row's two bodies
@@ -244,27 +251,31 @@ class Polisher {
       ++rows;
     }
   };
-  ChordRows chord_, spare_;  // spare_: measure_moved()'s new rows, swapped in
-  // The measure kept by keep_measure(): the bodies the group's joints join (touched_; each
-  // joint's two as indices into it), their rotations and positions then (12 values a body),
-  // each joint's residual and hinge points then (7 values a joint: set_hinge() moves them
-  // without a new revision of the model).
-  bool kept_ = false;
-  std::vector<int> touched_, joint_touched_;
-  std::vector<double> kept_pose_, kept_joint_;
-  std::vector<char> moved_;
-  std::vector<int> order_;  // fill-reducing order of the rows: row a is unknown order_[a]
-  // The saddle-point form's blocks: the bodies', then runs of up to six rows joining the same
-  // two bodies; run k holds rows run_start_[k] ... run_start_[k + 1].
-  BlockLdlt blocks_;
-  std::vector<int> run_start_;
-  struct RunSlots {
-    BlockLdlt::Slot diagonal, body1, body2;
+  // What only a large group's sparse step uses, made at its first (factor_sparse()): the small
+  // groups' polishers, the 400 four-bars', are a tenth of the size without it (1,064 bytes a
+  // polisher, 0.4 MB for the 400, on the command's heap at its peak).
+  struct Large {
+    SparseLdlt ldlt_;          // the rows form, ordered (sparse_ldlt.hpp)
+    ChordRows chord_, spare_;  // spare_: measure_moved()'s new rows, swapped in
+    // The measure kept by keep_measure(): the bodies the group's joints join (touched_; each
+    // joint's two as indices into it), their rotations and positions then (12 values a body),
+    // each joint's residual and hinge points then (7 values a joint: set_hinge() moves them
+    // without a new revision of the model).
+    std::vector<int> touched_, joint_touched_;
+    std::vector<double> kept_pose_, kept_joint_;
+    std::vector<char> moved_;
+    std::vector<int> order_;  // fill-reducing order of the rows: row a is unknown order_[a]
+    // The saddle-point form's blocks: the bodies', then runs of up to six rows joining the same
+    // two bodies; run k holds rows run_start_[k] ... run_start_[k + 1].
+    BlockLdlt blocks_;
+    std::vector<int> run_start_;
+    std::vector<RunSlots> run_slots_;
+    std::vector<BlockLdlt::Slot> body_slots_;
+    std::vector<int> analyzed_pattern_;
+    HugeVector<int> slots_;  // where each value of the rows form is added (factor_sparse)
   };
-  std::vector<RunSlots> run_slots_;
-  std::vector<BlockLdlt::Slot> body_slots_;
-  std::vector<int> analyzed_pattern_;
-  HugeVector<int> slots_;  // where each value of the rows form is added (factor_sparse)
+  std::unique_ptr<Large> big_;  // null until the group's first sparse step
+  bool kept_ = false;           // keep_measure() kept a measure in big_ (see there)
   bool analyzed_ = false;
   size_t rows_hint_ = 0;  // rows of the last gather
 };

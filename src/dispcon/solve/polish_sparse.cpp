@@ -13,11 +13,12 @@ namespace dispcon {
 // The form with fewer entries is taken; that was also the faster one on the benchmarks' chains
 // and grids. J M^-1 J^T is factored by Eigen's simplicial LDLT: while the pattern holds, the
 // fill-reducing order (AMD) and the symbolic analysis are kept, and the values are written in
-// place, pre-ordered in the upper triangle (slots_ remembers where each entry lands), so the
+// place, pre-ordered in the upper triangle (big_->slots_ remembers where each entry lands), so the
 // factorisation reads the matrix without a copy.
 bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   const int m = static_cast<int>(w_->rows_.size());
   factored_ = false;
+  if (!big_) big_ = std::make_unique<Large>();
   if (!same_pattern()) {
     std::vector<double>& per_body = w_->rows_per_body_;
     per_body.assign(static_cast<size_t>(nv_), 0.0);
@@ -34,10 +35,11 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
     } else {
       analyze_rows();
     }
-    analyzed_pattern_.resize(2 * static_cast<size_t>(m));
+    big_->analyzed_pattern_.resize(2 * static_cast<size_t>(m));
     for (int a = 0; a < m; ++a) {
-      analyzed_pattern_[2 * static_cast<size_t>(a)] = w_->rows_[static_cast<size_t>(a)].v1;
-      analyzed_pattern_[2 * static_cast<size_t>(a) + 1] = w_->rows_[static_cast<size_t>(a)].v2;
+      big_->analyzed_pattern_[2 * static_cast<size_t>(a)] = w_->rows_[static_cast<size_t>(a)].v1;
+      big_->analyzed_pattern_[2 * static_cast<size_t>(a) + 1] =
+          w_->rows_[static_cast<size_t>(a)].v2;
     }
     analyzed_ = true;
   }
@@ -59,9 +61,9 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   // The rows form: the couplings first, whose diagonal entries are then the two bodies' terms
   // of each row, d1 + d2, the very sums a pass of their own computed before (one pass over the
   // rows fewer each step); then the damping on the diagonal.
-  double* values = ldlt_.values.data();
-  std::fill(ldlt_.values.begin(), ldlt_.values.end(), 0.0);
-  const int* slot = slots_.data();
+  double* values = big_->ldlt_.values.data();
+  std::fill(big_->ldlt_.values.begin(), big_->ldlt_.values.end(), 0.0);
+  const int* slot = big_->slots_.data();
   couplings([&](int, int, double v) { values[*slot++] += v; });
   const int* diagonal = slot;  // the last m slots: each row's diagonal entry
   for (int a = 0; a < m; ++a) scale = std::max(scale, values[diagonal[a]]);
@@ -69,16 +71,17 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   const double mu = lambda * scale;
   for (double& d : w_->soft_) d *= scale;
   for (int a = 0; a < m; ++a) values[diagonal[a]] += mu + soft(a);
-  if (!ldlt_.factorize()) return false;
+  if (!big_->ldlt_.factorize()) return false;
   return solve_factored();
 }
 
 // Whether the rows join the same bodies as when the sparse system was analysed.
 bool Polisher::same_pattern() const {
   const auto& rows = w_->rows_;
-  if (!analyzed_ || analyzed_pattern_.size() != 2 * rows.size()) return false;
+  if (!analyzed_ || big_->analyzed_pattern_.size() != 2 * rows.size()) return false;
   for (size_t a = 0; a < rows.size(); ++a) {
-    if (rows[a].v1 != analyzed_pattern_[2 * a] || rows[a].v2 != analyzed_pattern_[2 * a + 1]) {
+    if (rows[a].v1 != big_->analyzed_pattern_[2 * a] ||
+        rows[a].v2 != big_->analyzed_pattern_[2 * a + 1]) {
       return false;
     }
   }
@@ -88,15 +91,15 @@ bool Polisher::same_pattern() const {
 // The rows form's step from the current residuals with its factorisation.
 bool Polisher::solve_factored() {
   const int m = static_cast<int>(w_->rows_.size());
-  double* x = ldlt_.rhs();
+  double* x = big_->ldlt_.rhs();
   for (int a = 0; a < m; ++a) {
-    x[order_[static_cast<size_t>(a)]] = -w_->residual_[static_cast<size_t>(a)];
+    x[big_->order_[static_cast<size_t>(a)]] = -w_->residual_[static_cast<size_t>(a)];
   }
-  ldlt_.solve();
+  big_->ldlt_.solve();
   w_->y_.resize(static_cast<size_t>(m));
   bool finite = true;
   for (int a = 0; a < m; ++a) {
-    const double y = x[order_[static_cast<size_t>(a)]];
+    const double y = x[big_->order_[static_cast<size_t>(a)]];
     w_->y_[static_cast<size_t>(a)] = y;
     finite = finite && std::isfinite(y);
   }
@@ -205,19 +208,20 @@ void Polisher::analyze_rows() {
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
   Eigen::AMDOrdering<int>()(lower.selfadjointView<Eigen::Lower>(), inverse);
   // Eigen's orderings return the inverse permutation: inverse.indices()(k) is the k-th block
-  // to eliminate. Row a goes to order_[a]: the blocks in that order, each block's rows in theirs.
-  order_.resize(static_cast<size_t>(n));
-  std::vector<int>& row_at = w_->place_;  // row_at[order_[a]] = a
+  // to eliminate. Row a goes to big_->order_[a]: the blocks in that order, each block's rows in
+  // theirs.
+  big_->order_.resize(static_cast<size_t>(n));
+  std::vector<int>& row_at = w_->place_;  // row_at[big_->order_[a]] = a
   row_at.resize(static_cast<size_t>(n));
   int at = 0;
   for (int k = 0; k < blocks; ++k) {
     const auto b = static_cast<size_t>(inverse.indices()(k));
     for (int i = start[b]; i < start[b + 1]; ++i) {
       row_at[static_cast<size_t>(at)] = i;
-      order_[static_cast<size_t>(i)] = at++;
+      big_->order_[static_cast<size_t>(i)] = at++;
     }
   }
-  // The system itself, reordered, in the upper triangle: column order_[a] holds the rows that
+  // The system itself, reordered, in the upper triangle: column big_->order_[a] holds the rows that
   // share a body with row a and come no later, sorted.
   size_t most = static_cast<size_t>(n);
   for (const Entry& e : w_->rows_) {
@@ -228,8 +232,8 @@ void Polisher::analyze_rows() {
       }
     }
   }
-  HugeVector<int>& outer = ldlt_.starts;
-  HugeVector<int>& inner = ldlt_.rows;
+  HugeVector<int>& outer = big_->ldlt_.starts;
+  HugeVector<int>& inner = big_->ldlt_.rows;
   outer.resize(static_cast<size_t>(n) + 1);
   inner.resize(most);
   std::vector<int>& column = w_->column_rows_;
@@ -241,7 +245,7 @@ void Polisher::analyze_rows() {
       if (v < 0) continue;
       for (int p = var_start[static_cast<size_t>(v)]; p < var_start[static_cast<size_t>(v) + 1];
            ++p) {
-        const int r = order_[static_cast<size_t>(var_rows[static_cast<size_t>(p)].first)];
+        const int r = big_->order_[static_cast<size_t>(var_rows[static_cast<size_t>(p)].first)];
         if (r < c) column.push_back(r);
       }
     }
@@ -253,11 +257,11 @@ void Polisher::analyze_rows() {
   }
   outer[static_cast<size_t>(n)] = kept;
   inner.resize(static_cast<size_t>(kept));
-  ldlt_.values.resize(static_cast<size_t>(kept));
+  big_->ldlt_.values.resize(static_cast<size_t>(kept));
   // Where each value lands, in the order factor_sparse() writes them: the couplings, then the
   // diagonal.
   auto slot = [&](int a, int b) {
-    const int pa = order_[static_cast<size_t>(a)], pb = order_[static_cast<size_t>(b)];
+    const int pa = big_->order_[static_cast<size_t>(a)], pb = big_->order_[static_cast<size_t>(b)];
     const int c = std::max(pa, pb), r = std::min(pa, pb);
     int* first = inner.data() + outer[static_cast<size_t>(c)];
     return static_cast<int>(
@@ -270,11 +274,11 @@ void Polisher::analyze_rows() {
                                        var_start[static_cast<size_t>(v)]);
     writes += k * (k + 1) / 2;
   }
-  slots_.clear();
-  slots_.reserve(writes);
-  couplings<false>([&](int a, int b, double) { slots_.push_back(slot(a, b)); });
-  for (int a = 0; a < n; ++a) slots_.push_back(slot(a, a));
-  ldlt_.analyze();
+  big_->slots_.clear();
+  big_->slots_.reserve(writes);
+  couplings<false>([&](int a, int b, double) { big_->slots_.push_back(slot(a, b)); });
+  for (int a = 0; a < n; ++a) big_->slots_.push_back(slot(a, a));
+  big_->ldlt_.analyze();
 }
 
 }  // namespace dispcon

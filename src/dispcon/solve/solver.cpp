@@ -85,6 +85,10 @@ struct GroupRun {
   double asked = kInf;  // the fewest steps a step cut short asked for since the last whole one
   bool done = false;
   std::vector<double> history;  // r after each iteration (record_history)
+  // The best poses seen of the group's bodies (in its order), kept from its run for finish() only
+  // where it ended not converged (a buffer of the whole model's poses was 77 kB of the 400
+  // four-bars' solve, on the command's heap at its peak; the run keeps them in its thread's work).
+  PoseBuffer best;
 
   // Ready for another solve; the polisher keeps its symbolic analysis.
   void reset() {
@@ -105,8 +109,7 @@ struct GroupRun {
 // contact) is widened to cover the distance the step moved it, so the active set grows instead
 // of the step being damped.
 void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& o,
-             std::vector<double>& band, PoseBuffer& before, std::vector<double>& joint_r,
-             Session::Stuck stuck) {
+             std::vector<double>& band, std::vector<double>& joint_r, Session::Stuck stuck) {
   const Group& group = *p.group;
   const double polish_threshold = o.polish_below * p.size;
   ++p.iterations;
@@ -127,7 +130,7 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
     return;
   }
   ++p.polish;
-  save_poses(s, group, before);
+  save_group_poses(s, group, work.before_);
   p.polisher.allow_small_chord(stuck == Session::Stuck::Persist);
   const bool stepped =
       p.polisher.step(s, work, band, p.lambda, o.max_rotation_step, p.chord, p.measured);
@@ -162,7 +165,7 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
     return;
   }
   if (chord) {  // the old factorisation no longer serves: try again with a new one
-    load_poses(s, group, before);
+    load_group_poses(s, group, work.before_);
     p.chord = false;
     return;
   }
@@ -178,7 +181,7 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
       }
     }
   }
-  load_poses(s, group, before);
+  load_group_poses(s, group, work.before_);
   if (!widened) p.lambda *= 100;
   if (stuck != Session::Stuck::Persist && (!stepped || p.lambda > kStopDamping)) {
     // The caller pulls instead (a drag step: Dragger::move_to): damped Newton steps that keep
@@ -230,6 +233,7 @@ struct Session::Impl {
   void start(const std::vector<Pose>& poses);
   void run_groups();
   void run(GroupRun& p, PolishWork& work);
+  void run_iterations(GroupRun& p, PolishWork& work);
   PullOutcome run_pull(int joint);
   SolveResult finish(const std::vector<Pose>& poses);
 
@@ -242,8 +246,11 @@ struct Session::Impl {
   std::vector<Group> groups;
   std::deque<GroupRun> runs;  // not moved once built: each holds its factorisation
   std::vector<double> band;
-  PoseBuffer best, before;
-  std::vector<double> joint_r;  // each joint's residual at the current poses
+  // A pull's poses before its step and its spare (the Newton and seed steps keep theirs in the
+  // work's own, of a group's bodies only), set at each pull from the poses given.
+  PoseBuffer spare, before;
+  const std::vector<Pose>* given = nullptr;  // the poses the solve started from
+  std::vector<double> joint_r;               // each joint's residual at the current poses
   PolishWork work;
   std::deque<PolishWork> more_work;  // one per extra thread
   int threads = 1;                   // threads a solve uses
@@ -350,14 +357,15 @@ PullOutcome Session::Impl::run_pull(int joint) {
       continue;
     }
     found = true;
-    // (`best` is the pull's spare: it is written below.)
-    out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, best, joint_r,
+    before.assign(given->begin(), given->end());
+    spare.assign(given->begin(), given->end());
+    out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, spare, joint_r,
                      reached == joint);
     reached = out.holds && out.distance <= o.tolerance ? joint : -1;
     p.measured = false;  // the pull moved the poses since the first measure
     p.iterations = p.polish = out.iterations;
     p.r = p.best_r = out.hard;
-    save_poses(s, *p.group, best);
+    save_group_poses(s, *p.group, p.best);
     p.done = true;
     p.stalled = !out.holds;
     if (!std::isfinite(out.hard) || !std::isfinite(out.distance)) finite = false;
@@ -383,8 +391,7 @@ void Session::Impl::start(const std::vector<Pose>& poses) {
     p.done = p.r <= o.tolerance;
     if (!std::isfinite(p.r)) finite = false;
   }
-  best.assign(poses.begin(), poses.end());
-  before.assign(poses.begin(), poses.end());
+  given = &poses;
 }
 
 // Each group runs to the end before the next starts, so its working set stays in cache; with
@@ -419,15 +426,27 @@ void Session::Impl::run_groups() {
 }
 
 void Session::Impl::run(GroupRun& p, PolishWork& scratch) {
+  // The best poses so far: those given, until an iteration does better.
+  const std::vector<int>& bodies = p.group->bodies;
+  scratch.best_.resize(bodies.size());
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    scratch.best_[i] = (*given)[static_cast<size_t>(bodies[i])];
+  }
+  run_iterations(p, scratch);
+  // finish() takes a group's best poses back where it did not converge.
+  if (!p.done || p.stalled) p.best.assign(scratch.best_.begin(), scratch.best_.end());
+}
+
+void Session::Impl::run_iterations(GroupRun& p, PolishWork& scratch) {
   for (int k = 0; !p.done && k < o.max_iterations; ++k) {
-    iterate(s, p, scratch, o, band, before, joint_r, stuck);
+    iterate(s, p, scratch, o, band, joint_r, stuck);
     if (!std::isfinite(p.r)) {
       finite = false;
       return;
     }
     if (p.r < p.best_r) {
       p.best_r = p.r;
-      save_poses(s, *p.group, best);
+      save_group_poses(s, *p.group, scratch.best_);
     }
     // An over-constrained or unreachable problem stops improving: give up early rather than
     // run to the cap (a drag step that cannot be made should fail fast).
@@ -461,7 +480,7 @@ SolveResult Session::Impl::finish(const std::vector<Pose>& poses) {
   bool any_stalled = false;
   for (GroupRun& p : runs) {
     if ((!p.done || p.stalled) && finite) {
-      load_poses(s, *p.group, best);  // not converged: keep the best poses seen
+      load_group_poses(s, *p.group, p.best);  // not converged: keep the best poses seen
       p.r = p.best_r;
       max_residual(s, p.group->joints, joint_r);
     }
