@@ -95,6 +95,15 @@ void unwrap_read(const CouplingMeasure& m, const double last[2], double phase, d
       }
     }
   }
+  if (fewest < 0 && m.angles == 1 && m.k[0] != 0) {
+    // One turn (a screw, a rack): the whole turns that make f hold are had at once, however many
+    // (a held solve turns a screw on as far as its steps go: a jaw moved 1 in one step, 5 turns).
+    const double n = std::round(-f / (2 * kPi * m.k[0]));
+    if (std::abs(n) < 1e9 && std::abs(f + 2 * kPi * m.k[0] * n) <= held) {
+      best[0] = static_cast<int>(n);
+      fewest = 0;
+    }
+  }
   if (fewest < 0) return;
   for (int i = 0; i < m.angles; ++i) turns[i] += 2 * kPi * best[i];
 }

@@ -62,7 +62,8 @@ void unwrap_turns(const CouplingMeasure& m, const double last[2], double phase, 
 
 // The same for poses read (a solve's start, a model's new poses), which may have moved any way
 // since `last`: as unwrap_turns, but where the turns taken so leave f open and a few whole turns
-// more or less make it hold (to a millionth of a turn's travel: poses a solve left valid), those.
+// more or less make it hold (to a millionth of a turn's travel: poses a solve left valid), those;
+// a coupling of one turn (a screw, a rack) takes however many whole turns make it hold.
 // A pull that turned a screw or a gear past half a turn from the poses last read is read back
 // onto the turns it made, not a whole turn's travel open. Only from poses where it held
 // (`held_before`): a gear turned by hand a whole turn, its mate left, keeps that turn in its phase

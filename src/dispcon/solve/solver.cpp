@@ -64,9 +64,18 @@ constexpr int kFarSteps = 60;
 
 // One group's run through the loop.
 struct GroupRun {
-  explicit GroupRun(const Group& c) : group(&c), polisher(c) {}
+  GroupRun(const Group& c, const SolverState& s) : group(&c), polisher(c) {
+    for (int j : c.joints) {
+      if (s.joints[static_cast<size_t>(j)].joint->coupling) couplings.push_back(j);
+    }
+  }
   const Group* group;
   Polisher polisher;
+  // The group's couplings, whose turns each step it keeps follows (a held solve turns a screw
+  // on past half a turn: SolverState::follow_couplings), and their phases and turns last seen at
+  // the best poses (3 numbers a coupling), loaded with them.
+  std::vector<int> couplings;
+  std::vector<double> best_turns;
   double r = 0;       // largest violation now
   double best_r = 0;  // and the best seen, whose poses are kept
   double size = 1;    // the group's size when the session was made: where the polish begins
@@ -103,6 +112,31 @@ struct GroupRun {
   }
 };
 
+// The group's poses kept as its best (with its couplings' phases and turns last seen there), and
+// loaded back.
+void keep_turns(const SolverState& s, GroupRun& p) {
+  p.best_turns.clear();
+  for (int c : p.couplings) {
+    const JointState& js = s.joints[static_cast<size_t>(c)];
+    p.best_turns.insert(p.best_turns.end(), {js.phase, js.last[0], js.last[1]});
+  }
+}
+template <typename Poses>
+void keep_best(const SolverState& s, GroupRun& p, Poses& best) {
+  save_group_poses(s, *p.group, best);
+  keep_turns(s, p);
+}
+template <typename Poses>
+void back_to_best(SolverState& s, const GroupRun& p, const Poses& best) {
+  load_group_poses(s, *p.group, best);
+  for (size_t k = 0; k < p.couplings.size() && 3 * k + 2 < p.best_turns.size(); ++k) {
+    JointState& js = s.joints[static_cast<size_t>(p.couplings[k])];
+    js.phase = p.best_turns[3 * k];
+    js.last[0] = p.best_turns[3 * k + 1];
+    js.last[1] = p.best_turns[3 * k + 2];
+  }
+}
+
 // One iteration of one group: a Newton polish step once close, else a seed iteration.
 // Limits enter the Newton step only when violated. A step that pushes a limit that was not in
 // the step over its bound is redone with that limit held at its bound: its band (what counts as
@@ -125,6 +159,7 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
       gauss_seidel_iteration(s, group, o);
     }
     ++p.seed;
+    if (!p.couplings.empty()) s.follow_couplings(p.couplings);
     p.r = max_residual(s, group.joints, joint_r);
     p.measured = false;
     return;
@@ -140,6 +175,11 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
   const double next = stepped ? p.polisher.measure(s, band, joint_r) : p.r;
   if (stepped && next < p.r) {
     p.measured = true;
+    // The couplings' turns move on with the step kept (by no more than the seed's turn a step),
+    // so that a solve turns a screw or a gear as far as its steps go: unwrapped next to the
+    // turns the solve began from, a screw stopped near half a turn from them (pi + 0.5 rad),
+    // where the short way round flips. The residuals just measured are unchanged by it.
+    if (!p.couplings.empty()) s.follow_couplings(p.couplings);
     // After a Newton step the next may reuse its factorisation (a small group's only after a
     // step that gained a hundredfold); a chord step that gained less than a hundredfold asks for
     // a new one.
@@ -215,7 +255,7 @@ struct Session::Impl {
         o(opt),
         s(m, m.poses(), opt, held_bodies),
         groups(find_groups(s)) {
-    for (const Group& g : groups) runs.emplace_back(g);
+    for (const Group& g : groups) runs.emplace_back(g, s);
     band.assign(s.joints.size(), -0.5 * opt.tolerance);
     for (GroupRun& p : runs) p.size = group_size(s, *p.group);
     threads = thread_count(opt, groups);
@@ -365,7 +405,7 @@ PullOutcome Session::Impl::run_pull(int joint) {
     p.measured = false;  // the pull moved the poses since the first measure
     p.iterations = p.polish = out.iterations;
     p.r = p.best_r = out.hard;
-    save_group_poses(s, *p.group, p.best);
+    keep_best(s, p, p.best);
     p.done = true;
     p.stalled = !out.holds;
     if (!std::isfinite(out.hard) || !std::isfinite(out.distance)) finite = false;
@@ -388,6 +428,7 @@ void Session::Impl::start(const std::vector<Pose>& poses) {
     // the joints of bodies that have not moved since are not measured again.
     p.r = p.best_r = p.progress_mark = p.polisher.measure(s, band, joint_r, true);
     p.measured = true;
+    keep_turns(s, p);
     p.done = p.r <= o.tolerance;
     if (!std::isfinite(p.r)) finite = false;
   }
@@ -446,7 +487,7 @@ void Session::Impl::run_iterations(GroupRun& p, PolishWork& scratch) {
     }
     if (p.r < p.best_r) {
       p.best_r = p.r;
-      save_group_poses(s, *p.group, scratch.best_);
+      keep_best(s, p, scratch.best_);
     }
     // An over-constrained or unreachable problem stops improving: give up early rather than
     // run to the cap (a drag step that cannot be made should fail fast).
@@ -480,7 +521,7 @@ SolveResult Session::Impl::finish(const std::vector<Pose>& poses) {
   bool any_stalled = false;
   for (GroupRun& p : runs) {
     if ((!p.done || p.stalled) && finite) {
-      load_group_poses(s, *p.group, p.best);  // not converged: keep the best poses seen
+      back_to_best(s, p, p.best);  // not converged: keep the best poses seen
       p.r = p.best_r;
       max_residual(s, p.group->joints, joint_r);
     }

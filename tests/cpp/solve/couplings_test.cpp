@@ -237,6 +237,40 @@ TEST(Couplings, ScrewDraggedHalfATurnAStepGetsThere) {
   }
 }
 
+// The vice's jaw moved in one step by more than half a screw turn's travel (0.58 of a turn,
+// pi + 0.5 rad, was as far as a held solve went: its Newton steps saw the screw's turn unwrapped
+// next to the turn it began from, which flips a whole turn past half a turn, and it stalled
+// there; the drag fell to the pull). The held solve a drag step begins with (StopWhenSlow) now
+// makes it, 0.2 rad of the screw a step: the screw turned 2 pi x / pitch as a rotation, travelled
+// x, the jaw at its target, and every joint holding measured afresh from the poses. Dragged back
+// in one step too.
+TEST(Couplings, HeldSolveTurnsAScrewMoreThanHalfATurnInOneStep) {
+  for (const double x : {0.15, 0.3, 0.55, 1.0}) {
+    SCOPED_TRACE(x);
+    Model m = sample("vice.dcl");
+    const BodyId jaw = id(m, "jaw"), screw = id(m, "screw");
+    std::vector<bool> held(static_cast<size_t>(m.body_count()), false);
+    held[static_cast<size_t>(jaw.value)] = true;
+    Session session(m, SolveOptions{}, held, Session::Stuck::StopWhenSlow);
+    for (const double to : {x, 0.0}) {
+      std::vector<Pose> poses = m.poses();
+      poses[static_cast<size_t>(jaw.value)] = Pose{Quat::Identity(), Vec3(1 + to, 0, 0)};
+      const SolveResult r = session.solve(poses);
+      ASSERT_TRUE(r.converged) << to << " " << r.message;
+      EXPECT_FALSE(session.far());
+      m.set_poses(poses);
+      const Pose& p = m.body(screw).pose;
+      const Quat expected(Eigen::AngleAxisd(2 * kPi * to / 0.2, Vec3::UnitX()));
+      EXPECT_LT(p.q.angularDistance(expected), 1e-6) << to;
+      EXPECT_NEAR(p.x.x(), to, 1e-6) << to;
+      EXPECT_LT((m.body(jaw).pose.x - Vec3(1 + to, 0, 0)).norm(), 1e-9) << to;
+      for (const ConstraintReport& c : measure(m, m.poses(), SolveOptions{})) {
+        EXPECT_TRUE(c.satisfied) << to << " joint " << c.joint.value << " " << c.residual;
+      }
+    }
+  }
+}
+
 // Two gears on the frame (radii 1 and 2) each carry a crank; the cranks' ends are joined by two
 // links: a closed loop through the gear mesh (a geared five-bar, one degree of freedom). The
 // elbow follows the circle intersection on its branch through two full turns of the first gear.
