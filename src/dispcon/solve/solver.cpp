@@ -76,6 +76,7 @@ struct GroupRun {
   // the best poses (3 numbers a coupling), loaded with them.
   std::vector<int> couplings;
   std::vector<double> best_turns;
+  int unfollowed = 0;  // steps kept since the couplings' turns were last followed
   double r = 0;       // largest violation now
   double best_r = 0;  // and the best seen, whose poses are kept
   double size = 1;    // the group's size when the session was made: where the polish begins
@@ -106,6 +107,7 @@ struct GroupRun {
     stalled = slowed = far = false;
     slow = far_steps = 0;
     asked = kInf;
+    unfollowed = 0;
     measured = false;
     done = false;
     history.clear();
@@ -137,6 +139,24 @@ void back_to_best(SolverState& s, const GroupRun& p, const Poses& best) {
   }
 }
 
+// The turn (radians) two bodies may make against each other between the couplings' turns
+// followed: well short of pi - kNearHalfTurn (coupling.cpp), where the short way round may flip.
+constexpr double kFollowTurn = 1.0;
+
+// After a step kept: the couplings' turns move on with it (SolverState::follow_couplings), so
+// that a solve turns a screw or a gear as far as its steps go; unwrapped next to the turns the
+// solve began from, a screw stopped near half a turn from them (pi + 0.5 rad), where the short
+// way round flips. Each step turns a body by at most max_rotation_step, two bodies against each
+// other by twice that: followed before the steps since could turn them past kFollowTurn (every
+// other step at the seed's 0.2 rad), so that a solve of one step (a gear train's drag
+// step) measures no coupling more. The residuals measured are unchanged by it.
+void follow(SolverState& s, GroupRun& p, const SolveOptions& o) {
+  if (p.couplings.empty()) return;
+  if ((++p.unfollowed + 1) * 2 * o.max_rotation_step <= kFollowTurn) return;
+  s.follow_couplings(p.couplings);
+  p.unfollowed = 0;
+}
+
 // One iteration of one group: a Newton polish step once close, else a seed iteration.
 // Limits enter the Newton step only when violated. A step that pushes a limit that was not in
 // the step over its bound is redone with that limit held at its bound: its band (what counts as
@@ -159,7 +179,7 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
       gauss_seidel_iteration(s, group, o);
     }
     ++p.seed;
-    if (!p.couplings.empty()) s.follow_couplings(p.couplings);
+    follow(s, p, o);
     p.r = max_residual(s, group.joints, joint_r);
     p.measured = false;
     return;
@@ -175,11 +195,7 @@ void iterate(SolverState& s, GroupRun& p, PolishWork& work, const SolveOptions& 
   const double next = stepped ? p.polisher.measure(s, band, joint_r) : p.r;
   if (stepped && next < p.r) {
     p.measured = true;
-    // The couplings' turns move on with the step kept (by no more than the seed's turn a step),
-    // so that a solve turns a screw or a gear as far as its steps go: unwrapped next to the
-    // turns the solve began from, a screw stopped near half a turn from them (pi + 0.5 rad),
-    // where the short way round flips. The residuals just measured are unchanged by it.
-    if (!p.couplings.empty()) s.follow_couplings(p.couplings);
+    follow(s, p, o);
     // After a Newton step the next may reuse its factorisation (a small group's only after a
     // step that gained a hundredfold); a chord step that gained less than a hundredfold asks for
     // a new one.
