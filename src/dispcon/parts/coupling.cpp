@@ -81,27 +81,34 @@ void unwrap_read(const CouplingMeasure& m, const double last[2], double phase, d
   // f within a millionth of the largest turn's travel: held.
   const double held = 1e-6 * turn;
   if (!moved || !(std::abs(f) > held)) return;
-  // The whole turns (a few either way, the fewest first) that make f hold. The phase takes only
-  // their sum k . 2 pi n, so any that hold will do.
+  // The whole turns that make f hold, the fewest first. The phase takes only their sum
+  // k . 2 pi n, so any that hold will do. A held solve turns a screw or a gear on as far as its
+  // steps go (a jaw moved 1 in one step: its screw 5 turns; a gear's mate at a ratio of 10 turned
+  // half a turn: 5 turns), so each turn's count is had at once from the others' (a few either
+  // way).
   constexpr int kTurns = 4;
-  int best[2] = {0, 0};
-  int fewest = -1;
-  for (int n0 = -kTurns; n0 <= kTurns; ++n0) {
-    for (int n1 = m.angles == 2 ? -kTurns : 0; n1 <= (m.angles == 2 ? kTurns : 0); ++n1) {
-      const double g = f + 2 * kPi * (m.k[0] * n0 + (m.angles == 2 ? m.k[1] * n1 : 0));
-      const int count = std::abs(n0) + std::abs(n1);
-      if (std::abs(g) <= held && (fewest < 0 || count < fewest)) {
-        best[0] = n0, best[1] = n1, fewest = count;
-      }
+  double best[2] = {0, 0};
+  double fewest = -1;
+  auto consider = [&](double n0, double n1) {
+    if (!(std::abs(n0) < 1e9 && std::abs(n1) < 1e9)) return;
+    const double g = f + 2 * kPi * (m.k[0] * n0 + (m.angles == 2 ? m.k[1] * n1 : 0));
+    const double count = std::abs(n0) + std::abs(n1);
+    if (std::abs(g) <= held && (fewest < 0 || count < fewest)) {
+      best[0] = n0, best[1] = n1, fewest = count;
     }
-  }
-  if (fewest < 0 && m.angles == 1 && m.k[0] != 0) {
-    // One turn (a screw, a rack): the whole turns that make f hold are had at once, however many
-    // (a held solve turns a screw on as far as its steps go: a jaw moved 1 in one step, 5 turns).
-    const double n = std::round(-f / (2 * kPi * m.k[0]));
-    if (std::abs(n) < 1e9 && std::abs(f + 2 * kPi * m.k[0] * n) <= held) {
-      best[0] = static_cast<int>(n);
-      fewest = 0;
+  };
+  // The count of turn i that makes f hold with the other's count `other`.
+  auto solve = [&](int i, double other) {
+    if (m.k[i] == 0) return 0.0;
+    const double rest = m.angles == 2 ? f + 2 * kPi * m.k[1 - i] * other : f;
+    return std::round(-rest / (2 * kPi * m.k[i]));
+  };
+  if (m.angles == 1) {
+    consider(solve(0, 0), 0);
+  } else {
+    for (int n = -kTurns; n <= kTurns; ++n) {
+      consider(n, solve(1, n));
+      consider(solve(0, n), n);
     }
   }
   if (fewest < 0) return;

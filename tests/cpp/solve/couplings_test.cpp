@@ -10,6 +10,7 @@
 #include <string>
 
 #include "dispcon/io/dcl_reader.hpp"
+#include "dispcon/parts/coupling.hpp"
 #include "dispcon/solve/diagnostics.hpp"
 #include "dispcon/solve/solver.hpp"
 #include "support/samples.hpp"
@@ -268,6 +269,37 @@ TEST(Couplings, HeldSolveTurnsAScrewMoreThanHalfATurnInOneStep) {
         EXPECT_TRUE(c.satisfied) << to << " joint " << c.joint.value << " " << c.residual;
       }
     }
+  }
+}
+
+// Poses read back after a solve that turned a coupling on by many turns (a held solve does: the
+// test above): the turns read are the wrapped ones plus whole turns, and the equation holds with
+// them. A screw of pitch 0.2 (f = s - pitch theta / 2 pi) advanced 1.03, 5.15 turns; a gear pair
+// 0.1 theta0 + theta1 = 0 whose first gear turned 5 turns and 0.3 rad (the second 0.53 turn back):
+// 4 whole turns either way were tried before, and neither read held.
+TEST(Couplings, PosesReadBackTakeManyWholeTurns) {
+  const double last[2] = {0, 0};
+  CouplingMeasure screw;
+  screw.angles = 1;
+  screw.k[0] = -0.2 / (2 * kPi);
+  screw.s = 1.03;
+  screw.theta[0] = std::remainder(2 * kPi * 1.03 / 0.2, 2 * kPi);
+  CouplingMeasure gears;
+  gears.angles = 2;
+  gears.k[0] = 0.1, gears.k[1] = 1;
+  const double turned = 10 * kPi + 0.3;
+  gears.theta[0] = std::remainder(turned, 2 * kPi);
+  gears.theta[1] = std::remainder(-0.1 * turned, 2 * kPi);
+  for (const CouplingMeasure& m : {screw, gears}) {
+    double turns[2] = {0, 0};
+    unwrap_read(m, last, 0, turns);
+    double f = m.s;
+    for (int i = 0; i < m.angles; ++i) {
+      f += m.k[i] * turns[i];
+      const double whole = (turns[i] - m.theta[i]) / (2 * kPi);
+      EXPECT_NEAR(whole, std::round(whole), 1e-12) << i;
+    }
+    EXPECT_LT(std::abs(f), 1e-12) << m.angles;
   }
 }
 
