@@ -46,40 +46,30 @@ class Example:
         text = "\n".join(t for _, t in body)
         self.needs_freecad = self.freecadcmd or (kind == "shell" and
                                                   (".FCStd" in text or "freecadcmd" in text))
-        (self._parse_shell if kind == "shell" else self._parse_python)()
+        if kind == "shell":   # a command goes on after a line ending in a backslash
+            self._parse("$ ", lambda t, item: item[1].endswith("\\"), lambda t: t)
+        else:                 # a statement goes on on its `... ` lines
+            self._parse(">>> ", lambda t, item: t.startswith("... "), lambda t: t[4:])
 
     def where(self, line=None):
         return "%s:%d" % (self.path, line if line is not None else self.line)
 
-    def _parse_shell(self):
-        command = None
+    def _parse(self, prompt, goes_on, continuation):
+        """self.items from the body: each prompt line an item, its continuation lines (before
+        any output) joined to it, the lines up to the next prompt its expected output."""
+        item = None
         for n, t in self.body:
-            if command is not None and command[1].endswith("\\") and not command[2]:
-                command[1] = command[1] + "\n" + t
-            elif t.startswith("$ "):
-                command = [n, t[2:], []]
-                self.items.append(command)
-            elif command is None:
+            if item is not None and not item[2] and goes_on(t, item):
+                item[1] += "\n" + continuation(t)
+            elif t.startswith(prompt) or t == prompt.strip():
+                item = [n, t[len(prompt):], []]
+                self.items.append(item)
+            elif item is None:
                 if t.strip():
-                    self.error = "%s: output before the first `$ ` command" % self.where(n)
+                    self.error = "%s: output before the first `%s` line" % (self.where(n), prompt)
                     return
             else:
-                command[2].append((n, t))
-
-    def _parse_python(self):
-        statement = None
-        for n, t in self.body:
-            if t.startswith(">>> ") or t == ">>>":
-                statement = [n, t[4:], []]
-                self.items.append(statement)
-            elif statement is not None and (t.startswith("... ") and not statement[2]):
-                statement[1] += "\n" + t[4:]
-            elif statement is None:
-                if t.strip():
-                    self.error = "%s: output before the first `>>> ` statement" % self.where(n)
-                    return
-            else:
-                statement[2].append((n, t))
+                item[2].append((n, t))
 
 
 def parse_markdown(path, shown):

@@ -30,6 +30,17 @@ def run(markdown):
         return p.returncode, p.stdout
 
 
+def passes_then_fails(test, block, good, bad, *said):
+    """The block with `good` in its {n} passes; with `bad` it fails, saying each of `said`."""
+    code, out = run(block.format(n=good))
+    test.assertEqual(code, 0, out)
+    code, out = run(block.format(n=bad))
+    test.assertEqual(code, 1, out)
+    for text in said:
+        test.assertIn(text, out)
+    return out
+
+
 ASSEMBLE = """\
     Text.
 
@@ -45,16 +56,11 @@ ASSEMBLE = """\
 
 class Shell(unittest.TestCase):
     def test_the_pasted_output_passes_and_a_changed_number_fails_naming_file_and_line(self):
-        code, out = run(ASSEMBLE.format(n=14))
-        self.assertEqual(code, 0, out)
-        self.assertIn("ok   README.md:3 (shell, 2 commands)", out)
-        code, out = run(ASSEMBLE.format(n=15))
-        self.assertEqual(code, 1, out)
-        self.assertIn("FAIL README.md:3", out)
-        self.assertIn("README.md:5: the pasted output of `$ dispcon assemble samples/fourbar.dcl` "
-                      "(line 4) differs from the run's:", out)
-        self.assertIn("  pasted: samples/fourbar.dcl: converged in 15 iterations", out)
-        self.assertIn("  run:    samples/fourbar.dcl: converged in 14 iterations", out)
+        passes_then_fails(self, ASSEMBLE, 14, 15, "FAIL README.md:3",
+                          "README.md:5: the pasted output of `$ dispcon assemble samples/fourbar.dcl` "
+                          "(line 4) differs from the run's:",
+                          "  pasted: samples/fourbar.dcl: converged in 15 iterations",
+                          "  run:    samples/fourbar.dcl: converged in 14 iterations")
 
     def test_the_elision_is_whole_lines_only(self):
         # Without `...` the body table the run prints after the first line is a difference.
@@ -91,12 +97,8 @@ class Shell(unittest.TestCase):
             took 31 ms, 5 steps
             ```
             """
-        code, out = run(block.format(n=5))
-        self.assertEqual(code, 0, out)
-        code, out = run(block.format(n=6))
-        self.assertEqual(code, 1, out)
-        self.assertIn("  pasted: took <varies>, 5 steps", out)
-        self.assertIn("  run:    took <varies>, 6 steps", out)
+        passes_then_fails(self, block, 5, 6, "  pasted: took <varies>, 5 steps",
+                          "  run:    took <varies>, 6 steps")
 
 
 class Python(unittest.TestCase):
@@ -116,13 +118,9 @@ class Python(unittest.TestCase):
             1
             ```
             """
-        code, out = run(session.format(n=37))
-        self.assertEqual(code, 0, out)
-        code, out = run(session.format(n=38))
-        self.assertEqual(code, 1, out)
-        self.assertIn("README.md:6: the pasted output of `>>> m.assemble().iterations` (line 5)", out)
-        self.assertIn("  pasted: 38", out)
-        self.assertIn("  run:    37", out)
+        passes_then_fails(self, session, 37, 38,
+                          "README.md:6: the pasted output of `>>> m.assemble().iterations` (line 5)",
+                          "  pasted: 38", "  run:    37")
 
     def test_a_named_session_spans_blocks_and_others_start_afresh(self):
         code, out = run("""\
