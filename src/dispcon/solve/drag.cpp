@@ -16,11 +16,17 @@ namespace {
 
 // Newton steps a drag step's pull may take before the held solve takes over (Dragger::pull).
 constexpr int kPullIterations = 40;
-// Newton steps a drag step's turn may take (Dragger::turn). More than a point's pull: measured by
-// the angle between the rotations, a turn against a ball joint's cone slides along the cone's
-// rim, where the pull converges linearly (the robot arm's hand turned 2.5 rad about z: 70 steps
-// to its nearest pose, 2.011040558 rad from the target; at 40 it was still 2.01104061).
-constexpr int kTurnIterations = 80;
+// Iterations a drag step's turn may take (Dragger::turn), the held solve's and the origin's pull's
+// included: what is left of a few dozen (issue 14: a target out of reach told within them, with
+// how near the step got). Measured by the angle between the rotations, a turn against a ball
+// joint's cone slides along the cone's rim (rim.hpp); where it has not settled by then it says
+// so (IterationLimit, the valid pose it reached, no nearest claimed). Before, a turn had 80 of
+// its own: the sweep's far targets (far_targets_test.cpp) took up to 101 in all, 24 of them
+// still running out of those 80.
+constexpr int kStepIterations = 60;
+// Of those, what the turn leaves for the pull's last correction back onto the joints (up to 6
+// Newton steps, made past its cap so that the poses it leaves are valid).
+constexpr int kTurnReserve = 6;
 
 std::vector<bool> held_only(const Model& model, BodyId body) {
   if (body.value <= 0 || body.value >= model.body_count()) {
@@ -348,7 +354,7 @@ std::optional<SolveResult> Dragger::fall_back(const Pose& target, const SolveRes
   }
   if (near.status != SolveStatus::Converged) return std::nullopt;
   // The origin got there: the rotation is pulled toward the target's with the origin held.
-  SolveResult turned = turn(target, near.poses);
+  SolveResult turned = turn(target, near.poses, spent.iterations + near.iterations);
   add_spent(turned, {spent, near});
   // (A turn that ran out of steps, still getting nearer, is told as it is.)
   if (turned.status == SolveStatus::OutOfReach || turned.angle_left > 0) {
@@ -414,16 +420,15 @@ SolveResult Dragger::still_nearer(const Pose& target, const SolveResult& spent,
 // held body at its target; IterationLimit with angle_left set when the pull ran out of steps
 // while still getting nearer: the pose reached, no farther than `from`, and not called the
 // nearest; else what the pull reached (the poses are the model's bodies', the constraints its
-// joints).
-SolveResult Dragger::turn(const Pose& target, const std::vector<Pose>& from) {
+// joints). `spent`: the iterations the step took before the turn (kStepIterations).
+SolveResult Dragger::turn(const Pose& target, const std::vector<Pose>& from, int spent) {
   if (!turn_ || turn_->revision != model_.revision()) {
-    SolveOptions capped = options_;
-    capped.max_iterations = std::min(options_.max_iterations, kTurnIterations);
-    turn_ = std::make_unique<Turn>(model_, body_, capped);
+    turn_ = std::make_unique<Turn>(model_, body_, options_);
   }
   std::vector<Pose> poses = from;
   poses.push_back(target);  // the ghost's
-  SolveResult r = turn_->session->pull(poses, turn_->rotation);
+  const int left = std::max(0, kStepIterations - spent - kTurnReserve);
+  SolveResult r = turn_->session->pull(poses, turn_->rotation, left);
   r.poses.pop_back();
   r.constraints.resize(static_cast<size_t>(model_.joint_count()));
   r.max_residual = largest_residual(r.constraints);

@@ -375,8 +375,15 @@ void Session::set_stuck(Stuck stuck) {
   impl_->stuck = stuck;
 }
 
-SolveResult Session::pull(std::vector<Pose>& poses, JointId joint) {
+SolveResult Session::pull(std::vector<Pose>& poses, JointId joint, int most_iterations) {
   Impl& session = current();
+  // The cap for this pull alone (the options' again after it, however it ends).
+  struct Cap {
+    int& at;
+    int was;
+    ~Cap() { at = was; }
+  } cap{session.o.max_iterations, session.o.max_iterations};
+  if (most_iterations >= 0) cap.at = std::min(cap.was, most_iterations);
   check_poses(session.model, poses);
   if (joint.value < 0 || joint.value >= session.model.joint_count()) {
     throw std::invalid_argument("pull: no joint " + std::to_string(joint.value));

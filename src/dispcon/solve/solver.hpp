@@ -121,8 +121,9 @@ class Session {
   // by continuity from `poses`: no step gets nearer), IterationLimit when the others hold and the
   // cap came first, Stalled when the others could not be made to hold. `poses` are updated in
   // place in the first two cases; the result's poses are those reached. Throws
-  // std::invalid_argument for an unknown or inactive joint.
-  SolveResult pull(std::vector<Pose>& poses, JointId joint);
+  // std::invalid_argument for an unknown or inactive joint. `most_iterations`, when not
+  // negative, caps this pull's iterations below the options' cap.
+  SolveResult pull(std::vector<Pose>& poses, JointId joint, int most_iterations = -1);
   // Whether the last solve stopped at slow whole steps (Stuck::StopWhenSlow).
   bool slowed() const;
   // Whether the last solve stopped at steps cut short too far from their end (likewise).
@@ -226,8 +227,9 @@ class Dragger {
   // - When the origin got there, the body's rotation is pulled toward the target's with the
   //   origin held (a turn past a limit), the angle between the rotations made least:
   //   OutOfReach at the nearest pose, angle_left the angle left, no more than at the start;
-  //   IterationLimit with angle_left set when its 80 steps ran out still getting nearer (no
-  //   nearest claimed); Converged with the turn's pose when it got there; Stalled, no pose, when
+  //   IterationLimit with angle_left set when its steps ran out still getting nearer (what is
+  //   left of the step's 60 iterations after the held solve and the origin's pull: no nearest
+  //   claimed); Converged with the turn's pose when it got there; Stalled, no pose, when
   //   it could not keep the joints. Only when the pull could not keep the joints does the held
   //   solve that persists (seed iterations, the stall rule) go on from where the step began.
   SolveResult move_to(const Pose& target);
@@ -241,7 +243,7 @@ class Dragger {
                                        const SolveResult& near);
   SolveResult still_nearer(const Pose& target, const SolveResult& spent,
                            const SolveResult& near) const;
-  SolveResult turn(const Pose& target, const std::vector<Pose>& from);
+  SolveResult turn(const Pose& target, const std::vector<Pose>& from, int spent);
   SolveResult nearest(const Pose& target, SolveResult near) const;
 
   Model& model_;
