@@ -77,9 +77,9 @@ struct GroupRun {
   std::vector<int> couplings;
   std::vector<double> best_turns;
   int unfollowed = 0;  // steps kept since the couplings' turns were last followed
-  double r = 0;       // largest violation now
-  double best_r = 0;  // and the best seen, whose poses are kept
-  double size = 1;    // the group's size when the session was made: where the polish begins
+  double r = 0;        // largest violation now
+  double best_r = 0;   // and the best seen, whose poses are kept
+  double size = 1;     // the group's size when the session was made: where the polish begins
   double lambda = 1e-12;
   bool chord = false;  // the next Newton step may reuse the last factorisation (kept across solves)
   bool measured = false;  // the polisher measured the current poses (Polisher::measure)
