@@ -20,11 +20,13 @@ class DispconWorkbench(Gui.Workbench):
         from dispcon_fc import commands, viewproviders
 
         groups = commands.register()
-        for title, names in groups:
-            self.appendToolbar(self.TOOLBAR % title, names)
-        # One menu: the build commands, the joints in a submenu, then motion and analysis, with
-        # separators between the groups.
-        for k, (title, names) in enumerate(groups):
+        # The toolbars: the commands used most as buttons, the others in drop-down buttons
+        # (commands.DROP_DOWNS), so that the row has room at 1280 px.
+        for title, _, bar in groups:
+            self.appendToolbar(self.TOOLBAR % title, bar)
+        # One menu, every command an entry of its own: the build commands, the joints in a
+        # submenu, then motion and analysis, with separators between the groups.
+        for k, (title, names, _) in enumerate(groups):
             if title == "Joints":
                 self.appendMenu(["Dispcon", "Joints"], names)
             else:

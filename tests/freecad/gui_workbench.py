@@ -33,12 +33,36 @@ def mw():
     return Gui.getMainWindow()
 
 
+def _in_drop_downs(tb):
+    """[(the drop-down's own action, the actions of its menu)] of toolbar `tb`'s drop-down
+    buttons (FreeCAD's command groups: each member's action carries its CommandName)."""
+    out = []
+    for a in tb.actions():
+        w = tb.widgetForAction(a)
+        menu = w.menu() if isinstance(w, QtWidgets.QToolButton) else None
+        if menu is not None:
+            out.append((a, menu.actions()))
+    return out
+
+
+def _named(a, name):
+    command = a.property("CommandName")
+    if command is not None and not isinstance(command, str):
+        command = bytes(command).decode()
+    return a.objectName() == name or command == name
+
+
 def action(name):
-    """The QAction FreeCAD made for command `name` (the one in a toolbar when there is one)."""
+    """The QAction FreeCAD made for command `name` (the one in a toolbar when there is one, a
+    drop-down button's member included)."""
     for tb in mw().findChildren(QtWidgets.QToolBar):
         for a in tb.actions():
             if a.objectName() == name:
                 return a
+        for _, members in _in_drop_downs(tb):
+            for a in members:
+                if _named(a, name):
+                    return a
     for a in mw().findChildren(QtWidgets.QAction):
         if a.objectName() == name:
             return a
@@ -46,9 +70,21 @@ def action(name):
 
 
 def toolbar_of(name):
+    """The toolbar holding command `name`, as a button or in a drop-down button."""
     for tb in mw().findChildren(QtWidgets.QToolBar):
         if any(a.objectName() == name for a in tb.actions()):
             return tb
+        if any(_named(a, name) for _, members in _in_drop_downs(tb) for a in members):
+            return tb
+    return None
+
+
+def drop_down_of(name):
+    """The toolbar action of the drop-down button holding command `name`, or None."""
+    for tb in mw().findChildren(QtWidgets.QToolBar):
+        for group, members in _in_drop_downs(tb):
+            if any(_named(a, name) for a in members):
+                return group
     return None
 
 
@@ -290,6 +326,78 @@ class TestCommands(Documents):
         titles = {toolbar_of(n).windowTitle() for n in MAIN}
         self.assertGreaterEqual(len(titles), 3, "commands should be grouped in toolbars: %s" % titles)
         shot("toolbars-1280")
+
+    def test_toolbars_have_room_at_1280(self):
+        """The workbench's toolbars in one row at 1280x900: no button behind a ">>", the row at
+        most 90 % full, and every command reachable from a toolbar (as a button or in a drop-down
+        button, with its icon and tooltip there) and from the Dispcon menu."""
+        from dispcon_fc import commands
+        from dispcon_fc.qt import is_alive
+
+        window = mw()
+        window.showNormal()
+        window.setGeometry(0, 0, 1280, 900)
+        settle()
+        bars = [tb for tb in window.findChildren(QtWidgets.QToolBar)
+                if tb.objectName().startswith("Dispcon ") and tb.isVisible()]
+        self.assertEqual(sorted(tb.objectName() for tb in bars),
+                         sorted("Dispcon " + title for title, _ in commands.GROUPS))
+        rows = {tb.y() for tb in bars}
+        self.assertEqual(len(rows), 1, "the toolbars take more than one row: %s" % sorted(rows))
+        left = min(tb.mapTo(window, QtCore.QPoint(0, 0)).x() for tb in bars)
+        right = max(tb.mapTo(window, QtCore.QPoint(tb.width(), 0)).x() for tb in bars)
+        self.assertLessEqual(right, window.width())
+        # How much of the row the buttons need: each toolbar's own size hint (a toolbar squeezed
+        # into less hides its last buttons behind ">>").
+        needed = sum(tb.sizeHint().width() for tb in bars)
+        for tb in bars:
+            ext = [b for b in tb.findChildren(QtWidgets.QToolButton) if b.objectName() == "qt_toolbar_ext_button"]
+            self.assertFalse(any(b.isVisible() for b in ext), "%s hides buttons behind >>" % tb.objectName())
+            self.assertGreaterEqual(tb.width(), tb.sizeHint().width(), tb.objectName())
+            for a in tb.actions():
+                if not a.isSeparator():
+                    w = tb.widgetForAction(a)
+                    self.assertTrue(w is not None and w.isVisible(), "%s is hidden" % a.objectName())
+        self.assertLessEqual(needed, 0.9 * 1280, "the toolbars need %d of 1280 px" % needed)
+        print("toolbars: %d px of 1280 (%.0f %%), the row %d to %d" % (needed, 100.0 * needed / 1280, left, right))
+        # Every command in a toolbar, with its icon and tooltip; in a drop-down, in its menu.
+        in_menu = set()
+        for m in window.menuBar().findChildren(QtWidgets.QMenu):
+            if is_alive(m) and m.title().replace("&", "") in ("Dispcon", "Joints"):
+                in_menu |= {a.objectName() for a in m.actions()}
+        grouped = {n for drop in commands.DROP_DOWNS.values() for _, _, _, members in drop for n in members}
+        names = [n for _, group in commands.GROUPS for n, _ in group.commands()]
+        for n in names:
+            a = action(n)
+            self.assertIsNotNone(toolbar_of(n), "%s is in no toolbar" % n)
+            self.assertFalse(a.icon().isNull(), "%s has no icon in its toolbar" % n)
+            self.assertTrue(a.toolTip().strip(), "%s has no tooltip in its toolbar" % n)
+            self.assertIn(n, in_menu, "%s is not in the Dispcon menu" % n)
+            self.assertEqual(drop_down_of(n) is not None, n in grouped, n)
+        for n in MAIN:
+            self.assertIsNone(drop_down_of(n), "%s should be a button of its own" % n)
+        shot("toolbars-room-1280")
+
+    def test_a_drop_down_runs_its_command_and_shows_it(self):
+        """Choosing PointOnPlane in its drop-down opens the PointOnPlane panel, and the button then
+        shows its icon (FreeCAD's command groups show the command run last)."""
+        from dispcon_fc.panels import joint as jp
+
+        self.fourbar()
+        settle()
+        member = action("Dispcon_JointPointOnPlane")
+        group = drop_down_of("Dispcon_JointPointOnPlane")
+        self.assertIsNotNone(group)
+        before = group.icon().pixmap(32, 32).toImage()
+        member.trigger()
+        settle()
+        panel = jp.current()
+        self.assertIsNotNone(panel, "the drop-down's PointOnPlane opened no panel")
+        self.assertEqual(panel.type_box.currentText(), "PointOnPlane")
+        self.assertNotEqual(group.icon().pixmap(32, 32).toImage(), before, "the button still shows the first command")
+        self.assertEqual(group.icon().pixmap(32, 32).toImage(), member.icon().pixmap(32, 32).toImage())
+        panel.reject()
+        settle()
 
     def test_menu_has_joint_submenu_and_separators(self):
         from dispcon_fc.qt import is_alive
