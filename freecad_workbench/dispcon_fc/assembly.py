@@ -19,7 +19,7 @@ from .objects import (COUPLINGS, JOINT_TYPES, AssemblyProxy, JointProxy, SubAsse
                       mesh_offset, part_properties, parts, phase_value, placed_parts, preferences, shape_of,
                       sub_assemblies, top_assemblies)
 from .operations import (Drag, PointDrag, Transaction, add_joint, add_part, check,  # noqa: F401
-                         create_assembly, drag, drivable, drive, drive_limits, drive_to, drive_value,
+                         create_assembly, drag, drivable, drivable_joints, drive, drive_limits, drive_to, drive_value,
                          driven_side, edit_joint, export_dcl,
                          import_dcl, import_part, interference, interference_along,
                          link_part, linkable_objects, set_grounded, set_limits, solve,

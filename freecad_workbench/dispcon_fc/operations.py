@@ -866,6 +866,13 @@ def drivable(joint):
     return joint_kind(joint)
 
 
+def drivable_joints(asm):
+    """The joints a drive can move in `asm`, in its order: its own, then those of its flexible
+    sub-assemblies at every depth (Walk2.Leg3.Revolute; subassembly.instance_joints)."""
+    _assembly(asm)
+    return [j for j in joints(asm) + subassembly.instance_joints(asm) if drivable(j)]
+
+
 def drive_value(joint):
     """The joint's value now, as its limits measure it: part 2's turn relative to part 1 in
     degrees since the joint was made, or its travel along part 1's axis in mm."""

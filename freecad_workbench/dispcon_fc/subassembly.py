@@ -609,16 +609,38 @@ def _add_level(adapter, container, physics, once, chain):
                 if key(source) not in part_once:
                     part_once[key(source)] = local_mass(objects.shape_of(link), link.Placement)
                 adapter.add_body(link, None, physics, local=part_once[key(source)])
-            paths = {o.Name: path for path, o in source_tree(src).items()}
-            for j in objects.joints(src):
-                refs = []
-                for ref in (j.Reference1, j.Reference2):
-                    o = ref[0] if ref else None
-                    d = inside.get(paths.get(o.Name)) if o is not None and o.Document == src.Document else None
-                    refs.append((d, ref[1]) if d is not None else None)
-                extra.append(InstanceJoint(j, sub, *refs))
+            extra += _own_joints(sub, src, inside)
             extra += _add_level(adapter, sub, physics, once, chain + [src])
     return extra
+
+
+def _own_joints(sub, src, inside):
+    """The joints of `src` (the assembly a flexible instance `sub` places) as they hold in `sub`:
+    InstanceJoints whose references are its links (`inside`: tree(sub))."""
+    paths = {o.Name: path for path, o in source_tree(src).items()}
+    out = []
+    for j in objects.joints(src):
+        refs = []
+        for ref in (j.Reference1, j.Reference2):
+            o = ref[0] if ref else None
+            d = inside.get(paths.get(o.Name)) if o is not None and o.Document == src.Document else None
+            refs.append((d, ref[1]) if d is not None else None)
+        out.append(InstanceJoint(j, sub, *refs))
+    return out
+
+
+def instance_joints(container):
+    """The joints that hold in the flexible instances of `container` (an assembly or an
+    instance), at every depth: Walk2.Leg3.Revolute of a parade whose walkers and legs are
+    flexible (none inside a rigid instance: it moves as one). What the Drive panel offers beside
+    the assembly's own joints; the adapter makes the same ones."""
+    out = []
+    for sub in objects.sub_assemblies(container):
+        if rigid_of(sub):
+            continue
+        out += _own_joints(sub, source_of(sub), tree(sub))
+        out += instance_joints(sub)
+    return out
 
 
 def _set_local(adapter, obj, container):

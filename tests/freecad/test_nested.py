@@ -548,6 +548,147 @@ def festival(test):
     return asm, parade
 
 
+def world_overlaps(objs, skip=()):
+    """{frozenset of two labels: overlap volume} of the pairs of `objs` whose solids overlap, by
+    OpenCASCADE's boolean common of their world shapes (boxes first): the answer the workbench's
+    interference check (its own cached test) is compared with."""
+    import Part
+
+    shapes = [(o.Label, Part.getShape(o)) for o in objs]
+    out = {}
+    for i, (la, a) in enumerate(shapes):
+        for lb, b in shapes[i + 1:]:
+            if frozenset((la, lb)) in skip or not a.BoundBox.intersect(b.BoundBox):
+                continue
+            v = a.common(b).Volume
+            if v > 1e-6 * min(a.Volume, b.Volume):
+                out[frozenset((la, lb))] = v
+    return out
+
+
+class NestedDrive(Parade):
+    """The Drive panel's operation and the interference checks on joints and parts one and two
+    levels down (a parade's walkers' legs, a festival's parade's), every level flexible."""
+
+    def crank_revolute(self, asm, prefix):
+        """The drivable joint holding the crank of the leg at `prefix` (Walk2.Leg3): the leg's
+        Hip-Crank revolute, as the Drive panel lists it."""
+        js = {j.Label: j for j in da.drivable_joints(asm)}
+        self.assertIn(prefix + ".Revolute", js, sorted(js))
+        j = js[prefix + ".Revolute"]
+        self.assertEqual({j.Reference1[0].LinkedObject.Label, j.Reference2[0].LinkedObject.Label}, {"Hip", "Crank"})
+        return j
+
+    def drive_and_check(self, asm, container, prefix, degrees, still=1e-9):
+        """`still`: how far the parts of the other legs may move (the solve polishes what an earlier
+        snap left within its tolerance: 1.2e-9 mm in the festival, three levels up)."""
+        doc = asm.Document
+        doc.UndoMode = 1
+        j = self.crank_revolute(asm, prefix)
+        crank, hip, rocker = (named(container, prefix[len(container.Label) + 1:] + "." + p)
+                              for p in ("Crank", "Hip", "Rocker"))
+        start, value = angle_in(crank, hip), da.drive_value(j)
+        before = placements(da.placed_parts(asm))
+        undo = doc.UndoCount
+        reached, arrived = da.drive_to(asm, j, value + degrees)
+        self.assertTrue(arrived, reached)
+        self.assertAlmostEqual(da.drive_value(j), value + degrees, delta=1e-7)
+        # The crank turned by as much against its hip (measured from the placements), the rocker on
+        # Freudenstein's curve, every part of the other legs where it was, every joint holding.
+        turned = math.remainder(angle_in(crank, hip) - start - math.radians(degrees), 2 * math.pi)
+        self.assertLess(abs(turned), 1e-9)
+        err = math.remainder(angle_in(rocker, hip) - th.freudenstein(angle_in(crank, hip)), 2 * math.pi)
+        self.assertLess(abs(err), 1e-8)
+        leg = crank.InList[0]
+        for o in da.placed_parts(asm):
+            if o not in da.instance_parts(leg) or o == hip:
+                self.assertTrue(th.same(o.Placement, before[o.Name][0], still), "%s moved %g" % (
+                    o.Label, (o.Placement.Base - before[o.Name][0].Base).Length))
+        self.assert_joints_hold(asm)
+        self.assertEqual(doc.UndoCount, undo + 1, "a drive is one undo step")
+        doc.undo()
+        for o in da.placed_parts(asm):
+            self.assertTrue(th.same(o.Placement, before[o.Name][0], 1e-12), o.Label)
+        return j
+
+    def test_drive_a_crank_one_level_down(self):
+        # The parade has no drivable joint of its own (its walkers are bolted on): the Drive
+        # panel lists its walkers' legs' joints.
+        self.assertFalse([j for j in da.joints(self.asm) if da.drivable(j)])
+        labels = [j.Label for j in da.drivable_joints(self.asm)]
+        self.assertEqual(len(labels), 2 * 4 * 4, labels)  # each leg's four revolutes, in two walkers
+        self.drive_and_check(self.asm, self.walks[1], "Walk2.Leg3", 40)
+        self.assert_files_unchanged()
+
+    def test_drive_a_crank_two_levels_down(self):
+        asm, p1 = festival(self)
+        walk2 = next(s for s in da.sub_assemblies(p1) if s.Label == "P1.Walk2")
+        self.drive_and_check(asm, walk2, "P1.Walk2.Leg3", -35, still=1e-8)
+        self.assert_files_unchanged()
+
+    def test_a_rigid_walker_offers_no_joint_of_its_legs(self):
+        da.set_rigid(self.walks[0], True)
+        labels = [j.Label for j in da.drivable_joints(self.asm)]
+        self.assertEqual(len(labels), 16, labels)
+        self.assertTrue(all(label.startswith("Walk2.") for label in labels), labels)
+
+    def check_interference(self, asm, container, prefix):
+        """A post in the way of the crank at `prefix`, a quarter turn on: interference at the pose
+        and along the drive, against OpenCASCADE's booleans at the same poses."""
+        import Part
+
+        j = self.crank_revolute(asm, prefix)
+        crank = named(container, prefix[len(container.Label) + 1:] + ".Crank")
+        value = da.drive_value(j)
+        da.drive_to(asm, j, value + 90)
+        box = Part.getShape(crank).BoundBox
+        asm.Document.undo()
+        post = asm.Document.addObject("Part::Feature", "Post")
+        post.Shape = Part.makeBox(0.3, 0.3, 0.3, App.Vector(box.Center.x - 0.15, box.Center.y - 0.15,
+                                                            box.Center.z - 0.15))
+        da.add_part(asm, post, grounded=True)
+        every = da.placed_parts(asm)
+        # At the pose: the legs' pins sit 0.1 mm into the parts they join (th.fourbar's parts), in
+        # every leg of every walker: each pair as the booleans find it, with its volume.
+        now = {frozenset((a.Label, b.Label)): v for a, b, v in da.interference(asm)}
+        expected = world_overlaps(every)
+        self.assertEqual(sorted(now, key=sorted), sorted(expected, key=sorted))
+        self.assertGreaterEqual(len(now), 4 * 4 * 2)
+        for pair, v in expected.items():
+            self.assertAlmostEqual(now[pair], v, delta=1e-6 * v, msg=str(sorted(pair)))
+        angles = [0, 30, 60, 90, 120, 150]
+        before = placements(every)
+        hits = da.interference_along(asm, j, angles)
+        for o in every:
+            self.assertTrue(th.same(o.Placement, before[o.Name][0], 1e-12), "%s not put back" % o.Label)
+        # The same angles, the drive made by the Drive's operation, the overlaps by booleans.
+        expected = {}
+        for a in angles:
+            da.drive_to(asm, j, value + a)
+            for pair, v in world_overlaps(every).items():
+                expected[a, pair] = v
+            asm.Document.undo()
+        got = {(a, frozenset((pa.Label, pb.Label))): v for a, pa, pb, v in hits}
+        key = lambda k: (k[0], sorted(k[1]))  # noqa: E731
+        self.assertEqual(sorted(got, key=key), sorted(expected, key=key))
+        for k, v in expected.items():
+            self.assertAlmostEqual(got[k], v, delta=1e-6 * v, msg=str(key(k)))
+        # The post in the crank's way a quarter turn on, and not at the start.
+        self.assertIn((90, frozenset(("Post", crank.Label))), got)
+        self.assertNotIn((0, frozenset(("Post", crank.Label))), got)
+        return got
+
+    def test_interference_one_level_down(self):
+        self.doc.UndoMode = 1
+        self.check_interference(self.asm, self.walks[1], "Walk2.Leg3")
+
+    def test_interference_two_levels_down(self):
+        asm, p1 = festival(self)
+        asm.Document.UndoMode = 1
+        walk2 = next(s for s in da.sub_assemblies(p1) if s.Label == "P1.Walk2")
+        self.check_interference(asm, walk2, "P1.Walk2.Leg3")
+
+
 class FlexibleWalkersOfRigidLegs(Parade):
     # The walker's legs rigid in walker.FCStd (leg 1 on a revolute, 2-4 bolted: 1 DOF); two such
     # walkers placed flexible: a rigid leg nested in a flexible walker is one body of the parade.
@@ -706,8 +847,8 @@ class Transactions(unittest.TestCase):
 if not os.environ.get("DISPCON_NESTED_IMPORT_ONLY"):  # gui_subassembly.py imports the helpers only
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
                                for c in (FlexibleParade, RigidParade, PerPlaceRigidity, FlexibleWalkersOfRigidLegs,
-                                         OneDocument,
-                                                                       Cycles, Transactions))
+                                         NestedDrive, OneDocument, Cycles, Transactions)
+                               if not os.environ.get("DISPCON_NESTED_ONLY") or c.__name__ == os.environ["DISPCON_NESTED_ONLY"])
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
     failed = len(result.failures) + len(result.errors)
     print("%d passed, %d failed" % (result.testsRun - failed, failed))

@@ -3,7 +3,7 @@ import FreeCADGui as Gui
 
 from .. import operations
 from ..feedback import report, solve_outcome, study_message
-from ..objects import joints
+from ..objects import joints, sub_assemblies
 from .common import Command, active_assembly, has_joints
 
 
@@ -31,8 +31,11 @@ def _has_revolute():
 
 
 def _has_drivable():
+    # Cheap (FreeCAD asks often): a joint of its own, or a flexible sub-assembly whose joints the
+    # panel lists (operations.drivable_joints).
     asm = active_assembly()
-    return asm is not None and any(operations.drivable(j) for j in joints(asm))
+    return asm is not None and (any(operations.drivable(j) for j in joints(asm))
+                                or any(not getattr(s, "Rigid", True) for s in sub_assemblies(asm)))
 
 
 def _drive_panel():

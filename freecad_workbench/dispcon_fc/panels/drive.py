@@ -9,7 +9,6 @@ import FreeCADGui as Gui
 
 from .. import operations, panels
 from .base import TransactionPanel
-from ..objects import joints
 from ..qt import QtGui, QtWidgets
 from ..resources import icon_path
 from .joint import markers_icon, quantity_box, raw
@@ -18,8 +17,9 @@ UNIT_TEXT = {"deg": "°", "mm": " mm"}
 
 
 def drivable_joints(asm):
-    """The joints of `asm` a drive can move, in the assembly's order."""
-    return [j for j in joints(asm) if operations.drivable(j)]
+    """The joints of `asm` a drive can move, in the assembly's order: its own, then its flexible
+    sub-assemblies' at every depth (Walk2.Leg3.Revolute)."""
+    return operations.drivable_joints(asm)
 
 
 class DrivePanel(TransactionPanel):
