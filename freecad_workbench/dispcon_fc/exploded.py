@@ -216,6 +216,40 @@ def choices(asm):
     return out
 
 
+def part_at(view, element):
+    """The part whose copy in `view`'s shape holds `element` (a sub-element name picked in the 3D
+    view: "Face12", "Edge3", "Vertex7"), or None (a line along a part's way, or no such element).
+    The view's compound holds each part's copy in the order of its Parts, then the lines."""
+    import re
+
+    m = re.match(r"^(Face|Edge|Vertex)(\d+)$", element or "")
+    if m is None:
+        return None
+    try:
+        picked = view.Shape.getElement(element)
+    except Exception:  # an element the shape no longer has
+        return None
+    kind = {"Face": "Faces", "Edge": "Edges", "Vertex": "Vertexes"}[m.group(1)]
+    pieces = view.Shape.childShapes()
+    for part, piece in zip(view.Parts, pieces):
+        if any(e.isSame(picked) for e in getattr(piece, kind)):
+            return part
+    return None
+
+
+def unit_of(asm, part):
+    """What a step of `asm` names to move `part` with what moves with it: the part itself when it
+    is the assembly's, else the sub-assembly placed in `asm` that holds it (at any depth), which
+    moves as one; None when it is neither."""
+    own = {o.Name for o in parts(asm)}
+    if part.Name in own:
+        return part
+    for o in asm.Group:
+        if is_sub_assembly(o) and any(p.Name == part.Name for p in objects.nested_parts(o)):
+            return o
+    return None
+
+
 def _members(obj):
     """The parts that move when a step names `obj`."""
     return objects.nested_parts(obj) if is_sub_assembly(obj) else [obj]

@@ -273,6 +273,80 @@ class Walker(unittest.TestCase):
         self.assertTrue(all(o.ViewObject.Visibility for o in drawn))
 
 
+    def pixel_of(self, view, part):
+        """A pixel of the 3D view where `view` (the exploded view) shows `part`'s copy, found by
+        asking the view what is under points of the copy's faces; None when none shows."""
+        from dispcon_fc import exploded
+
+        piece = view.Shape.childShapes()[list(p.Name for p in view.Parts).index(part.Name)]
+        for face in sorted(piece.Faces, key=lambda f: -f.Area):
+            centre = face.CenterOfMass
+            for v in [centre] + [centre + (vx.Point - centre) * 0.5 for vx in face.Vertexes]:
+                x, y = (int(round(c)) for c in self.view.getPointOnScreen(v))
+                info = self.view.getObjectInfo((x, y))
+                if info and info.get("Object") == view.Name and \
+                        exploded.part_at(view, info.get("Component")) == part:
+                    return x, y
+        return None
+
+    def click(self, x, y):
+        gw.mouse(self.view, "press", x, y)
+        gw.mouse(self.view, "release", x, y)
+        gw.settle()
+
+    def test_a_steps_parts_picked_in_the_3d_view(self):
+        """With the panel open, a click on a part's copy in the 3D view ticks it in the chosen step
+        (a part of a leg: the leg, which moves as one), a second click unticks it; the view
+        redraws at once."""
+        from dispcon_fc import exploded
+        from dispcon_fc.panels import exploded as ep
+
+        for v in exploded.views_of(self.asm):
+            exploded.show(v, False)
+            self.doc.removeObject(v.Name)
+        before = tp.placements(self.asm)
+        panel = ep.open_panel(self.asm)
+        gw.settle()
+        view = panel.view
+        Gui.Selection.clearSelection()
+        panel.add_button.click()  # a step of no part yet: refused until it has one
+        gw.settle()
+        self.assertEqual(panel.current, 1)
+        Gui.SendMsgToActiveView("ViewFit")
+        gw.settle()
+        ticked = lambda: [panel.parts.item(k).text().strip() for k in range(panel.parts.count())  # noqa: E731
+                          if panel.parts.item(k).checkState() == QtCore.Qt.Checked]
+        self.assertEqual(ticked(), [])
+        first = {p.Name: App.Vector(v) for p, v in zip(view.Parts, view.Offsets)}
+        at = self.pixel_of(view, self.frame)
+        self.assertIsNotNone(at, "the frame's copy is nowhere on the screen")
+        self.click(*at)
+        self.assertEqual(ticked(), ["Frame"])
+        # The frame is grounded: a view moves it like any part its step names (as FreeCAD 1.x's
+        # exploded views move a grounded part picked for a move); its Placement never changes.
+        self.assertTrue(self.frame.Grounded)
+        distance = panel.steps[1].distance
+        offsets = {p.Name: App.Vector(v) for p, v in zip(view.Parts, view.Offsets)}
+        self.assertLess((offsets[self.frame.Name] - first[self.frame.Name] - App.Vector(0, 0, distance)).Length, 1e-9)
+        self.assertEqual(Gui.Selection.getSelection(), [], "the pick left a selection behind")
+        # A part inside leg 2: the leg, as one.
+        coupler = next(p for p in self.da.instance_parts(self.subs[1]) if p.LinkedObject.Label == "Coupler")
+        at2 = self.pixel_of(view, coupler)
+        self.assertIsNotNone(at2, "leg 2's coupler's copy is nowhere on the screen")
+        self.click(*at2)
+        self.assertEqual(ticked(), ["Frame", self.subs[1].Label])
+        offsets = {p.Name: App.Vector(v) for p, v in zip(view.Parts, view.Offsets)}
+        for p in self.da.nested_parts(self.subs[1]):
+            self.assertLess((offsets[p.Name] - first[p.Name] - App.Vector(0, 0, distance)).Length, 1e-9, p.Label)
+        gw.shot("exploded-picked", self.view)
+        # Picked again (where the frame's copy is drawn now): out of the step.
+        at = self.pixel_of(view, self.frame)
+        self.click(*at)
+        self.assertEqual(ticked(), [self.subs[1].Label])
+        panel.reject()
+        gw.settle()
+        self.assertEqual(tp.placements(self.asm), before)
+
     def test_exploded_steps_added_reordered_and_removed_in_the_panel(self):
         from dispcon_fc import exploded
         from dispcon_fc.panels import exploded as ep

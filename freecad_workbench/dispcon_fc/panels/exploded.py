@@ -55,6 +55,10 @@ class ExplodedPanel(TransactionPanel):
         self._fill_steps()
         self._load_step()
         self._say(self._summary())
+        # A part clicked in the 3D view (its copy in the view, or the part itself) is ticked in the
+        # chosen step, or unticked when it was: the step's parts picked where they are seen.
+        self.observer = _Picks(self)
+        Gui.Selection.addObserver(self.observer)
 
     # -- the form ----------------------------------------------------------------------------
     def _build(self):
@@ -226,6 +230,35 @@ class ExplodedPanel(TransactionPanel):
         self.current = to
         self._refresh()
 
+    def pick(self, obj_name, element):
+        """A click in the 3D view on `obj_name`'s `element`: the unit it belongs to (a part of the
+        assembly, or the sub-assembly placed in it that holds the part, moving as one) ticked in
+        the chosen step, or unticked; returns that unit, or None when the click hit no part."""
+        if self._gone() or not self.steps:
+            return None
+        obj = self.doc.getObject(obj_name)
+        if obj is None:
+            return None
+        part = exploded.part_at(self.view, element) if obj == self.view else obj
+        unit = exploded.unit_of(self.asm, part) if part is not None else None
+        if unit is None:
+            return None
+        for k in range(self.parts.count()):
+            item = self.parts.item(k)
+            if item.data(NAME_ROLE) == unit.Name:
+                on = item.checkState() != QtCore.Qt.Checked
+                item.setCheckState(QtCore.Qt.Checked if on else QtCore.Qt.Unchecked)  # _edited redraws
+                self._say("%s %s step %d. %s" % (unit.Label, "added to" if on else "taken out of", self.current + 1,
+                                                  self.message.text()))
+                return unit
+        return None
+
+    def _forget(self):
+        observer = getattr(self, "observer", None)
+        if observer is not None:
+            Gui.Selection.removeObserver(observer)
+            self.observer = None
+
     def take_selection(self):
         chosen = {o.Name for o in Gui.Selection.getSelection(self.doc.Name)}
         self.busy = True
@@ -306,8 +339,25 @@ class ExplodedPanel(TransactionPanel):
             self.transaction.abort()
             if not self.new and self.was_shown is not None:
                 exploded.show(self.view, self.was_shown)
+        self._forget()
         self.doc.recompute()
         Gui.Control.closeDialog()
+
+
+class _Picks:
+    """The panel's selection observer: a click in the 3D view with a sub-element (a face, an edge
+    or a vertex under the cursor) picks that part for the chosen step; the selection it made is
+    cleared once the click is taken, so the next click on it picks it again."""
+
+    def __init__(self, panel):
+        self.panel = panel
+
+    def addSelection(self, doc, obj, sub, pnt):
+        panel = self.panel
+        if panel.closed or not sub or doc != panel.doc.Name:
+            return
+        if panel.pick(obj, sub) is not None:
+            QtCore.QTimer.singleShot(0, Gui.Selection.clearSelection)
 
 
 def _button(name, text, tip):
