@@ -36,6 +36,7 @@ class ViewProviderAssembly(_ViewProxy):
         """Sets apart the markers of this assembly's joints drawn at one place, once the GUI is
         idle: each marker's follow() asks, and one pass over the joints serves them all (a solve
         moves every part, and each part's joints follow)."""
+        self.frames_dirty = True  # a part or a joint moved: the next layout reads the frames again
         if getattr(self, "restack_pending", False):
             return
         self.restack_pending = True
@@ -52,8 +53,38 @@ class ViewProviderAssembly(_ViewProxy):
         try:
             group = list(self.Object.Group)
             doc = self.Object.Document
+            names = tuple(o.Name for o in group)
         except Exception:  # the assembly (or its document) is gone meanwhile
             return
+        # The joints' frames and their stacks hold until a part or a joint moves (restack_later
+        # says so) or the group changes: a camera coming to rest lays the markers out on the
+        # screen again from them, without reading hundreds of joints from FreeCAD.
+        laid = getattr(self, "laid", None)
+        if laid is None or getattr(self, "frames_dirty", True) or laid[0] != names:
+            laid = self.laid = (names,) + self._frames(group)
+            self.frames_dirty = False
+        _, frames, views, stacked, points = laid
+        if not frames:
+            return
+        # Each shift is a world vector in glyph units (PIXELS pixels each on the screen).
+        shifts = {name: across * (k * markers.STACK_SPACING) for name, (k, across) in stacked.items()}
+        screen = _screen(doc)
+        if screen is not None:
+            self._watch(screen.camera)
+            gap = markers.SCREEN_GAP * markers.PIXELS
+            anchors = screen.pixels_of(points)
+            seeds = [screen.across(shifts[name]) if name in shifts else (0.0, 0.0) for name, _, _ in frames]
+            offsets = markers.spread(anchors, gap, seeds, box=screen.box)
+            shifts = {name: screen.world(offset) for (name, _, _), offset in zip(frames, offsets)}
+        for name, view in views.items():
+            view.set_shift(shifts.get(name))
+
+    def _frames(self, group):
+        """What a layout reads from FreeCAD: ([(joint name, world point, axis)] of the joints with
+        a marker, {name: its view provider}, their stacks (markers.stacks), the points as an
+        n x 3 array)."""
+        import numpy
+
         frames, views = [], {}
         for j in group:
             if j.TypeId != "App::FeaturePython":  # a part: no marker (read at once, not its view's proxy)
@@ -64,24 +95,12 @@ class ViewProviderAssembly(_ViewProxy):
                 frames.append((j.Name, frame[0], frame[1]))
                 views[j.Name] = view
         if not frames:
-            return
+            return frames, views, {}, None
+        points = numpy.array([(p.x, p.y, p.z) for _, p, _ in frames])
         # One place: within a millionth of the spread of the joints' points (the same pin or
         # axle picked twice gives the same point up to rounding).
-        xs, ys, zs = ([f[1][i] for f in frames] for i in range(3))
-        spread = max(max(xs) - min(xs), max(ys) - min(ys), max(zs) - min(zs), 1e-9)
-        stacked = markers.stacks(frames, 1e-6 * spread)
-        # Each shift is a world vector in glyph units (PIXELS pixels each on the screen).
-        shifts = {name: across * (k * markers.STACK_SPACING) for name, (k, across) in stacked.items()}
-        screen = _screen(doc)
-        if screen is not None:
-            self._watch(screen.camera)
-            gap = markers.SCREEN_GAP * markers.PIXELS
-            anchors = [screen.pixels(point) for _, point, _ in frames]
-            seeds = [screen.across(shifts[name]) if name in shifts else (0.0, 0.0) for name, _, _ in frames]
-            offsets = markers.spread(anchors, gap, seeds, box=screen.box)
-            shifts = {name: screen.world(offset) for (name, _, _), offset in zip(frames, offsets)}
-        for name, view in views.items():
-            view.set_shift(shifts.get(name))
+        spread = max(float((points.max(axis=0) - points.min(axis=0)).max()), 1e-9)
+        return frames, views, markers.stacks(frames, 1e-6 * spread), points
 
     def _watch(self, camera):
         """Lays the markers out again whenever `camera` (the 3D view's) moves."""
@@ -427,6 +446,20 @@ class _Screen:
     def pixels(self, point):
         d, s = point - self.eye, self._scale(point)
         return (d.dot(self.right) * s, d.dot(self.up) * s)
+
+    def pixels_of(self, points):
+        """pixels() of each row of an n x 3 array, as an n x 2 array (the same numbers: the same
+        products, taken row by row in numpy)."""
+        import numpy
+
+        d = points - numpy.array(tuple(self.eye))
+        right, up = numpy.array(tuple(self.right)), numpy.array(tuple(self.up))
+        if self.angle is None:
+            s = self.per_unit
+        else:
+            depth = numpy.maximum(d @ numpy.array(tuple(self.forward)), 1e-9)
+            s = self.per_unit / (2 * depth * math.tan(0.5 * self.angle))
+        return numpy.column_stack((d @ right * s, d @ up * s))
 
     def world(self, offset):
         return (self.right * offset[0] + self.up * offset[1]) * (1.0 / markers.PIXELS)

@@ -431,6 +431,42 @@ class TestCommands(Documents):
 
 
 class TestMarkers(Documents):
+    def test_a_camera_rest_reuses_the_frames_a_part_move_reads_again(self):
+        """The layout a camera rest runs reads no joint from FreeCAD when nothing moved (the frames
+        and stacks of the last layout), and lays the markers out the same; a part moved makes the
+        next layout read every joint again."""
+        from dispcon_fc import markers, objects, operations
+
+        asm, g, crank, coupler, rocker = self.fourbar()
+        operations.solve(asm)
+        view = self.view()
+        view.viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
+        settle()
+        proxy = asm.ViewObject.Proxy
+        proxy.restack()
+        laid = [objects.joints(asm)[k].ViewObject.Proxy.shift for k in range(4)]
+        read = []
+        original = markers.joint_frame
+
+        def counting(j):
+            read.append(j.Name)
+            return original(j)
+        markers.joint_frame = counting
+        try:
+            cam = view.getCameraNode()
+            cam.height.setValue(cam.height.getValue() * 1.5)
+            proxy.restack()  # what the camera's rest runs
+            self.assertEqual(read, [], "a camera rest read the joints again")
+            cam.height.setValue(cam.height.getValue() / 1.5)
+            proxy.restack()
+            self.assertEqual([objects.joints(asm)[k].ViewObject.Proxy.shift for k in range(4)], laid)
+            crank.Placement = App.Placement(App.Vector(0, 0, 0.5), crank.Placement.Rotation)
+            settle()  # the joints follow their part and ask for a layout
+            self.assertEqual(sorted(set(read)), sorted(j.Name for j in objects.joints(asm)))
+        finally:
+            markers.joint_frame = original
+
     def test_each_joint_has_a_marker_in_the_scene(self):
         from pivy import coin
         from dispcon_fc import operations, objects
