@@ -435,14 +435,9 @@ class TestMarkers(Documents):
         """The layout a camera rest runs reads no joint from FreeCAD when nothing moved (the frames
         and stacks of the last layout), and lays the markers out the same; a part moved makes the
         next layout read every joint again."""
-        from dispcon_fc import markers, objects, operations
+        from dispcon_fc import markers, objects
 
-        asm, g, crank, coupler, rocker = self.fourbar()
-        operations.solve(asm)
-        view = self.view()
-        view.viewIsometric()
-        Gui.SendMsgToActiveView("ViewFit")
-        settle()
+        (asm, g, crank, coupler, rocker), view = self.solved_in_view()
         proxy = asm.ViewObject.Proxy
         proxy.restack()
         laid = [objects.joints(asm)[k].ViewObject.Proxy.shift for k in range(4)]
@@ -467,16 +462,23 @@ class TestMarkers(Documents):
         finally:
             markers.joint_frame = original
 
-    def test_each_joint_has_a_marker_in_the_scene(self):
-        from pivy import coin
-        from dispcon_fc import operations, objects
+    def solved_in_view(self):
+        """The four-bar solved, seen whole from the isometric view: (fourbar(), the view)."""
+        from dispcon_fc import operations
 
-        asm, g, crank, coupler, rocker = self.fourbar()
-        operations.solve(asm)
+        made = self.fourbar()
+        operations.solve(made[0])
         view = self.view()
         view.viewIsometric()
         Gui.SendMsgToActiveView("ViewFit")
         settle()
+        return made, view
+
+    def test_each_joint_has_a_marker_in_the_scene(self):
+        from pivy import coin
+        from dispcon_fc import objects
+
+        (asm, g, crank, coupler, rocker), view = self.solved_in_view()
         root = view.getSceneGraph()
         coin.SoBaseKit.setSearchingChildren(True)  # the glyphs sit in a screen-scale node kit
         for j in objects.joints(asm):
