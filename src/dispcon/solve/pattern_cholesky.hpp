@@ -41,6 +41,16 @@ class PatternCholesky {
   // that is not a number counts), col_ those of L (with the fill), row_ the columns k < j where
   // row j of L may be non-zero (the columns that update column j).
   std::vector<std::uint64_t> given_, found_, col_, row_;
+  // The pattern as lists for factor(): below_ holds each column's rows below the diagonal in order
+  // (column k's from below_start_[k] to below_start_[k + 1]); updates_ each column's updates
+  // (column j's from update_start_[j]): column k's rows below_[begin ... end), from row j down.
+  struct Update {
+    int k, begin, end;
+  };
+  template <int W>
+  void lists(int m);
+  std::vector<int> below_, below_start_, update_start_;
+  std::vector<Update> updates_;
 };
 
 }  // namespace dispcon
