@@ -2,6 +2,7 @@
 // diagnostics out. The parser is dcl_parser.hpp's.
 #include "dispcon/io/dcl_reader.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -46,9 +47,20 @@ bool read_file(const std::string& path, std::string& text) {
     if (size > 0) text.resize(static_cast<size_t>(size));
     std::rewind(in);
   }
-  text.resize(std::fread(text.data(), 1, text.size(), in));
-  char chunk[1 << 16];
-  for (size_t n; (n = std::fread(chunk, 1, sizeof chunk, in)) > 0;) text.append(chunk, n);
+  size_t n = std::fread(text.data(), 1, text.size(), in);
+  // More than the size said (a pipe says none): read on into the string's own room, doubled as
+  // it fills. (A 64 kB buffer on the stack cost the command a page fault or two of its stack.)
+  char more;
+  if (n == text.size() && std::fread(&more, 1, 1, in) == 1) {
+    text.resize(n);
+    text.push_back(more);
+    ++n;
+    do {
+      text.resize(std::max<size_t>(2 * n, size_t{1} << 16));
+      n += std::fread(text.data() + n, 1, text.size() - n, in);
+    } while (n == text.size());
+  }
+  text.resize(n);
   std::fclose(in);
   return true;
 }

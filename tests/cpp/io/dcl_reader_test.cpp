@@ -3,11 +3,16 @@
 #include "dispcon/io/dcl_reader.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
+#include <thread>
 
+#include "dispcon/io/dcl_parser.hpp"
 #include "dispcon/io/dcl_writer.hpp"
 #include "dispcon/solve/solver.hpp"
 
@@ -271,6 +276,46 @@ TEST(DclReader, LexicalForms) {
   EXPECT_EQ(r.model->body(BodyId{1}).pose.x, Vec3(0.1, -2.0, 1e-3));
   EXPECT_EQ(r.model->joint(JointId{0}).guide->min, -kInf);
   EXPECT_EQ(r.model->joint(JointId{0}).guide->max, 2.5);
+}
+
+// A file read whole as its size says, and the same text through a pipe (no size: read on as it
+// comes), each of sizes around the reader's first 64 kB of room and its doublings.
+TEST(DclReader, FileAndPipeReadTheSameText) {
+  const std::string dir = ::testing::TempDir();
+  for (const int objects : {0, 1, 2000, 2049, 6000}) {
+    std::string text = "// " + std::to_string(objects) + " objects\n";
+    for (int i = 0; i < objects; ++i) {
+      text += "object o" + std::to_string(i) + "; position " + std::to_string(i) + " 0 0; end\n";
+    }
+    const std::string file = dir + "/read_" + std::to_string(objects) + ".dcl";
+    std::FILE* out = std::fopen(file.c_str(), "wb");
+    ASSERT_NE(out, nullptr);
+    std::fwrite(text.data(), 1, text.size(), out);
+    std::fclose(out);
+    std::string read;
+    ASSERT_TRUE(dcl::read_file(file, read));
+    EXPECT_EQ(read, text);
+    const std::string fifo = dir + "/read_" + std::to_string(objects) + ".fifo";
+    std::remove(fifo.c_str());
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    std::thread writer([&] {
+      std::FILE* w = std::fopen(fifo.c_str(), "wb");
+      if (!w) return;
+      // In pieces of 1,000 bytes, as a pipe fills.
+      for (size_t at = 0; at < text.size(); at += 1000) {
+        std::fwrite(text.data() + at, 1, std::min<size_t>(1000, text.size() - at), w);
+        std::fflush(w);
+      }
+      std::fclose(w);
+    });
+    std::string piped;
+    const bool ok = dcl::read_file(fifo, piped);
+    writer.join();
+    ASSERT_TRUE(ok);
+    EXPECT_EQ(piped, text);
+    std::remove(fifo.c_str());
+    std::remove(file.c_str());
+  }
 }
 
 TEST(DclWriter, RoundTripKeepsEveryField) {
