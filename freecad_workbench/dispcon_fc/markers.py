@@ -12,7 +12,12 @@ at one size on the screen whatever the zoom. Markers drawn at one place (the coa
 planetary set's centre, two joints on one pin) are set apart side by side across their axis
 (stacks()), and markers that crowd each other on the screen (a planet's axle, its mesh with the
 sun and its mesh with the ring, a few pixels apart at fit-all zoom) are pushed apart there
-(spread()), so each stays readable and pickable at any zoom."""
+(spread()), so each stays readable at any zoom.
+
+A marker is never picked (an SoPickStyle UNPICKABLE, as FreeCAD 1.x's joint coordinate systems
+are): it is drawn over the pin it marks, so a click there meant for the pin's edge or face (the
+next joint's reference, a part pressed on in drag mode) went to the marker and was lost. Joints
+are selected in the tree, where their markers turn green."""
 import math
 
 import FreeCAD as App
@@ -494,6 +499,11 @@ class Marker:
         coin = _coin()
         self.root = coin.SoSeparator()
         self.root.setName(name)
+        # Never picked: a click on the edge under a marker (the marker to come of the edge under
+        # the cursor, a joint's marker on the pin to pick next) reaches that edge.
+        self.pick_style = coin.SoPickStyle()
+        self.pick_style.style.setValue(coin.SoPickStyle.UNPICKABLE)
+        self.root.addChild(self.pick_style)
         self.transform = coin.SoTransform()
         self.root.addChild(self.transform)
         # The fields, found once: pivy looks a field up by name at every access (tens of
