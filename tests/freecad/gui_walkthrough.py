@@ -303,9 +303,121 @@ class FourBarFromScratch(unittest.TestCase):
         gw.shot("walkthrough-reopened")
 
 
+def mouse_click(widget, at=None):
+    """A left click on `widget` (at its centre, or at `at`) by Qt mouse events."""
+    at = at or widget.rect().center()
+    for kind in (QtCore.QEvent.MouseButtonPress, QtCore.QEvent.MouseButtonRelease):
+        QtWidgets.QApplication.sendEvent(widget, QtGui.QMouseEvent(kind, QtCore.QPointF(at), QtCore.Qt.LeftButton,
+                                                                   QtCore.Qt.LeftButton, QtCore.Qt.NoModifier))
+    gw.settle()
+
+
+class PreferencesPage(unittest.TestCase):
+    """Edit > Preferences > Dispcon (ui/preferences.ui, added by FreeCADGui.addPreferencePage):
+    the tolerance typed and the simplified drag unticked there, OK; a new assembly takes the
+    tolerance and the next mouse drag is drawn in full."""
+
+    NAMES = ("Tolerance", "LighterDrag")
+
+    def setUp(self):
+        gw.close_dialog()
+        self.params = App.ParamGet("User parameter:BaseApp/Preferences/Mod/Dispcon")
+        self.saved = (self.params.GetString("Tolerance", ""), self.params.GetBool("LighterDrag", True))
+        self.doc = App.newDocument("WalkthroughPreferences")
+        self.seen = {}
+
+    def tearDown(self):
+        from dispcon_fc import dragging
+
+        dragging.stop()
+        tolerance, lighter = self.saved
+        if tolerance:
+            self.params.SetString("Tolerance", tolerance)
+        else:
+            self.params.RemString("Tolerance")
+        self.params.SetBool("LighterDrag", lighter)
+        gw.close_documents()
+
+    def answer(self, tries=100):
+        """On the preferences dialog once it shows: the Dispcon page chosen in its list, the
+        tolerance typed, the simplified drag unticked, OK."""
+        dialog = QtWidgets.QApplication.activeModalWidget()
+        if dialog is None or not dialog.isVisible() or dialog.findChild(QtWidgets.QListWidget) is None:
+            if tries:
+                QtCore.QTimer.singleShot(50, lambda: self.answer(tries - 1))
+            return
+        groups = dialog.findChild(QtWidgets.QListWidget)
+        names = [groups.item(k).text() for k in range(groups.count())]
+        self.seen["groups"] = names
+        if "Dispcon" in names:
+            item = groups.item(names.index("Dispcon"))
+            mouse_click(groups.viewport(), groups.visualItemRect(item).center())
+        tolerance = dialog.findChild(QtWidgets.QLineEdit, "tolerance")
+        lighter = dialog.findChild(QtWidgets.QCheckBox, "lighterDrag")
+        self.seen["shown"] = tolerance is not None and tolerance.isVisible()
+        if tolerance is not None and lighter is not None:
+            type_into(tolerance, "1e-6")
+            self.seen["ticked"] = lighter.isChecked()
+            mouse_click(lighter, QtCore.QPoint(6, lighter.height() // 2))
+            gw.settle()
+            os.makedirs(gw.OUT, exist_ok=True)
+            dialog.grab().save(os.path.join(gw.OUT, "walkthrough-preferences.png"))  # a window of its own
+        ok = [b for b in dialog.findChildren(QtWidgets.QPushButton) if b.text().replace("&", "") == "OK"]
+        if ok:
+            mouse_click(ok[0])
+        if dialog.isVisible():
+            dialog.reject()
+
+    def test_the_page_changed_by_hand_is_honoured(self):
+        from dispcon_fc import dragging, objects, operations
+        import parts
+
+        self.params.SetString("Tolerance", "1e-9")
+        self.params.SetBool("LighterDrag", True)
+        QtCore.QTimer.singleShot(0, self.answer)
+        Gui.runCommand("Std_DlgPreferences")
+        gw.settle()
+        self.assertIn("Dispcon", self.seen.get("groups", []))
+        self.assertTrue(self.seen.get("shown"), "the Dispcon page did not show its tolerance")
+        self.assertTrue(self.seen.get("ticked"), "the simplified drag was not ticked first")
+        self.assertEqual(self.params.GetString("Tolerance", ""), "1e-6")
+        self.assertFalse(self.params.GetBool("LighterDrag", True))
+        gw.action("Dispcon_CreateAssembly").trigger()
+        asm = [o for o in self.doc.Objects if objects.is_assembly(o)][-1]
+        self.assertEqual(asm.Tolerance, 1e-6)
+        # The next mouse drag drawn in full: each part by its own view, shaded with its edges.
+        base = self.doc.addObject("Part::Feature", "Base")
+        base.Shape = parts.ground([(0, 0)])
+        operations.add_part(asm, base, grounded=True)
+        arm = self.doc.addObject("Part::Feature", "Arm")
+        arm.Shape = parts.link(1.5)
+        operations.add_part(asm, arm)
+        operations.add_joint(asm, "Revolute", (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0))),
+                             (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))))
+        view = Gui.getDocument(self.doc.Name).ActiveView
+        view.viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        gw.settle()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        gw.action("Dispcon_Drag").trigger()
+        gw.settle()
+        x, y = view.getPointOnScreen(arm.Placement.multVec(App.Vector(1.2, 0, 0.1)))
+        gw.mouse(view, "press", x, y)
+        gw.mouse(view, "move", x, y + 30)
+        gw.settle()
+        session = dragging.active(view)
+        self.assertIsNotNone(session, "no drag under way")
+        self.assertIsNotNone(session.lighter, "the press did not grab the arm")
+        self.assertEqual((session.lighter.markers, session.lighter.switches, session.lighter.cube), ([], [], False),
+                         "the drag is drawn simplified although the page says not")
+        gw.mouse(view, "release", x, y + 30)
+        gw.settle()
+
+
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    gw.run_in_gui([c for c in (FourBarFromScratch,) if not only or only in c.__name__],
+    gw.run_in_gui([c for c in (FourBarFromScratch, PreferencesPage) if not only or only in c.__name__],
                   "status-walkthrough")
 
 
