@@ -111,6 +111,15 @@ class AssemblyProxy(_Proxy):
         _view_restored(obj, "Assembly")
 
 
+# The paper's "ability to move" mu_12 of a constraint (section 3.1.4, in place of eq. 19's
+# m2 / (m1 + m2)): the share of a correction's translation that part 1 takes, part 2 the rest.
+MOVE_DOC = ("Which part gives way when the joint pulls its two parts together (the paper's ability to "
+            "move, mu): the share of each correction part 1 takes, part 2 taking the rest. 0: part 1 stays "
+            "and part 2 does all the moving; 1: part 1 does it all; 0.5: half each. -1 (the default): the "
+            "engine chooses, from the parts' masses where it has them (part 1 takes m2 / (m1 + m2): the "
+            "lighter moves more), else half each. A grounded part never moves, whatever this says.")
+
+
 class JointProxy(_Proxy):
     """An App::FeaturePython: two references, the joint's type, its points and axes in each part's
     frame (taken from the picked geometry) and its limits."""
@@ -145,7 +154,9 @@ class JointProxy(_Proxy):
         _add(obj, "App::PropertyAngle", "ConeAngle", "Limits", "ball joint: largest tilt of axis 2 from axis 1 (0: none)")
         _add(obj, "App::PropertyAngle", "AngleMin", "Limits", "Angle joint: lowest angle between the axes")
         _add(obj, "App::PropertyAngle", "AngleMax", "Limits", "Angle joint: highest angle between the axes", 180)
-        _add(obj, "App::PropertyFloat", "Move", "Abilities", "part 1's share of a correction (-1: from the masses)", -1)
+        _add(obj, "App::PropertyFloat", "Move", "Abilities", MOVE_DOC, -1)
+        if obj.getDocumentationOfProperty("Move") != MOVE_DOC:  # saved with the earlier, terser words
+            obj.setDocumentationOfProperty("Move", MOVE_DOC)
         _add(obj, "App::PropertyFloat", "Residual", "Solve", "violation after the last solve")
         _add(obj, "App::PropertyBool", "Violated", "Solve", "not satisfied after the last solve")
         joint_extras(obj)
@@ -214,6 +225,7 @@ class SubAssemblyProxy(_Proxy):
     def onDocumentRestored(self, obj):
         self.attach(obj)
         _view_restored(obj, "SubAssembly")
+        grounding_modes(obj)
         if getattr(obj, "SourceName", ""):
             from .subassembly import rigid_modes
 
@@ -221,11 +233,14 @@ class SubAssemblyProxy(_Proxy):
 
     def onChanged(self, obj, prop):
         # Made rigid or flexible (the property editor too): the nested instances inside it say
-        # whether their own Rigid means anything now (read only inside a rigid one).
+        # whether their own Rigid means anything now (read only inside a rigid one), and it and
+        # they whether Grounded does.
         if prop == "Rigid" and "Restoring" not in obj.State and getattr(obj, "Group", None):
             from .subassembly import rigid_modes
 
             rigid_modes(obj)
+        if prop in ("Rigid", "Group") and "Restoring" not in obj.State:
+            grounding_modes(obj)
         # Moving the instance carries its parts along (their placements in its frame stay).
         if prop == "Placement":
             for link in getattr(obj, "Group", []):
@@ -244,7 +259,47 @@ def sub_assembly_properties(obj):
          "moves as one part (its own joints solved inside it); off: its parts and joints join this assembly's solve",
          True)
     _add(obj, "App::PropertyPlacement", "Placement", "Sub-assembly", "where the instance's frame is")
-    _add(obj, "App::PropertyBool", "Grounded", "Dispcon", "never moves")
+    _add(obj, "App::PropertyBool", "Grounded", "Dispcon", INSTANCE_GROUNDED)
+    if obj.getDocumentationOfProperty("Grounded") != INSTANCE_GROUNDED:  # a part's words, before
+        obj.setDocumentationOfProperty("Grounded", INSTANCE_GROUNDED)
+
+
+# An instance's Grounded means something only where the instance is one body of the solve:
+# rigid, and not inside a rigid instance (which moves it as its own part). A flexible one has no
+# one place to hold (its parts join the solve each on its own): there it is hidden.
+INSTANCE_GROUNDED = "the whole instance never moves (a rigid instance only; a flexible one's parts move each on its own)"
+
+
+def why_not_grounded(inst):
+    """Why grounding instance `inst` would mean nothing, or None when it means holding it."""
+    from .subassembly import locked_by, rigid_of
+
+    holder = locked_by(inst)
+    if holder is not None:
+        return "it moves as a part of the rigid %s: ground that" % holder.Label
+    if not rigid_of(inst):
+        return "it is flexible, its parts moving each on its own: make it rigid to hold it whole"
+    return None
+
+
+def grounding_modes(inst):
+    """Shows an instance's Grounded (and its nested instances') in the property editor where it
+    means holding the instance, hides it where it means nothing (why_not_grounded)."""
+    from .subassembly import tree
+
+    try:
+        inside = [d for d in tree(inst).values() if is_sub_assembly(d)]
+    except Exception:  # a link not restored yet: the instance alone, the rest at their own restore
+        inside = []
+    for o in [inst] + inside:
+        if "Grounded" not in o.PropertiesList:
+            continue
+        try:
+            hidden = why_not_grounded(o) is not None
+        except Exception:  # its placed file not there: as it was
+            continue
+        if o.getEditorMode("Grounded") != (["Hidden"] if hidden else []):
+            o.setEditorMode("Grounded", 2 if hidden else 0)
 
 
 def nested_rigidity_property(obj):

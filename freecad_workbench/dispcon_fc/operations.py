@@ -97,6 +97,10 @@ def set_grounded(part, grounded=True):
     """Grounds a part (it never moves) or frees it, in one undo step."""
     if "Grounded" not in part.PropertiesList:
         raise ValueError("%s is not a part of an assembly" % part.Label)
+    if objects.is_sub_assembly(part):
+        why = objects.why_not_grounded(part)
+        if why:
+            raise ValueError("%s cannot be grounded: %s" % (part.Label, why))
     touched = "Touched" in part.State
     with transaction(part.Document, "Ground" if grounded else "Unground"):
         part.Grounded = bool(grounded)
@@ -253,7 +257,32 @@ def _defaults(joint_type, f1, f2):
     return {}
 
 
-def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
+def parts_label(doc, part1, part2, joint=None):
+    """The label a joint between `part1` and `part2` gets from them (the joint panel's): their
+    labels, part 1 (the guide's) first, "Ground-Crank"; made unique in `doc` (whatever FreeCAD's
+    duplicate-labels preference says) by FreeCAD's numbering, "Ground-Crank001". `joint`: the
+    joint to be so named (its own label is no clash)."""
+    base = "%s-%s" % (part1.Label, part2.Label)
+    taken = {o.Label for o in doc.Objects if o != joint}
+    label, k = base, 0
+    while label in taken:
+        k += 1
+        label = "%s%03d" % (base, k)
+    return label
+
+
+def named_from_parts(joint):
+    """Whether the joint's label is the one its parts give it (parts_label's, numbered or not),
+    not one a person typed nor a type's name from an earlier workbench (Revolute001)."""
+    r1, r2 = joint.Reference1, joint.Reference2
+    if not r1 or not r2:
+        return False
+    base = "%s-%s" % (r1[0].Label, r2[0].Label)
+    rest = joint.Label[len(base):] if joint.Label.startswith(base) else None
+    return rest is not None and (rest == "" or (len(rest) == 3 and rest.isdigit()))
+
+
+def add_joint(asm, joint_type, ref1, ref2, undo_step=True, named_by_parts=False, **limits):
     """A joint between two parts from geometry references in FreeCAD's form, (obj, "Edge3").
     Part 1 carries the guide (the slider's line, the plane, the curve; a Distance's plane or line
     and a rack's pinion are made part 1 whichever was picked first). Limits: rotation=(min, max)
@@ -268,7 +297,9 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
     Cylindrical and Planar: frame=(yaw, pitch, roll) in degrees turns part 2's joint frame, so that
     part 2 stands so turned against part 1 (yaw about the joint's axis, then pitch and roll);
     shift=(x, y) in mm moves it along the frame's x and y (across the axis; along it: offset), so
-    that part 2 stands that far off part 1's point in the joint's frame."""
+    that part 2 stands that far off part 1's point in the joint's frame. The joint's label is its
+    type's, numbered (Revolute001) as FreeCAD 1.x names joints and as scripts and `--joint` name
+    them; named_by_parts=True (the joint panel) labels it from its parts (parts_label)."""
     _assembly(asm)
     if joint_type not in objects.JOINT_TYPES:
         raise ValueError("unknown joint type %r (expected one of %s)" % (joint_type, ", ".join(objects.JOINT_TYPES)))
@@ -294,6 +325,8 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, **limits):
         j.JointType = joint_type
         _place(j, joint_type, a, b)
         _set_limits(j, **limits)
+        if named_by_parts:
+            j.Label = parts_label(asm.Document, o1, o2, j)
         asm.addObject(j)
         if limits.get("frame") is not None or limits.get("shift") is not None:
             if joint_type not in objects.FRAME_ROTATED:
