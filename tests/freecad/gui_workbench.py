@@ -1267,27 +1267,58 @@ class TestDrivePanel(Documents):
         for p, q in zip(moving, start):
             self.assertTrue(same(p.Placement, q, 1e-9), "Cancel left %s moved" % p.Label)
 
-    def test_outside_the_limits_is_refused_in_the_panel_and_ok_is_one_undo_step(self):
+    def test_the_box_is_clamped_to_the_limits_and_ok_is_one_undo_step(self):
         from dispcon_fc import operations
 
         asm, joint, moving = self.fourbar_solved()
         now = operations.drive_value(joint)
-        operations.edit_joint(joint, rotation=(now - 20.0, now + 20.0))
+        # Without limits, the box's full range.
+        panel = self.open(joint)
+        self.assertEqual((raw_prop(panel.target, "minimum"), raw_prop(panel.target, "maximum")), (-1e6, 1e6))
+        panel.reject()
+        settle()
+        # The top limit ends in 6 past the box's two decimals: the box rounds it up, past it.
+        top = math.floor((now + 20.0) * 100) / 100 + 0.006
+        operations.edit_joint(joint, rotation=(now - 20.0, top))
         self.assertTrue(operations.solve(asm).converged)
         start = [p.Placement for p in moving]
         panel = self.open(joint)
-        self.assertIn("%g" % (now + 20.0), panel.limits.text())
-        panel.target.setProperty("rawValue", now + 45.0)
+        self.assertIn("%g" % top, panel.limits.text())
+        # The box's range is the joint's limits, in degrees: 45 past stops at the limit.
+        self.assertAlmostEqual(raw_prop(panel.target, "minimum"), math.ceil((now - 20.0) * 100) / 100, places=9)
+        self.assertAlmostEqual(raw_prop(panel.target, "maximum"), top - 0.006, places=9)
+        self.assertIn("°", panel.target.text())
+        panel.target.setProperty("rawValue", now + 18.0)
         settle()
-        self.assertIn("outside", panel.message.text())
-        self.assertIn(joint.Label, panel.message.text())
-        self.assertIn("cc0000", panel.message.styleSheet())
-        self.assertFalse(panel.ok_button().isEnabled(), "OK stays enabled outside the limits")
-        self.assertFalse(panel.accept())
-        self.assertTrue(Gui.Control.activeDialog(), "the panel closed outside the limits")
-        for p, q in zip(moving, start):
-            self.assertTrue(same(p.Placement, q, 1e-12), "a value outside the limits moved %s" % p.Label)
-        shot("panel-drive-outside-limits")
+        self.assertAlmostEqual(operations.drive_value(joint), raw_of(panel.target), places=7)
+        # The arrows and the keyboard's steps stop at the limit: 5 degrees up from 2 below it.
+        panel.target.stepBy(5)
+        settle()
+        # (the box shows two decimals: its end is the limit rounded inwards, which drives to the
+        # limit itself; a box whose end was the limit rounded up, past it, took no step at all)
+        self.assertAlmostEqual(raw_of(panel.target), top - 0.006, places=9)
+        self.assertNotIn("outside", panel.message.text())
+        self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
+        self.assertAlmostEqual(operations.drive_value(joint), top, places=7)
+        # Typed as a person types: a value within the limits is taken, one past them is not
+        # (the box and the parts stay where they were).
+        inside = round(now + 5.0, 2)
+        type_into(panel.target, "%.2f" % inside)
+        self.assertAlmostEqual(raw_of(panel.target), inside, places=9)
+        self.assertAlmostEqual(operations.drive_value(joint), inside, places=7)
+        type_into(panel.target, "%.2f" % (now + 45.0))
+        print("typed past the limit: the box reads %r, holds %r" % (panel.target.text(), raw_of(panel.target)))
+        self.assertAlmostEqual(raw_of(panel.target), inside, places=9)
+        self.assertAlmostEqual(operations.drive_value(joint), inside, places=7)
+        self.assertTrue(panel.ok_button().isEnabled())
+        panel.target.stepBy(50)
+        settle()
+        shot("panel-drive-clamped")
+        self.assertAlmostEqual(operations.drive_value(joint), top, places=7)
+        # A script's value outside the limits is still refused at the operation's door.
+        with self.assertRaisesRegex(ValueError, "outside its limits"):
+            operations.drive_to(asm, joint, now + 45.0, undo_step=False)
+        self.assertAlmostEqual(operations.drive_value(joint), top, places=7)
         panel.target.setProperty("rawValue", now - 15.0)
         settle()
         self.assertTrue(panel.ok_button().isEnabled())
@@ -1324,10 +1355,16 @@ class TestDrivePanel(Documents):
         settle()
         self.assertAlmostEqual(operations.drive_value(slider), 0.4, places=6)
         self.assertTrue(panel.ok_button().isEnabled())
-        panel.target.setProperty("rawValue", 0.7)
+        self.assertEqual((raw_prop(panel.target, "minimum"), raw_prop(panel.target, "maximum")), (-0.5, 0.5))
+        panel.target.setProperty("rawValue", 0.7)  # past the limit: not taken
         settle()
-        self.assertIn("outside", panel.message.text())
+        self.assertEqual(raw_of(panel.target), 0.4)
         self.assertAlmostEqual(operations.drive_value(slider), 0.4, places=6)
+        panel.target.stepBy(1)  # a step of 1 mm up from 0.4 stops at 0.5
+        settle()
+        self.assertEqual(raw_of(panel.target), 0.5)
+        self.assertNotIn("outside", panel.message.text())
+        self.assertAlmostEqual(operations.drive_value(slider), 0.5, places=6)
         panel.reject()
         settle()
         self.assertAlmostEqual(operations.drive_value(slider), 0.0, places=6)
@@ -1343,6 +1380,25 @@ class TestDrivePanel(Documents):
 
 def raw_of(box):
     return float(box.property("rawValue"))
+
+
+def type_into(box, text):
+    """`text` typed into spin box `box` as a person types it (its text selected, then key after
+    key through Qt key events, then the focus elsewhere; Return would press the panel's OK)."""
+    box.setFocus()
+    box.selectAll()
+    for char in text:
+        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
+            QtWidgets.QApplication.sendEvent(box, QtGui.QKeyEvent(kind, 0, QtCore.Qt.NoModifier, char))
+    settle()
+    box.clearFocus()
+    settle()
+
+
+def raw_prop(box, name):
+    """A quantity spin box's minimum or maximum, as a number."""
+    value = box.property(name)
+    return float(getattr(value, "Value", value))
 
 
 def answer_save_dialog(path, tries=100):
@@ -1700,6 +1756,211 @@ class TestCouplings(Documents):
         self.assertGreater(orange, 30, "no orange marker drawn in %s" % path)
 
 
+def selection_green(view):
+    """The rendered view's selection-green pixels (FreeCAD draws a selected edge so)."""
+    image = rendered(view, os.path.join(OUT, "_selected.png"))
+    mask = (image[:, :, 1] > 150) & (image[:, :, 0] < 110) & (image[:, :, 2] < 110)
+    return int(mask.sum())
+
+
+def selected_refs():
+    """{(object name, sub-element)} of the selection now."""
+    return {(s.Object.Name, name) for s in Gui.Selection.getSelectionEx() for name in s.SubElementNames}
+
+
+class TestPanelFixes(Documents):
+    """What the first designer's audit left as found in the joint and Drive panels: joints named
+    from their parts, the picked references highlighted while the panel is open, the fields
+    greyed out until the joint is made, the units following the type, the Drive's box clamped."""
+
+    def pick(self, e1, e2, kind="Revolute"):
+        """The joint command with nothing selected, then the two references picked in it."""
+        from dispcon_fc.panels import joint as jp
+
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Dispcon_Joint" + kind)
+        settle()
+        panel = jp.current()
+        self.assertTrue(panel.picking)
+        Gui.Selection.addSelection(*e1)
+        settle()
+        Gui.Selection.addSelection(*e2)
+        settle()
+        self.assertFalse(panel.picking)
+        self.assertIsNotNone(panel.joint)
+        return panel
+
+    open = TestJointPanel.open
+
+    def test_joints_named_from_their_parts_in_the_tree_and_the_drive_list(self):
+        from dispcon_fc import operations
+        from dispcon_fc.panels import drive
+
+        asm, base, arm, e1, e2 = self.arm()
+        panel = self.pick(e1, e2)
+        self.assertEqual(panel.joint.Label, "Base-Arm")
+        self.assertIn("Base-Arm holds", panel.message.text())
+        panel.ok_button().click()
+        settle()
+        joint = operations.joints(asm)[0]
+        self.assertEqual(joint.Label, "Base-Arm")
+        self.assertIsNotNone(tree_icon("Base-Arm"), "the tree does not list Base-Arm")
+        # A second joint between the same parts: numbered, unique.
+        panel = self.pick(e1, e2, "Slider")
+        self.assertEqual(panel.joint.Label, "Base-Arm001")
+        panel.ok_button().click()
+        settle()
+        d = drive.open_panel(asm, joint)
+        settle()
+        items = [d.joint_box.itemText(k) for k in range(d.joint_box.count())]
+        self.assertEqual(items, ["Base-Arm (Revolute)", "Base-Arm001 (Slider)"])
+        self.assertIn("Base-Arm", d.message.text())
+        d.reject()
+        settle()
+        # A label typed by a person stays through Pick again; one its parts gave follows them.
+        joint.Label = "Main pin"
+        panel = jp_edit(joint)
+        QtCore.QTimer.singleShot(0, panel.pick_button.click)
+        settle()
+        Gui.Selection.addSelection(*e1)
+        Gui.Selection.addSelection(*e2)
+        settle()
+        self.assertEqual(panel.joint.Label, "Main pin")
+        panel.reject()
+        settle()
+        self.assertEqual(sorted(j.Label for j in operations.joints(asm)), ["Base-Arm001", "Main pin"])
+
+    def test_the_picked_references_stay_highlighted_until_ok_or_cancel(self):
+        asm, base, arm, e1, e2 = self.arm()
+        view = self.view()
+        view.viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
+        Gui.Selection.clearSelection()
+        settle()
+        self.assertEqual(selection_green(view), 0, "green before anything is picked")
+        for close in ("ok", "cancel"):
+            panel = self.pick(e1, e2)
+            refs = {(o.Name, sub) for o, sub in panel.refs}
+            self.assertEqual(refs, {(e1[0].Name, e1[1]), (e2[0].Name, e2[1])})
+            settle()
+            self.assertEqual(selected_refs(), refs, "the picked references are not selected")
+            self.assertGreater(selection_green(view), 50, "the picked references are not drawn highlighted")
+            # Still so after a field's change moved the parts (the preview's solve).
+            panel.offset.setProperty("rawValue", 0.6)
+            settle()
+            self.assertEqual(selected_refs(), refs)
+            self.assertGreater(selection_green(view), 50)
+            if close == "ok":
+                shot("panel-references-highlighted")
+                panel.ok_button().click()
+            else:
+                panel.reject()
+            settle()
+            self.assertFalse(Gui.Control.activeDialog())
+            self.assertEqual(Gui.Selection.getSelectionEx(), [], "a selection left behind at %s" % close)
+            self.assertEqual(selection_green(view), 0, "green left behind at %s" % close)
+        # A joint opened for editing shows its references too, and lets go of them at Cancel.
+        from dispcon_fc import operations
+
+        joint = operations.joints(asm)[0]
+        self.assertTrue(joint.ViewObject.Proxy.doubleClicked(joint.ViewObject))
+        settle()
+        self.assertEqual(selected_refs(), {(e1[0].Name, e1[1]), (e2[0].Name, e2[1])})
+        close_dialog()
+        self.assertEqual(Gui.Selection.getSelectionEx(), [])
+
+    def test_fields_greyed_out_with_a_reason_until_the_joint_is_made(self):
+        from dispcon_fc.panels import joint as jp
+
+        asm, base, arm, e1, e2 = self.arm()
+        Gui.Selection.clearSelection()
+        Gui.runCommand("Dispcon_JointRevolute")
+        settle()
+        panel = jp.current()
+        fields = [panel.reverse, panel.offset, *panel.frame, *panel.shift, panel.has_rotation, panel.rot_min,
+                  panel.rot_max]
+
+        def greyed(why):
+            for w in fields:
+                self.assertFalse(w.isEnabled(), "%s is editable %s" % (w.objectName() or w.text(), why))
+                self.assertIn("Pick both references first", w.toolTip(), w.objectName())
+            self.assertTrue(panel.type_box.isEnabled())
+
+        greyed("before anything is picked")
+        shot("panel-greyed-while-picking")
+        Gui.Selection.addSelection(*e1)
+        settle()
+        greyed("with one reference")
+        Gui.Selection.addSelection(*e2)
+        settle()
+        self.assertIsNotNone(panel.joint)
+        for w in (panel.reverse, panel.offset, *panel.frame, *panel.shift, panel.has_rotation):
+            self.assertTrue(w.isEnabled(), w.objectName() or w.text())
+            self.assertNotIn("Pick both references first", w.toolTip())
+            self.assertTrue(w.toolTip().strip())
+        # Min and max follow their tick box.
+        self.assertFalse(panel.rot_min.isEnabled())
+        panel.has_rotation.setChecked(True)
+        settle()
+        self.assertTrue(panel.rot_min.isEnabled() and panel.rot_max.isEnabled())
+        QtCore.QTimer.singleShot(0, panel.pick_button.click)
+        settle()
+        greyed("while picking again")
+        panel.reject()
+
+    def test_each_fields_unit_follows_the_type(self):
+        panel, asm, base, arm = self.open("Revolute")
+
+        def unit_of(box):
+            return box.property("unit") if isinstance(box.property("unit"), str) else str(box.text())
+
+        for kind, checks in (("Screw", ((panel.pitch, "mm"), (panel.phase, "mm"))),
+                             ("Gears", ((panel.phase, "°"),)),
+                             ("Belt", ((panel.phase, "°"),)),
+                             ("Revolute", ((panel.rot_min, "°"), (panel.offset, "mm"))),
+                             ("Screw", ((panel.pitch, "mm"), (panel.phase, "mm"), (panel.tr_min, "mm")))):
+            seen = panel.type_box.currentText()
+            panel.type_box.setCurrentText(kind)
+            settle()
+            self.assertIsNotNone(panel.joint, "%s after %s: %s" % (kind, seen, panel.message.text()))
+            for box, unit in checks:
+                text = box.text()
+                self.assertTrue(text.endswith(unit), "%s: %s reads %r, not in %s" % (kind, box.objectName(), text, unit))
+                other = {"mm": "°", "°": "mm"}[unit]
+                self.assertNotIn(other, text, "%s: %s reads %r" % (kind, box.objectName(), text))
+            if kind == "Screw":
+                self.assertIn("per turn", panel.groups["pitch"].findChildren(QtWidgets.QLabel)[0].text())
+                self.assertIn("Engine's phase", panel.engine_phase.text())
+                self.assertIn("mm", panel.engine_phase.text(), "%s after %s (%s, its Phase a %s)" % (
+                    kind, seen, panel.joint.JointType, panel.joint.getTypeIdOfProperty("Phase")))
+            if kind in ("Gears", "Belt"):
+                self.assertIn("°", panel.engine_phase.text())
+                self.assertNotIn("mm", panel.engine_phase.text())
+        shot("panel-screw-units")
+        # A type the references cannot make (a rack needs a straight edge): back to picking, and
+        # nothing in the previous type's unit is left (the gears' phase was in degrees).
+        panel.type_box.setCurrentText("Gears")
+        settle()
+        self.assertIn("°", panel.engine_phase.text())
+        panel.type_box.setCurrentText("RackPinion")
+        settle()
+        self.assertIsNone(panel.joint)
+        self.assertIn("straight edge", panel.message.text())
+        self.assertNotIn("°", panel.engine_phase.text())
+        self.assertTrue(panel.phase.text().endswith("mm"), panel.phase.text())
+        self.assertTrue(panel.radius.text().endswith("mm"), panel.radius.text())
+        panel.reject()
+
+
+def jp_edit(joint):
+    """The joint panel opened on `joint` (as a double-click in the tree opens it)."""
+    from dispcon_fc.panels import joint as jp
+
+    joint.ViewObject.Proxy.doubleClicked(joint.ViewObject)
+    settle()
+    return jp.current()
+
+
 def run_in_gui(classes, status_name):
     """Starts the workbench in this FreeCAD at 1280x900, runs the unittest classes, writes 0 to
     <out>/<status_name> when every test passed (1 otherwise) and quits FreeCAD."""
@@ -1729,7 +1990,8 @@ def run_in_gui(classes, status_name):
 
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestCouplings)
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestCouplings,
+                                    TestPanelFixes)
                 if not only or only in cls.__name__], "status-workbench")
 
 

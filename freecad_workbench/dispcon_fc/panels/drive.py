@@ -3,8 +3,11 @@ a Slider or PointOnLine (its travel, in mm), type where it goes, and the linkage
 
 Like the joint panel, it holds one transaction open from the moment it opens: every drive it
 previews is inside it, so OK is one undo step and Cancel aborts it, which puts every part back.
-A value outside the joint's limits is said in the panel and disables OK, before anything moves;
+The box's range is the joint's limits, so a value outside them cannot be typed (drive_to refuses
+one from a script, said in the panel, before anything moves);
 a drive that locks on the way stops there and says where."""
+import math
+
 import FreeCADGui as Gui
 
 from .. import operations, panels
@@ -14,6 +17,7 @@ from ..resources import icon_path
 from .joint import markers_icon, quantity_box, raw
 
 UNIT_TEXT = {"deg": "°", "mm": " mm"}
+FULL_RANGE = 1e6  # a joint without limits: degrees or mm either way
 
 
 def drivable_joints(asm):
@@ -64,7 +68,7 @@ class DrivePanel(TransactionPanel):
         self.limits.setObjectName("limits")
         self.limits.setWordWrap(True)
         form.addRow("Limits", self.limits)
-        self.target = quantity_box("deg", -1e6, 1e6)
+        self.target = quantity_box("deg", -FULL_RANGE, FULL_RANGE)
         self.target.setObjectName("target")
         self.target.setToolTip("Where the joint goes, measured as its limits are (from where it was "
                                "made); the parts follow as you type")
@@ -100,8 +104,16 @@ class DrivePanel(TransactionPanel):
             return
         limits = operations.drive_limits(j)
         self.limits.setText("%g%s .. %g%s" % (limits[0], unit, limits[1], unit) if limits else "none")
-        self.busy = True  # the box's new unit and value are no drive
+        self.busy = True  # the box's new unit, range and value are no drive
         self.target.setProperty("unit", self.unit())
+        # The box's range is the joint's limits (the arrows and the keyboard stop there); a joint
+        # without limits keeps the full range. drive_to refuses a value outside them all the same.
+        # The box holds its decimals: a limit between two of its steps (66.736 in a box of two
+        # decimals) is its end rounded inwards (66.73), which value() reads as the limit.
+        lo, hi = limits if limits else (-FULL_RANGE, FULL_RANGE)
+        scale = 1.0 / self.step()
+        self.target.setProperty("minimum", math.ceil(lo * scale - 1e-6) / scale)
+        self.target.setProperty("maximum", math.floor(hi * scale + 1e-6) / scale)
         self.target.setProperty("rawValue", round(now, 9))
         self.busy = False
         self._show_now()
@@ -112,10 +124,24 @@ class DrivePanel(TransactionPanel):
         # As the limits and the message write it ("-5.02°"), not "-5.020°" beside "-5.02 °".
         self.now.setText("%g%s" % (operations.drive_value(self.joint()), UNIT_TEXT[self.unit()]))
 
+    def step(self):
+        """The smallest change the box shows (its last decimal)."""
+        decimals = self.target.property("decimals")
+        return 10.0 ** -(decimals if isinstance(decimals, int) else 2)
+
+    def value(self):
+        """The value the box asks for: at an end of its range, the joint's limit there itself
+        (the box's end is the limit rounded inwards to its decimals)."""
+        value = raw(self.target)
+        for limit in operations.drive_limits(self.joint()) or ():
+            if abs(value - limit) < self.step() * (1 - 1e-6):
+                return limit
+        return value
+
     # -- validation and the preview -------------------------------------------------------------
     def problem(self):
         """What is wrong with the value asked for, in the panel's words, or None."""
-        j, value, unit = self.joint(), raw(self.target), UNIT_TEXT[self.unit()]
+        j, value, unit = self.joint(), self.value(), UNIT_TEXT[self.unit()]
         limits = operations.drive_limits(j)
         if limits is not None and not limits[0] - 1e-9 <= value <= limits[1] + 1e-9:
             return "%g%s is outside %s's limits, %g%s .. %g%s." % (value, unit, j.Label, limits[0], unit,
@@ -133,7 +159,7 @@ class DrivePanel(TransactionPanel):
             self._say(bad, True)
             self._set_ok(False)
             return
-        j, value, unit = self.joint(), raw(self.target), UNIT_TEXT[self.unit()]
+        j, value, unit = self.joint(), self.value(), UNIT_TEXT[self.unit()]
         self.busy = True
         try:
             reached, arrived = operations.drive_to(self.asm, j, value, undo_step=False,

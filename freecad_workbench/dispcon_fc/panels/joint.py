@@ -43,6 +43,10 @@ FIELDS = {
 # one makes the joint again from the references.
 REMADE = ("Distance", "Parallel", "Perpendicular") + COUPLINGS
 
+# What a greyed-out field's tooltip says while the references are picked.
+WAITING = "Pick both references first: the joint is made on them, then its fields apply to it"
+
+
 def quantity_box(unit, minimum, maximum, value=0.0):
     """A Gui::QuantitySpinBox in `unit` (mm, deg) between minimum and maximum."""
     box = Gui.UiLoader().createWidget("Gui::QuantitySpinBox")
@@ -69,6 +73,7 @@ class JointPanel(TransactionPanel):
         self.transaction = operations.Transaction(self.doc, "Edit joint" if joint else "Add joint")
         self.closed = False
         self.preview = None  # the marker under the cursor while picking
+        self.picked = None  # the references' edges drawn highlighted once the joint is made
         self.form = self._build(joint.JointType if joint else joint_type)
         self._load()
         self.picking = False
@@ -165,8 +170,8 @@ class JointPanel(TransactionPanel):
                                  "Part 2's turn per turn of part 1 (pitch radii r1 / r2, or teeth z1 / z2)")
         self.radius = self._value(top, "radius", "Pinion radius", quantity_box("mm", 0, 1e6, 1.0),
                                   "The rack's travel per radian of the pinion's turn (its pitch radius)")
-        self.pitch = self._value(top, "pitch", "Pitch", quantity_box("mm", 0, 1e6, 1.0),
-                                 "The nut's travel along the screw per turn")
+        self.pitch = self._value(top, "pitch", "Pitch (per turn)", quantity_box("mm", 0, 1e6, 1.0),
+                                 "The nut's travel along the screw per turn, in mm")
         self.left = QtWidgets.QCheckBox("Left-handed thread")
         self.left.setToolTip("The nut travels the other way for the same turn")
         self.groups["pitch"].layout().addWidget(self.left)
@@ -311,9 +316,55 @@ class JointPanel(TransactionPanel):
         self.loading = was
         for name, g in self.groups.items():
             g.setVisible(name in shown)
+        self._editable()
+
+    def _editable(self):
+        """The fields editable once the joint is made on both references; while picking each is
+        greyed out, its tooltip saying why (they set a joint there is not yet)."""
+        ready = self.joint is not None and not self.picking
+        for g in self.groups.values():
+            g.setEnabled(ready)
+            for w in g.findChildren(QtWidgets.QWidget):
+                if not isinstance(w, (QtWidgets.QAbstractSpinBox, QtWidgets.QCheckBox)):
+                    continue
+                tip = w.property("dispconTip")
+                if tip is None:
+                    tip = w.toolTip()
+                    w.setProperty("dispconTip", tip)
+                w.setToolTip(tip if ready else "%s\n(%s)" % (WAITING, tip) if tip else WAITING)
         for box, check in ((self.rot_min, self.has_rotation), (self.rot_max, self.has_rotation),
                            (self.tr_min, self.has_travel), (self.tr_max, self.has_travel)):
-            box.setEnabled(check.isChecked())
+            box.setEnabled(ready and check.isChecked())
+
+    # -- the picked references, highlighted ---------------------------------------------------
+    def _highlight(self):
+        """The joint's two references selected, and drawn in the selection's green over the 3D
+        view, while the panel is open, as FreeCAD 1.x's joint panel keeps them (the panel's list
+        names them; the view shows where they are). The drawing follows the parts as the preview
+        moves them; both go at OK or Cancel."""
+        if self.closed or self._gone() or self.joint is None:
+            return
+        Gui.Selection.clearSelection()
+        for obj, sub in self.refs:
+            Gui.Selection.addSelection(self.doc.Name, obj.Name, sub)
+        self._draw_picked()
+
+    def _draw_picked(self):
+        self._hide_picked()
+        view = Gui.ActiveDocument.ActiveView if Gui.ActiveDocument else None
+        if self.joint is None or view is None or not hasattr(view, "getSceneGraph"):
+            return
+        self.picked = picked_edges(self.refs)
+        self.picked_graph = view.getSceneGraph()
+        self.picked_graph.ref()  # held while the drawing is in it (as the preview marker)
+        self.picked_graph.addChild(self.picked)
+
+    def _hide_picked(self):
+        if self.picked is not None:
+            graph, self.picked_graph = self.picked_graph, None
+            graph.removeChild(self.picked)
+            graph.unref()
+            self.picked = None
 
     # -- picking -----------------------------------------------------------------------------
     def _start_picking(self, keep=()):
@@ -321,14 +372,19 @@ class JointPanel(TransactionPanel):
         self.picking = True
         self.refs = list(keep)
         self._list_refs()
+        self._hide_picked()
+        # No joint now: no engine's phase (it was the joint's, in its type's unit).
+        self.engine_phase.setText("")
         if not keep:
             Gui.Selection.clearSelection()
+        self._editable()
         self._say("Pick %s." % PICK[self.type_box.currentText()])
         self._set_ok(False)
 
     def _forget(self):
-        """A panel whose document or form is gone stops listening and drops its preview."""
+        """A panel whose document or form is gone stops listening and drops its drawings."""
         self._hide_preview()
+        self._hide_picked()
         Gui.Selection.removeObserver(self)
 
     def addSelection(self, doc, name, sub, pos):
@@ -396,11 +452,13 @@ class JointPanel(TransactionPanel):
             return
         self._hide_preview()
         if self.joint is not None:
-            label = self.joint.Label
+            # A label its parts gave it follows the new parts; one typed, or a type's name from
+            # an earlier workbench (Revolute001), stays.
+            label = None if operations.named_from_parts(self.joint) else self.joint.Label
             self.doc.removeObject(self.joint.Name)
             self.joint = None
             self._create()
-            if self.joint is not None:
+            if self.joint is not None and label is not None:
                 self.joint.Label = label
         else:
             self._create()
@@ -408,7 +466,7 @@ class JointPanel(TransactionPanel):
     def _create(self):
         try:
             self.joint = operations.add_joint(self.asm, self.type_box.currentText(), self.refs[0],
-                                              self.refs[1], undo_step=False)
+                                              self.refs[1], undo_step=False, named_by_parts=True)
         except ValueError as e:
             self._start_picking()
             self._say(str(e), True)
@@ -417,7 +475,9 @@ class JointPanel(TransactionPanel):
         self.refs = [(r[0], r[1][0] if r[1] else "") for r in (self.joint.Reference1, self.joint.Reference2)]
         self._list_refs()
         self._load_values()
+        self._editable()
         self._changed()
+        self._highlight()
 
     def _type_changed(self, kind):
         self._show_fields()
@@ -491,6 +551,7 @@ class JointPanel(TransactionPanel):
             self._set_ok(False)
             return
         self._set_ok(True)
+        self._draw_picked()  # where the preview moved the parts
         self._load_values()  # the offset and phase the solve kept (made at the poses, or the one typed)
         if r.converged:
             self._say("%s holds%s." % (self.joint.Label, "" if r.message == ALREADY_HELD else " (%s)" % r.message))
@@ -512,7 +573,9 @@ class JointPanel(TransactionPanel):
             return
         self.closed = True
         self._hide_preview()
+        self._hide_picked()
         Gui.Selection.removeObserver(self)
+        Gui.Selection.clearSelection()  # the references highlighted while it was open
         if commit:
             self.transaction.commit()
         else:
@@ -521,6 +584,55 @@ class JointPanel(TransactionPanel):
         Gui.Control.closeDialog()
         if Gui.ActiveDocument is not None and Gui.ActiveDocument.getInEdit() is not None:
             Gui.ActiveDocument.resetEdit()
+
+
+def picked_edges(refs):
+    """A Coin3D node drawing the edges of the references [(object, sub-element)] (a face's
+    boundary, a vertex as a dot) in the selection's green over the view, unpickable: FreeCAD's
+    own highlight of a selected edge is drawn by the view's renderer only, so this one is what
+    an image of the view (and a test) sees as well."""
+    from pivy import coin
+
+    root = coin.SoSeparator()
+    root.setName("dispcon_picked")
+    style = coin.SoPickStyle()
+    style.style = coin.SoPickStyle.UNPICKABLE  # never in the way of a click on a part
+    root.addChild(style)
+    root.addChild(markers._material(markers.SELECTED))
+    lines = coin.SoDrawStyle()
+    lines.lineWidth = 4.0
+    lines.pointSize = 9.0
+    root.addChild(lines)
+    on_top = coin.SoAnnotation()
+    root.addChild(on_top)
+    points, counts, dots = [], [], []
+    for obj, sub in refs:
+        try:
+            element = obj.getSubObject(sub) if sub else obj.Shape
+        except Exception:  # an element gone: nothing to draw for it
+            continue
+        if element is None or element.isNull():
+            continue
+        dots += [(v.X, v.Y, v.Z) for v in element.Vertexes] if element.ShapeType == "Vertex" else []
+        deflection = max(element.BoundBox.DiagonalLength / 200.0, 1e-6)
+        for edge in element.Edges:
+            pts = edge.discretize(Deflection=deflection)
+            if len(pts) >= 2:
+                points += [(v.x, v.y, v.z) for v in pts]
+                counts.append(len(pts))
+    if counts:
+        coords = coin.SoCoordinate3()
+        coords.point.setValues(0, len(points), points)
+        on_top.addChild(coords)
+        line = coin.SoLineSet()
+        line.numVertices.setValues(0, len(counts), counts)
+        on_top.addChild(line)
+    if dots:
+        coords = coin.SoCoordinate3()
+        coords.point.setValues(0, len(dots), dots)
+        on_top.addChild(coords)
+        on_top.addChild(coin.SoPointSet())
+    return root
 
 
 def markers_icon(kind):
@@ -547,6 +659,7 @@ def open_panel(joint=None, asm=None, joint_type=None, refs=()):
     panels.show(panel)
     if panel.joint is not None:
         panel._changed()
+        panel._highlight()
     else:
         panel._set_ok(False)
     return panel
