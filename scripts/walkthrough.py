@@ -197,7 +197,8 @@ def main():
     panel.ok_button().click()
     gw.settle()
 
-    # 5b. Drive: the crank's joint to 40 degrees past where it is, then past its limit.
+    # 5b. Drive: the crank's joint to 40 degrees past where it is, then up against its limit
+    # (the box's range is the joint's limits: its arrows stop there).
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(j1)
     gw.settle()
@@ -210,9 +211,9 @@ def main():
     panel.target.setProperty("rawValue", now + 40.0)
     gw.settle()
     shot("wt-7b-drive")
-    panel.target.setProperty("rawValue", 170.0)
+    panel.target.stepBy(400)
     gw.settle()
-    shot("wt-7c-drive-outside-limits")
+    shot("wt-7c-drive-at-limit")
     panel.target.setProperty("rawValue", now + 40.0)
     gw.settle()
     panel.ok_button().click()

@@ -1755,6 +1755,38 @@ class TestCouplings(Documents):
                      if (lambda c: c.red() > 200 and 80 < c.green() < 160 and c.blue() < 60)(QtGui.QColor(image.pixel(x, y))))
         self.assertGreater(orange, 30, "no orange marker drawn in %s" % path)
 
+    def test_the_planetary_set_and_the_vice_as_the_docs_show_them(self):
+        # docs/images/wb-sample-planetary.png and wb-sample-vice.png: the samples solved, seen
+        # whole, the tree open on their assembly, each marker drawn (orange) once laid out.
+        from dispcon_fc import operations
+        import couplings
+
+        if not engine_couples():
+            self.skipTest("this build's engine has no coupling rows")
+        for name, build, count in (("planetary", couplings.planetary, 12), ("vice", couplings.vice, 3)):
+            doc = App.newDocument(name)  # a document of the sample's name, as the tab shows it
+            self.addCleanup(lambda n=doc.Name: n in App.listDocuments() and App.closeDocument(n))
+            activate(doc)
+            asm, _ = build(doc)
+            self.assertTrue(operations.solve(asm).converged, name)
+            self.assertEqual(len(operations.joints(asm)), count, name)
+            view = self.view()
+            view.viewIsometric()
+            Gui.SendMsgToActiveView("ViewFit")
+            laid_out()
+            tabs = mw().findChild(QtWidgets.QTabWidget, "combiTab")  # the Combo View's
+            if tabs is not None:
+                tabs.setCurrentIndex(0)  # the tree
+            path = shot("sample-" + name)
+            image = QtGui.QImage(path)
+            orange = sum(1 for x in range(0, image.width(), 3) for y in range(0, image.height(), 3)
+                         if (lambda c: c.red() > 200 and 80 < c.green() < 160 and c.blue() < 60)(
+                             QtGui.QColor(image.pixel(x, y))))
+            self.assertGreater(orange, 10 * count, "%s: too few orange marker pixels in %s" % (name, path))
+            Gui.Selection.clearSelection()
+            App.closeDocument(doc.Name)
+            settle()
+
 
 def selection_green(view):
     """The rendered view's selection-green pixels (FreeCAD draws a selected edge so)."""

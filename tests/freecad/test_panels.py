@@ -53,9 +53,10 @@ class JointNames(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.mkdtemp()
         self.doc = App.newDocument("names")
+        self.duplicates = App.ParamGet(DUPLICATE_LABELS).GetBool("DuplicateLabels", False)
 
     def tearDown(self):
-        App.ParamGet(DUPLICATE_LABELS).RemBool("DuplicateLabels")
+        App.ParamGet(DUPLICATE_LABELS).SetBool("DuplicateLabels", self.duplicates)  # as it was
         close_all()
 
     def test_named_from_their_parts_unique_in_the_check_and_through_a_reopen(self):
