@@ -66,6 +66,49 @@ def _coin():
     return coin
 
 
+def overlay(name, line_width):
+    """An unpickable group drawn in the selection's green over everything of the view (a
+    highlight of edges): (its root, named `name`, and the group to add what it draws to)."""
+    coin = _coin()
+    root = coin.SoSeparator()
+    root.setName(name)
+    style = coin.SoPickStyle()
+    style.style = coin.SoPickStyle.UNPICKABLE  # never in the way of a click on a part
+    root.addChild(style)
+    root.addChild(_material(SELECTED))
+    lines = coin.SoDrawStyle()
+    lines.lineWidth = line_width
+    lines.pointSize = 2 * line_width
+    root.addChild(lines)
+    on_top = coin.SoAnnotation()
+    root.addChild(on_top)
+    return root, on_top
+
+
+def add_edges(group, shapes):
+    """Draws the edges of each shape (a part's, an edge, a face's boundary) in `group` as lines,
+    each discretized to 1/200 of its shape's size; an edge that cannot be is left out."""
+    coin = _coin()
+    points, counts = [], []
+    for shape in shapes:
+        deflection = max(shape.BoundBox.DiagonalLength / 200.0, 1e-6)
+        for edge in shape.Edges:
+            try:
+                pts = edge.discretize(Deflection=deflection)
+            except Exception:
+                continue
+            if len(pts) >= 2:
+                points += [(v.x, v.y, v.z) for v in pts]
+                counts.append(len(pts))
+    if counts:
+        coords = coin.SoCoordinate3()
+        coords.point.setValues(0, len(points), points)
+        group.addChild(coords)
+        line = coin.SoLineSet()
+        line.numVertices.setValues(0, len(counts), counts)
+        group.addChild(line)
+
+
 def _material(colour, transparency=0.0):
     coin = _coin()
     m = coin.SoMaterial()

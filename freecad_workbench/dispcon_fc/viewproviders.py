@@ -336,7 +336,6 @@ class _Highlight:
             QtCore.QTimer.singleShot(0, self.redraw)
 
     def redraw(self):
-        from pivy import coin
         import Part
 
         self.pending = False
@@ -347,39 +346,17 @@ class _Highlight:
                  for p in nested_parts(doc.getObject(name))]
         self.parts = {p.Name for p in links}
         self.root.removeAllChildren()
-        style = coin.SoPickStyle()
-        style.style = coin.SoPickStyle.UNPICKABLE  # never in the way of a click on a part
-        self.root.addChild(style)
-        self.root.addChild(markers._material(markers.SELECTED))
-        lines = coin.SoDrawStyle()
-        lines.lineWidth = 3.0
-        self.root.addChild(lines)
-        on_top = coin.SoAnnotation()
-        self.root.addChild(on_top)
-        points, counts = [], []
+        drawn, on_top = markers.overlay("dispcon_instance_edges", 3.0)
+        self.root.addChild(drawn)
+        shapes = []
         for link in links:
             try:
                 shape = Part.getShape(link)
             except Exception:  # a link whose file is gone: nothing to draw
                 continue
-            if shape.isNull():
-                continue
-            deflection = max(shape.BoundBox.DiagonalLength / 200.0, 1e-6)
-            for edge in shape.Edges:
-                try:
-                    pts = edge.discretize(Deflection=deflection)
-                except Exception:
-                    continue
-                if len(pts) >= 2:
-                    points += [(v.x, v.y, v.z) for v in pts]
-                    counts.append(len(pts))
-        if counts:
-            coords = coin.SoCoordinate3()
-            coords.point.setValues(0, len(points), points)
-            on_top.addChild(coords)
-            line = coin.SoLineSet()
-            line.numVertices.setValues(0, len(counts), counts)
-            on_top.addChild(line)
+            if not shape.isNull():
+                shapes.append(shape)
+        markers.add_edges(on_top, shapes)
 
     def remove(self):
         graph, self.graph = self.graph, None

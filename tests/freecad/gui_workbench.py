@@ -888,6 +888,16 @@ class TestRestored(unittest.TestCase):
             self.assertIn("%s: %s" % (asm.Label, asm.LastSolve), mw().statusBar().currentMessage())
 
 
+def picking_panel(kind="Revolute"):
+    """The joint panel of a `kind` joint opened with nothing selected: picking."""
+    from dispcon_fc.panels import joint as jp
+
+    Gui.Selection.clearSelection()
+    Gui.runCommand("Dispcon_Joint" + kind)
+    settle()
+    return jp.current()
+
+
 class TestJointPanel(Documents):
     def open(self, kind="Revolute"):
         from dispcon_fc.panels import joint as jp
@@ -1080,13 +1090,8 @@ class TestJointPanel(Documents):
         self.assertTrue(same(arm.Placement, before))
 
     def test_picking_in_the_panel(self):
-        from dispcon_fc.panels import joint as jp
-
         asm, base, arm, e1, e2 = self.arm()
-        Gui.Selection.clearSelection()
-        Gui.runCommand("Dispcon_JointRevolute")
-        settle()
-        panel = jp.current()
+        panel = picking_panel()
         self.assertTrue(panel.picking)
         self.assertIn("circular", panel.message.text())
         # Nothing to keep yet: OK is greyed out until the joint is made, and there is nothing
@@ -1750,10 +1755,7 @@ class TestCouplings(Documents):
         self.view().viewIsometric()
         Gui.SendMsgToActiveView("ViewFit")
         path = shot("gear-train")
-        image = QtGui.QImage(path)
-        orange = sum(1 for x in range(0, image.width(), 3) for y in range(0, image.height(), 3)
-                     if (lambda c: c.red() > 200 and 80 < c.green() < 160 and c.blue() < 60)(QtGui.QColor(image.pixel(x, y))))
-        self.assertGreater(orange, 30, "no orange marker drawn in %s" % path)
+        self.assertGreater(orange_pixels(path), 30, "no orange marker drawn in %s" % path)
 
     def test_the_planetary_set_and_the_vice_as_the_docs_show_them(self):
         # docs/images/wb-sample-planetary.png and wb-sample-vice.png: the samples solved, seen
@@ -1778,14 +1780,17 @@ class TestCouplings(Documents):
             if tabs is not None:
                 tabs.setCurrentIndex(0)  # the tree
             path = shot("sample-" + name)
-            image = QtGui.QImage(path)
-            orange = sum(1 for x in range(0, image.width(), 3) for y in range(0, image.height(), 3)
-                         if (lambda c: c.red() > 200 and 80 < c.green() < 160 and c.blue() < 60)(
-                             QtGui.QColor(image.pixel(x, y))))
-            self.assertGreater(orange, 10 * count, "%s: too few orange marker pixels in %s" % (name, path))
+            self.assertGreater(orange_pixels(path), 10 * count, "%s: too few orange marker pixels in %s" % (name, path))
             Gui.Selection.clearSelection()
             App.closeDocument(doc.Name)
             settle()
+
+
+def orange_pixels(path):
+    """The markers' orange pixels of the image at `path`, one pixel in 3 x 3 counted."""
+    image = QtGui.QImage(path)
+    return sum(1 for x in range(0, image.width(), 3) for y in range(0, image.height(), 3)
+               if (lambda c: c.red() > 200 and 80 < c.green() < 160 and c.blue() < 60)(QtGui.QColor(image.pixel(x, y))))
 
 
 def selection_green(view):
@@ -1807,12 +1812,7 @@ class TestPanelFixes(Documents):
 
     def pick(self, e1, e2, kind="Revolute"):
         """The joint command with nothing selected, then the two references picked in it."""
-        from dispcon_fc.panels import joint as jp
-
-        Gui.Selection.clearSelection()
-        Gui.runCommand("Dispcon_Joint" + kind)
-        settle()
-        panel = jp.current()
+        panel = picking_panel(kind)
         self.assertTrue(panel.picking)
         Gui.Selection.addSelection(*e1)
         settle()
@@ -1902,13 +1902,8 @@ class TestPanelFixes(Documents):
         self.assertEqual(Gui.Selection.getSelectionEx(), [])
 
     def test_fields_greyed_out_with_a_reason_until_the_joint_is_made(self):
-        from dispcon_fc.panels import joint as jp
-
         asm, base, arm, e1, e2 = self.arm()
-        Gui.Selection.clearSelection()
-        Gui.runCommand("Dispcon_JointRevolute")
-        settle()
-        panel = jp.current()
+        panel = picking_panel()
         fields = [panel.reverse, panel.offset, *panel.frame, *panel.shift, panel.has_rotation, panel.rot_min,
                   panel.rot_max]
 

@@ -593,19 +593,8 @@ def picked_edges(refs):
     an image of the view (and a test) sees as well."""
     from pivy import coin
 
-    root = coin.SoSeparator()
-    root.setName("dispcon_picked")
-    style = coin.SoPickStyle()
-    style.style = coin.SoPickStyle.UNPICKABLE  # never in the way of a click on a part
-    root.addChild(style)
-    root.addChild(markers._material(markers.SELECTED))
-    lines = coin.SoDrawStyle()
-    lines.lineWidth = 4.0
-    lines.pointSize = 9.0
-    root.addChild(lines)
-    on_top = coin.SoAnnotation()
-    root.addChild(on_top)
-    points, counts, dots = [], [], []
+    root, on_top = markers.overlay("dispcon_picked", 4.0)
+    elements, dots = [], []
     for obj, sub in refs:
         try:
             element = obj.getSubObject(sub) if sub else obj.Shape
@@ -613,20 +602,9 @@ def picked_edges(refs):
             continue
         if element is None or element.isNull():
             continue
+        elements.append(element)
         dots += [(v.X, v.Y, v.Z) for v in element.Vertexes] if element.ShapeType == "Vertex" else []
-        deflection = max(element.BoundBox.DiagonalLength / 200.0, 1e-6)
-        for edge in element.Edges:
-            pts = edge.discretize(Deflection=deflection)
-            if len(pts) >= 2:
-                points += [(v.x, v.y, v.z) for v in pts]
-                counts.append(len(pts))
-    if counts:
-        coords = coin.SoCoordinate3()
-        coords.point.setValues(0, len(points), points)
-        on_top.addChild(coords)
-        line = coin.SoLineSet()
-        line.numVertices.setValues(0, len(counts), counts)
-        on_top.addChild(line)
+    markers.add_edges(on_top, elements)
     if dots:
         coords = coin.SoCoordinate3()
         coords.point.setValues(0, len(dots), dots)
