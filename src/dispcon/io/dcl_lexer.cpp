@@ -102,8 +102,25 @@ bool exact_decimal(std::uint64_t m, int digits, int after, double& value) {
   return true;
 }
 
+// Whether the eight bytes at p are all digits, and if so their number: each byte's high nibble
+// is 3 and adding 6 leaves it 3 only for '0' to '9'; then the digits summed in pairs, fours and
+// eights by three multiplications (the bytes in memory order, the first the most significant).
+bool eight_digits(const char* p, std::uint64_t& v) {
+  std::uint64_t x;
+  std::memcpy(&x, p, sizeof x);
+  if (((x & 0xF0F0F0F0F0F0F0F0) | (((x + 0x0606060606060606) & 0xF0F0F0F0F0F0F0F0) >> 4)) !=
+      0x3333333333333333)
+    return false;
+  x = (x & 0x0F0F0F0F0F0F0F0F) * 2561 >> 8;
+  x = (x & 0x00FF00FF00FF00FF) * 6553601 >> 16;
+  v = (x & 0x0000FFFF0000FFFF) * 42949672960001 >> 32;
+  return true;
+}
+
 // The digits of `p`..`end` with at most one point, as far as they go: their whole number, their
-// count and how many follow the point. Returns where they stop.
+// count and how many follow the point. Returns where they stop. The digits after a point, the
+// bulk of a file's long numbers ("0.7648421872844885"), eight at a time while eight come: m
+// gets the same value (modulo 2^64, as digit by digit past 19 digits).
 const char* scan_decimal(const char* p, const char* end, std::uint64_t& m, int& digits,
                          int& after) {
   m = 0;
@@ -116,6 +133,12 @@ const char* scan_decimal(const char* p, const char* end, std::uint64_t& m, int& 
       ++digits;
     } else if (*p == '.' && point < 0) {
       point = digits;
+      std::uint64_t eight = 0;
+      while (end - p > 8 && eight_digits(p + 1, eight)) {
+        m = 100000000 * m + eight;
+        digits += 8;
+        p += 8;
+      }
     } else {
       break;
     }
