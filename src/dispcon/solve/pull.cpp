@@ -619,6 +619,13 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
           const double c3 = 2 * (d2 - d1) / (tp - t);
           if (c3 > 0 && d1 - 0.5 * c3 * t < 0) curvature = c3, s1 = d1 - 0.5 * c3 * t;
         }
+        // A turn whose valid poses rise above the start both here and at a quarter or less of
+        // the last point tried: not a curve that falls from its start (its slope is negative),
+        // but corrections that jump off it (a bound held as a row from a pose inside it: the
+        // corrections put the part at the bound whatever t). A shorter t rises as well and
+        // takes as many corrections (the otary's tail turned about x: a third point of 6
+        // corrections, rising, on each of its steps undone): the step is undone now.
+        if (turn && ht > h0 && tp > 0 && hp > h0 && t <= 0.25 * tp) break;
         const double least = curvature > 0 ? -s1 / curvature : HUGE_VAL;
         // The parabola's least value, and what the point tried gave of it.
         const double lowest = curvature > 0 ? h0 + 0.5 * s1 * least : -HUGE_VAL;
