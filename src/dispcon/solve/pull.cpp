@@ -74,6 +74,16 @@ constexpr double kCloseEnough = 0.25;
 // kMaxStretch times its model's length) rather than by lowering the damping.
 constexpr double kBends = 1e-3;
 constexpr double kMaxStretch = 2;
+// The share of the first-order gain of a turn's step cut short by the seed's turn that what its
+// corrections leave may move h by (a hundredth elsewhere). A far turn's steps are mostly cut
+// short (a light body asked to turn far more than the held one, the monocycle's foot 6-14 rad,
+// limits them to 2-15 % of the step), and corrections were about 60 % of a far turn's
+// iterations, two or three a point: mostly one now, the next step correcting the rest. Measured
+// on the sweep (far_targets_test.cpp): at 0.1 no step loses a nearest pose; at 0.15-0.2 the
+// steering's pinion about z lost its nearest (the violation each step left grew from step to
+// step, 0.002 to 0.027, and h measured at the kept pose, off the valid poses, was lower than at
+// any valid point next to it); at 0.3 the robot arm's upper arm about z stalled.
+constexpr double kTurnCutShare = 0.1;
 
 using Vec6 = PolishWork::Vec6;
 
@@ -483,9 +493,15 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     jumped = false;
     const bool stepped = pull_step();
     if (stepped) now = measure(s, group, joint, joint_r);
-    if (stepped && widen(s, group, joint, joint_r, o.tolerance, band, holds)) {
-      // A bound the step went past is met as a row from now on (the linkage slides along it
-      // rather than the corrections undoing most of each step): the step is made again.
+    // A bound the step went past is met as a row from now on (the linkage slides along it
+    // rather than the corrections undoing most of each step): the step is made again. Not a
+    // turn's step cut short by the seed's turn (far from the nearest pose): it goes on to its
+    // curve, whose corrections, the band widened, put the part at the bound, and the next step
+    // holds it. A pull step spared each time (4 to 7 of a far turn's steps were made twice);
+    // with kTurnCutShare, the robot arm's hand turned 3 rad about z and about (1, -2, 0.5) ends
+    // at the nearest pose within the drag step's 60 iterations again (53 and 42).
+    if (stepped && widen(s, group, joint, joint_r, o.tolerance, band, holds) &&
+        !(turn && polisher.cut_short())) {
       load_poses(s, group, before);
       now = kept;
       rows.read(s, pulled, band_soft, true);
@@ -569,9 +585,11 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       // step's first order promises there (h moves by about d times the violation): within the
       // tolerance, and on a step cut short by the turn its bodies may make (a pull on its way,
       // not yet near the nearest pose: the next step corrects the rest with its own) no further
-      // than that, which spares a correction or two a step.
+      // than that, which spares a correction or two a step. A turn's step cut short: a tenth
+      // (kTurnCutShare).
+      const double share = turn && longest < 1 ? kTurnCutShare : 1e-2;
       const double gain =
-          std::max(1e-3 * o.tolerance, 1e-2 * -slope * t / std::max(kept.distance, o.tolerance));
+          std::max(1e-3 * o.tolerance, share * -slope * t / std::max(kept.distance, o.tolerance));
       const double within = longest < 1 ? gain : std::min(o.tolerance, gain);
       // A whole step's first point is first corrected as loosely as a cut-short step's; then,
       // where the valid poses bend toward the target (the next step is stretched and closes in

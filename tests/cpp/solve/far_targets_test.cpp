@@ -53,7 +53,9 @@ const Far kTargets[] = {
 //   the turn's share of the step's 60 (drag.cpp's kStepIterations) by 4: its turn undid steps
 //   whose corrected poses rose above the start at every t, each after a third point of the curve
 //   of 6 corrections; a turn's curve search now stops at the second such point (pull.cpp), and
-//   the step says iteration-limit after 55, at the same pose.
+//   the step said iteration-limit after 55, at the same pose; with a turn's steps cut short by
+//   the seed's turn made once and corrected once (pull.cpp, kTurnCutShare), after 54, 2.100001
+//   rad left (2.105644 before).
 // Since the eleventh round a drag step's turn gets what is left of the step's 60 iterations
 // (less 6 for its last correction) instead of 80 of its own: the 24 turns that ran out of those
 // 80 (83-101 in all) and the 3 that ended at the nearest pose after 65-77 say iteration-limit
