@@ -1387,7 +1387,7 @@ def raw_of(box):
     return float(box.property("rawValue"))
 
 
-def type_into(box, text):
+def type_into(box, text, finish=True):
     """`text` typed into spin box `box` as a person types it (its text selected, then key after
     key through Qt key events, then the focus elsewhere; Return would press the panel's OK)."""
     box.setFocus()
@@ -1396,8 +1396,9 @@ def type_into(box, text):
         for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
             QtWidgets.QApplication.sendEvent(box, QtGui.QKeyEvent(kind, 0, QtCore.Qt.NoModifier, char))
     settle()
-    box.clearFocus()
-    settle()
+    if finish:
+        box.clearFocus()
+        settle()
 
 
 def raw_prop(box, name):
@@ -1979,6 +1980,107 @@ class TestPanelFixes(Documents):
         panel.reject()
 
 
+class TestTypedAndPicked(Documents):
+    """The second audit's findings in the panels: a text in another unit (or past a range) said by
+    its field's name and refused, not taken as the last number the box could read; a flexible
+    sub-assembly's part picked in the joint panel as a script names it."""
+
+    open = TestJointPanel.open
+
+    def finish_typing(self, box):
+        """Editing done, as Tab or a click elsewhere ends it."""
+        box.editingFinished.emit()
+        settle()
+
+    def test_a_text_in_another_unit_is_said_by_name_and_refused(self):
+        panel, asm, base, arm = self.open("Revolute")
+        type_into(panel.offset, "3 kg", finish=False)
+        # (the box takes no "g" after "3 k": the text it holds is what is said)
+        self.assertRegex(panel.message.text(), r"^Offset: '3 kg?' is not a length \(mm\)\.$")
+        self.assertIn("cc0000", panel.message.styleSheet())
+        self.assertFalse(panel.ok_button().isEnabled(), "OK enabled with '3 kg' in a length")
+        self.assertFalse(panel.accept())
+        shot("panel-offset-in-kg")
+        self.finish_typing(panel.offset)  # the box back at what it could read, and said so
+        self.assertIn("It stays at 3 mm.", panel.message.text())
+        self.assertTrue(panel.ok_button().isEnabled())
+        type_into(panel.offset, "1/4 in")
+        self.finish_typing(panel.offset)
+        self.assertAlmostEqual(raw_of(panel.offset), 6.35, places=9)
+        self.assertIn("holds", panel.message.text())
+        self.assertTrue(panel.ok_button().isEnabled())
+        self.assertAlmostEqual(panel.joint.Offset.Value, 6.35, places=9)
+        panel.reject()
+
+    def test_the_drive_says_a_text_in_another_unit_or_past_the_limits(self):
+        from dispcon_fc import operations
+        from dispcon_fc.panels import drive
+        import parts
+
+        asm = operations.create_assembly(self.doc)
+        base = self.doc.addObject("Part::Feature", "Base")
+        base.Shape = parts.ground([(0, 0)])
+        operations.add_part(asm, base, grounded=True)
+        arm = self.doc.addObject("Part::Feature", "Arm")
+        arm.Shape = parts.link(1.5)
+        operations.add_part(asm, arm)
+        pin = (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0)))
+        slider = operations.add_joint(asm, "Slider", pin, (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))),
+                                      travel=(-0.5, 0.5))
+        self.assertTrue(operations.solve(asm).converged)
+        panel = drive.open_panel(asm, slider)
+        settle()
+        type_into(panel.target, "5 deg", finish=False)
+        self.assertRegex(panel.message.text(), r"^Drive to: '.*' is not a length \(mm\)\.$")
+        self.assertFalse(panel.ok_button().isEnabled())
+        self.assertFalse(panel.accept())
+        type_into(panel.target, "0.01 in")
+        self.finish_typing(panel.target)
+        self.assertAlmostEqual(operations.drive_value(slider), 0.254, places=6)
+        self.assertTrue(panel.ok_button().isEnabled(), panel.message.text())
+        type_into(panel.target, "2", finish=False)  # past the travel: the box takes no such key
+        self.assertLessEqual(raw_of(panel.target), 0.5)
+        self.assertAlmostEqual(operations.drive_value(slider), 0.254, places=6)
+        shot("panel-drive-typed-past")
+        panel.reject()
+
+    def test_a_flexible_legs_part_is_picked_in_the_joint_panel(self):
+        import parts
+        os.environ["DISPCON_SUB_IMPORT_ONLY"] = "1"
+        import test_subassembly as ts
+
+        tmp = tempfile.mkdtemp()
+        leg = ts.make_leg(tmp)
+        doc, asm, frame, subs = ts.make_walker(tmp, leg, rigid=False, hip_joints=("Revolute",) * 4)
+        self.addCleanup(lambda: "walker" in App.listDocuments() and App.closeDocument("walker"))
+        self.addCleanup(lambda: "leg" in App.listDocuments() and App.closeDocument("leg"))
+        activate(doc)
+        coupler = ts.part(subs[1], "Coupler")
+        pin = parts.circle_edge(coupler.LinkedObject.Shape, App.Vector(th_B(), 0, 0))
+        post = parts.circle_edge(frame.Shape, App.Vector(ts.LEGS[1][0], ts.LEGS[1][1], 0.1))
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        panel = picking_panel("Slider")
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, frame.Name, post)
+        settle()
+        Gui.Selection.addSelection(doc.Name, coupler.Name, pin)
+        settle()
+        self.assertNotIn("not a part", panel.message.text())
+        self.assertIsNotNone(panel.joint, panel.message.text())
+        self.assertEqual({panel.joint.Reference1[0], panel.joint.Reference2[0]}, {frame, coupler})
+        self.assertEqual(panel.joint.Label, "Frame-Leg2.Coupler")
+        panel.reject()
+        settle()
+        self.assertEqual(len([o for o in asm.Group if hasattr(o, "JointType")]), 4)
+
+
+def th_B():
+    from test_headless import B
+
+    return B
+
+
 def jp_edit(joint):
     """The joint panel opened on `joint` (as a double-click in the tree opens it)."""
     from dispcon_fc.panels import joint as jp
@@ -2018,7 +2120,7 @@ def run_in_gui(classes, status_name):
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
     run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestCouplings,
-                                    TestPanelFixes)
+                                    TestPanelFixes, TestTypedAndPicked)
                 if not only or only in cls.__name__], "status-workbench")
 
 

@@ -14,7 +14,7 @@ from .. import operations, panels
 from .base import TransactionPanel
 from ..qt import QtGui, QtWidgets
 from ..resources import icon_path
-from .joint import markers_icon, quantity_box, raw
+from .joint import TypedText, markers_icon, quantity_box, raw, set_unit
 
 UNIT_TEXT = {"deg": "°", "mm": " mm"}
 FULL_RANGE = 1e6  # a joint without limits: degrees or mm either way
@@ -80,6 +80,7 @@ class DrivePanel(TransactionPanel):
         top.addStretch(1)
         self.joint_box.currentIndexChanged.connect(self._joint_changed)
         self.target.valueChanged.connect(self._changed)
+        self.typing = TypedText(self, [(self.target, "Drive to")], w)
         return w
 
     def joint(self):
@@ -105,7 +106,7 @@ class DrivePanel(TransactionPanel):
         limits = operations.drive_limits(j)
         self.limits.setText("%g%s .. %g%s" % (limits[0], unit, limits[1], unit) if limits else "none")
         self.busy = True  # the box's new unit, range and value are no drive
-        self.target.setProperty("unit", self.unit())
+        set_unit(self.target, self.unit())
         # The box's range is the joint's limits (the arrows and the keyboard stop there); a joint
         # without limits keeps the full range. drive_to refuses a value outside them all the same.
         # The box holds its decimals: a limit between two of its steps (66.736 in a box of two
@@ -142,6 +143,8 @@ class DrivePanel(TransactionPanel):
     def problem(self):
         """What is wrong with the value asked for, in the panel's words, or None."""
         j, value, unit = self.joint(), self.value(), UNIT_TEXT[self.unit()]
+        if self.typing.bad:
+            return self.typing.bad
         limits = operations.drive_limits(j)
         if limits is not None and not limits[0] - 1e-9 <= value <= limits[1] + 1e-9:
             return "%g%s is outside %s's limits, %g%s .. %g%s." % (value, unit, j.Label, limits[0], unit,

@@ -13,7 +13,7 @@ import FreeCADGui as Gui
 from .. import engine, geometry, markers, operations, panels
 from ..guide import PICK
 from ..adapter import ALREADY_HELD, offered_types
-from ..objects import COUPLINGS, LENGTH_PHASE, mesh_offset, phase_value
+from ..objects import COUPLINGS, LENGTH_PHASE, mesh_offset, phase_value, placed_parts
 
 from ..qt import QtCore, QtGui, QtWidgets
 from .base import TransactionPanel
@@ -50,11 +50,87 @@ WAITING = "Pick both references first: the joint is made on them, then its field
 def quantity_box(unit, minimum, maximum, value=0.0):
     """A Gui::QuantitySpinBox in `unit` (mm, deg) between minimum and maximum."""
     box = Gui.UiLoader().createWidget("Gui::QuantitySpinBox")
-    box.setProperty("unit", unit)
+    set_unit(box, unit)
     box.setProperty("minimum", minimum)
     box.setProperty("maximum", maximum)
     box.setProperty("rawValue", value)
     return box
+
+
+def set_unit(box, unit):
+    box.setProperty("unit", unit)
+    box.setProperty("dispconUnit", unit)  # read back as it was given (typed_problem)
+
+
+UNIT_WORDS = {"mm": "a length", "deg": "an angle"}
+UNIT_SIGNS = {"mm": " mm", "deg": "°"}
+
+
+class TypedText(QtCore.QObject):
+    """Reads what is typed into a panel's quantity boxes as it is typed (typed_problem): a text
+    the box cannot take is said by its field's name, and the panel's problem() is that message
+    (OK disabled) while it stays in the box. When editing ends the box goes back to the last
+    value it could read, and the message says so."""
+
+    def __init__(self, panel, boxes, form):
+        super().__init__(form)
+        self.panel, self.names, self.bad, self.box = panel, {}, None, None
+        for box, what in boxes:
+            self.names[box.objectName() or what] = (box, what)
+            box.installEventFilter(self)
+            box.editingFinished.connect(lambda b=box: self.finished(b))
+
+    def eventFilter(self, obj, event):
+        if event.type() == QtCore.QEvent.KeyRelease:
+            for box, what in self.names.values():
+                if box is obj:  # (a key's press has changed the text by its release)
+                    self.read(box, what)
+        return False
+
+    def read(self, box, what):
+        if self.panel.closed or self.panel._gone():
+            return
+        bad = typed_problem(box, what)
+        was, self.bad, self.box = self.bad, bad, box if bad else None
+        if bad:
+            self.panel._say(bad, True)
+            self.panel._set_ok(False)
+        elif was:
+            self.panel._changed()
+
+    def finished(self, box):
+        # (a panel closing takes the focus from its box: editing ends then too)
+        if self.panel.closed or self.panel._gone() or box is not self.box:
+            return
+        said, self.bad, self.box = self.bad, None, None
+        self.panel._changed()
+        unit = box.property("dispconUnit")
+        self.panel._say("%s It stays at %g%s." % (said, raw(box), UNIT_SIGNS[unit]), True)
+
+
+def typed_problem(box, what):
+    """What is wrong with the text typed in quantity box `box` (its field `what`), or None. The
+    box keeps the last value it could read: "3 kg" typed in a length leaves it at 3 mm, and a
+    value past its range leaves it where it was; the text is read here so that neither is taken
+    without a word."""
+    import FreeCAD as App
+
+    text = box.text().strip()
+    unit = box.property("dispconUnit")
+    try:
+        q = App.Units.Quantity(text)
+    except Exception:  # FreeCAD's parser: not a quantity at all
+        return "%s: '%s' is not %s (%s)." % (what, text, UNIT_WORDS[unit], unit)
+    if q.Unit != App.Units.Unit() and q.Unit != App.Units.Quantity("1 " + unit).Unit:
+        return "%s: '%s' is not %s (%s)." % (what, text, UNIT_WORDS[unit], unit)
+    value = q.getValueAs(unit).Value if q.Unit != App.Units.Unit() else q.Value
+    decimals = box.property("decimals")
+    shown = 0.5 * 10.0 ** -(decimals if isinstance(decimals, int) else 2)
+    if abs(value - raw(box)) > shown + 1e-9 * max(1.0, abs(value)):
+        lo, hi = (float(getattr(v, "Value", v)) for v in (box.property("minimum"), box.property("maximum")))
+        sign = UNIT_SIGNS[unit]
+        return "%s: %g%s is outside %g%s .. %g%s." % (what, value, sign, lo, sign, hi, sign)
+    return None
 
 
 def raw(box):
@@ -193,6 +269,15 @@ class JointPanel(TransactionPanel):
         self.phase.valueChanged.connect(self._phase_edited)
 
         top.addStretch(1)
+        # Each quantity box by the name the panel shows it with, for what is wrong with its text.
+        self.quantities = [(self.offset, "offset", "Offset")] + [
+            (b, "frame", n) for b, n in zip(self.frame + self.shift, ("Yaw", "Pitch", "Roll", "Moved x", "Moved y"))] + [
+            (self.rot_min, "rotation", "Turn min"), (self.rot_max, "rotation", "Turn max"),
+            (self.tr_min, "travel", "Travel min"), (self.tr_max, "travel", "Travel max"), (self.cone, "cone", "Cone"),
+            (self.ang_min, "angle", "Angle min"), (self.ang_max, "angle", "Angle max"),
+            (self.distance, "distance", "Distance"), (self.radius, "radius", "Pinion radius"),
+            (self.pitch, "pitch", "Pitch"), (self.phase, "phase", "Mesh offset")]
+        self.typing = TypedText(self, [(box, what) for box, _, what in self.quantities], w)
 
         self.type_box.currentTextChanged.connect(self._type_changed)
         # (clicked passes its checked state, which is no list of references to keep)
@@ -211,7 +296,7 @@ class JointPanel(TransactionPanel):
             self.phase_edited = True
 
     def _phase_unit(self):
-        self.phase.setProperty("unit", "mm" if self.type_box.currentText() in LENGTH_PHASE else "deg")
+        set_unit(self.phase, "mm" if self.type_box.currentText() in LENGTH_PHASE else "deg")
 
     def _group(self, top, name, title):
         g = QtWidgets.QGroupBox(title) if title else QtWidgets.QWidget()
@@ -391,7 +476,9 @@ class JointPanel(TransactionPanel):
         if self._gone() or not self.picking or not sub or doc != self.doc.Name:
             return
         obj = self.doc.getObject(name)
-        if obj is None or obj not in self.asm.Group:
+        # Its own parts and those of its sub-assemblies at any depth (a flexible leg's coupler is
+        # a link in the instance's group, not the assembly's): what add_joint takes.
+        if obj is None or obj not in placed_parts(self.asm):
             self._say("%s is not a part of %s: pick on one of its parts." % (obj.Label if obj else name, self.asm.Label), True)
             return
         if self.refs and self.refs[0][0] == obj:
@@ -411,7 +498,7 @@ class JointPanel(TransactionPanel):
         if self._gone() or not self.picking or not sub or doc != self.doc.Name:
             return
         obj = self.doc.getObject(name)
-        if obj is None or obj not in self.asm.Group:
+        if obj is None or obj not in placed_parts(self.asm):
             return
         try:
             f = geometry.feature(obj, sub)
@@ -522,6 +609,8 @@ class JointPanel(TransactionPanel):
     def problem(self):
         """What is wrong with the fields, in the panel's words, or None."""
         kw = self.values()
+        if self.typing.bad:
+            return self.typing.bad
         for key, what, unit in (("rotation", "Turn", "°"), ("travel", "Travel", " mm"), ("angle", "Angle", "°")):
             pair = kw.get(key)
             if pair and pair[0] > pair[1]:
