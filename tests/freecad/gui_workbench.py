@@ -1342,17 +1342,7 @@ class TestDrivePanel(Documents):
         from dispcon_fc import operations
         import parts
 
-        asm = operations.create_assembly(self.doc)
-        base = self.doc.addObject("Part::Feature", "Base")
-        base.Shape = parts.ground([(0, 0)])
-        operations.add_part(asm, base, grounded=True)
-        arm = self.doc.addObject("Part::Feature", "Arm")
-        arm.Shape = parts.link(1.5)
-        operations.add_part(asm, arm)
-        pin = (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0)))
-        slider = operations.add_joint(asm, "Slider", pin, (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))),
-                                      travel=(-0.5, 0.5))
-        self.assertTrue(operations.solve(asm).converged)
+        asm, base, arm, pin, slider = slider_on_a_pin(self)
         Gui.SendMsgToActiveView("ViewFit")
         panel = self.open(slider)
         self.assertIn("mm", panel.target.text())
@@ -1381,6 +1371,26 @@ class TestDrivePanel(Documents):
         self.assertIn("locks", panel.message.text())
         self.assertAlmostEqual(operations.drive_value(slider), 0.0, places=6)
         panel.reject()
+
+
+def slider_on_a_pin(test):
+    """A grounded base and an arm on a Slider along the base's pin, travel -0.5 .. 0.5 mm, solved:
+    (asm, base, arm, the pin's reference, the slider)."""
+    from dispcon_fc import operations
+    import parts
+
+    asm = operations.create_assembly(test.doc)
+    base = test.doc.addObject("Part::Feature", "Base")
+    base.Shape = parts.ground([(0, 0)])
+    operations.add_part(asm, base, grounded=True)
+    arm = test.doc.addObject("Part::Feature", "Arm")
+    arm.Shape = parts.link(1.5)
+    operations.add_part(asm, arm)
+    pin = (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0)))
+    slider = operations.add_joint(asm, "Slider", pin, (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))),
+                                  travel=(-0.5, 0.5))
+    test.assertTrue(operations.solve(asm).converged)
+    return asm, base, arm, pin, slider
 
 
 def raw_of(box):
@@ -2015,19 +2025,8 @@ class TestTypedAndPicked(Documents):
     def test_the_drive_says_a_text_in_another_unit_or_past_the_limits(self):
         from dispcon_fc import operations
         from dispcon_fc.panels import drive
-        import parts
 
-        asm = operations.create_assembly(self.doc)
-        base = self.doc.addObject("Part::Feature", "Base")
-        base.Shape = parts.ground([(0, 0)])
-        operations.add_part(asm, base, grounded=True)
-        arm = self.doc.addObject("Part::Feature", "Arm")
-        arm.Shape = parts.link(1.5)
-        operations.add_part(asm, arm)
-        pin = (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0)))
-        slider = operations.add_joint(asm, "Slider", pin, (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))),
-                                      travel=(-0.5, 0.5))
-        self.assertTrue(operations.solve(asm).converged)
+        asm, base, arm, pin, slider = slider_on_a_pin(self)
         panel = drive.open_panel(asm, slider)
         settle()
         type_into(panel.target, "5 deg", finish=False)
