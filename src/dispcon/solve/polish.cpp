@@ -37,8 +37,10 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   if (!reused_) {
     small_factored_ = false;
     work.chord_of_ = nullptr;  // the dense factor and the row lists are rewritten below
-    gather(s, band, soft, let_go);
+    // A large rows-form group's measure of these poses gathered the rows already.
+    if (!(measured && !soft && !let_go && work.rows_of_ == this)) gather(s, band, soft, let_go);
   }
+  work.rows_of_ = nullptr;  // the poses move below
   const int m = reused_ && !small ? big_->chord_.rows : static_cast<int>(w_->rows_.size());
   if (m == 0 || nv_ == 0) return false;
   if (reused_ && small) {
@@ -137,8 +139,10 @@ double for_each_row(const SolverState& s, const int* first, const int* last,
 
 }  // namespace
 
-void Polisher::gather(const SolverState& s, const std::vector<double>& band,
-                      const std::vector<double>* soft, const LetGo* let_go) {
+double Polisher::gather(const SolverState& s, const std::vector<double>& band,
+                        const std::vector<double>* soft, const LetGo* let_go,
+                        std::vector<double>* joint_r) {
+  w_->rows_of_ = nullptr;
   w_->rows_.clear();
   w_->residual_.clear();
   w_->soft_.clear();
@@ -157,8 +161,8 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band,
   };
   int last = -1;
   const std::vector<int>& joints = group_->joints;
-  for_each_row(
-      s, joints.data(), joints.data() + joints.size(), band, let_go, true, nullptr,
+  const double largest = for_each_row(
+      s, joints.data(), joints.data() + joints.size(), band, let_go, true, joint_r,
       [&](int c, int v1, int v2, const PartRows& p, int k) {
         if (c != last) {
           mark_boundary();
@@ -176,6 +180,7 @@ void Polisher::gather(const SolverState& s, const std::vector<double>& band,
       [] {});
   mark_boundary();
   rows_hint_ = w_->rows_.size();
+  return largest;
 }
 
 // A small group's chord step: the rows' residuals at the current poses into the work's
@@ -221,6 +226,14 @@ double Polisher::measure(const SolverState& s, const std::vector<double>& band,
   kept_ = false;
   if (since_kept) small_factored_ = false;  // a small group's chord steps stay within a solve
   measured_ = factored_ && kkt_;
+  // A large group in the rows form after a step (w_ the step's work): the next step's rows are
+  // gathered in the same look at each joint's geometry as its residual (a pass over the
+  // 100,000-link chain's joints fewer each step; the last measure's rows go unused).
+  if (!since_kept && w_ && analyzed_ && !kkt_ && !dense() && without_couplings(s)) {
+    const double largest = gather(s, band, nullptr, nullptr, &joint_r);
+    w_->rows_of_ = this;
+    return largest;
+  }
   if (!measured_) return max_residual(s, group_->joints, joint_r);
   if (kept) return measure_moved(s, band, joint_r);
   return gather_residuals(s, band, &joint_r);
@@ -329,6 +342,8 @@ void Polisher::list_rows_by_body() {
   // step, or the next group of the same shape (the 400 four-bars list theirs once).
   const auto& rows = w_->rows_;
   const bool small = dense();
+  if (!small && lists_current_ && w_->lists_of_ == this) return;
+  w_->lists_of_ = nullptr;
   if (small && w_->listed_nv_ == nv_ && w_->listed_.size() == 2 * rows.size()) {
     size_t a = 0;
     while (a < rows.size() && rows[a].v1 == w_->listed_[2 * a] &&
@@ -361,7 +376,20 @@ void Polisher::list_rows_by_body() {
       w_->listed_[2 * a + 1] = rows[a].v2;
     }
     w_->listed_nv_ = nv_;
+  } else {
+    w_->lists_of_ = this;
+    lists_current_ = true;
   }
+}
+
+bool Polisher::without_couplings(const SolverState& s) {
+  if (without_couplings_ < 0) {
+    without_couplings_ = 1;
+    for (int c : group_->joints) {
+      if (s.joints[static_cast<size_t>(c)].joint->coupling) without_couplings_ = 0;
+    }
+  }
+  return without_couplings_ == 1;
 }
 
 }  // namespace dispcon

@@ -56,6 +56,12 @@ struct PolishWork {
   // The polisher whose small group's factorisation dense_, u_ and the row lists hold for a chord
   // step (none: nullptr).
   const void* chord_of_ = nullptr;
+  // The polisher whose measure() gathered rows_ (and residual_, joint_rows_) at the poses it
+  // measured, for its next step (none: nullptr; any other gather clears it).
+  const void* rows_of_ = nullptr;
+  // The large group whose rows var_start_ and var_rows_ list (none: nullptr; see
+  // Polisher::lists_current_).
+  const void* lists_of_ = nullptr;
 };
 
 // The bounds a pull has let go (pull.cpp): bit p of parts[c] for joint c's p-th part (as
@@ -126,8 +132,11 @@ class Polisher {
   using Vec6 = PolishWork::Vec6;
   using Entry = PolishWork::Entry;
 
-  void gather(const SolverState& s, const std::vector<double>& band,
-              const std::vector<double>* soft, const LetGo* let_go);
+  // The rows of the group's joints into the work; with `joint_r`, each joint's residual too, from
+  // the same look at its geometry (the largest returned).
+  double gather(const SolverState& s, const std::vector<double>& band,
+                const std::vector<double>* soft, const LetGo* let_go,
+                std::vector<double>* joint_r = nullptr);
   // Row a's own damping beyond lambda (a pull's), in the units of the diagonal's scale.
   double soft(int a) const { return w_->soft_.empty() ? 0 : w_->soft_[static_cast<size_t>(a)]; }
   double gather_residuals(const SolverState& s, const std::vector<double>& band,
@@ -194,6 +203,7 @@ class Polisher {
   }
   bool small_residuals(const SolverState& s, const std::vector<double>& band);
   bool factor_sparse(const SolverState& s, double lambda);
+  bool without_couplings(const SolverState& s);  // see without_couplings_
   bool same_pattern() const;
   bool solve_factored();
   // The saddle-point form on blocks (polish_blocks.cpp).
@@ -277,6 +287,13 @@ class Polisher {
   std::unique_ptr<Large> big_;  // null until the group's first sparse step
   bool kept_ = false;           // keep_measure() kept a measure in big_ (see there)
   bool analyzed_ = false;
+  // The work's row lists (var_start_, var_rows_) are of this group's analysed pattern, and the
+  // rows have kept it since: a large group's step need not list them again (set by
+  // factor_sparse(); they are read while w_->lists_of_ is this polisher).
+  bool lists_current_ = false;
+  // The group's joints have no coupling (whose rows may change between a measure and the next
+  // step, when its turns are followed): -1 until worked out.
+  int without_couplings_ = -1;
   size_t rows_hint_ = 0;  // rows of the last gather
 };
 

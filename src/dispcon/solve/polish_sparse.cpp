@@ -19,7 +19,9 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   const int m = static_cast<int>(w_->rows_.size());
   factored_ = false;
   if (!big_) big_ = std::make_unique<Large>();
-  if (!same_pattern()) {
+  const bool same = same_pattern();
+  lists_current_ = same && w_->lists_of_ == this;  // couplings() need not list the rows again
+  if (!same) {
     std::vector<double>& per_body = w_->rows_per_body_;
     per_body.assign(static_cast<size_t>(nv_), 0.0);
     for (const Entry& e : w_->rows_) {
