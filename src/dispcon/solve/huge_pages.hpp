@@ -15,9 +15,14 @@ namespace dispcon {
 inline constexpr std::size_t kHugeBytes = std::size_t{4} << 20;
 
 // `bytes` (at least kHugeBytes) of memory, 2 MB aligned, advised huge; std::bad_alloc
-// when it cannot be mapped. Handed back with unmap_huge and the same `bytes`.
+// when it cannot be mapped. Handed back with unmap_huge and the same `bytes`, which keeps up to
+// 256 MB of such buffers mapped (advised MADV_FREE, so the kernel may take their pages when it
+// needs them) for the next map_huge calls of the process: a large model's next solve writes
+// into pages it already has instead of faulting in fresh ones.
 void* map_huge(std::size_t bytes);
 void unmap_huge(void* p, std::size_t bytes) noexcept;
+// The bytes of the buffers kept for reuse now (for tests).
+std::size_t kept_huge_bytes();
 
 // A standard allocator: huge pages from kHugeBytes on, operator new below (the size decides
 // both ways, so allocate and deallocate agree).
