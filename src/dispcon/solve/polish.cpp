@@ -222,6 +222,9 @@ double Polisher::gather_residuals(const SolverState& s, const std::vector<double
 
 double Polisher::measure(const SolverState& s, const std::vector<double>& band,
                          std::vector<double>& joint_r, bool since_kept) {
+  // Rows this polisher's last measure gathered are of the poses then: a solve's first measure
+  // comes after the poses were given anew (a drag's next frame).
+  if (w_ && w_->rows_of_ == this) w_->rows_of_ = nullptr;
   const bool kept = since_kept && kept_;
   kept_ = false;
   if (since_kept) small_factored_ = false;  // a small group's chord steps stay within a solve
