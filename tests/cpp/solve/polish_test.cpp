@@ -288,10 +288,9 @@ TEST(SparsePolish, DragSeesAHingeMovedBetweenFrames) {
   }
 }
 
-TEST(SparsePolish, FreeClosedChainKeepsItsCentreOfMass) {
-  const int n = 60;  // 180 rows: solved sparse
+// A closed ring of n links of masses hinged about z, none fixed, from a perturbed circle.
+Model free_ring(int n, std::vector<BodyId>& ids) {
   Model m;
-  std::vector<BodyId> ids;
   const double R = n / (2 * kPi), L = 2 * R * std::sin(kPi / n);
   for (int i = 0; i < n; ++i) {
     const double a = 2 * kPi * i / n;
@@ -313,6 +312,14 @@ TEST(SparsePolish, FreeClosedChainKeepsItsCentreOfMass) {
     j.p1 = Vec3(L, 0, 0);
     m.add_joint(j);
   }
+  return m;
+}
+
+TEST(SparsePolish, FreeClosedChainKeepsItsCentreOfMass) {
+  const int n = 60;  // 180 rows: solved sparse
+  std::vector<BodyId> ids;
+  Model m = free_ring(n, ids);
+  const double R = n / (2 * kPi);
   auto centre = [&] {
     Vec3 sum = Vec3::Zero();
     double mass = 0;
@@ -334,30 +341,12 @@ TEST(SparsePolish, FreeClosedChainKeepsItsCentreOfMass) {
 // A large chain's measure after a step gathers the next step's rows with the residuals; a
 // drag's next frame moves the held body, so its first step must gather them anew: every frame
 // of small moves is one Newton step (rows of the frame before would give a step that gains
-// nothing, and a second one). No body is fixed, so the held one leaves one group (the rest of
-// the ring), whose last measure in a frame is the last gather before the next.
+// nothing, and a second one). The held body leaves one group (the rest of the ring), whose last
+// measure in a frame is the last gather before the next.
 TEST(SparsePolish, DraggedChainTakesOneStepAFrame) {
   const int n = 100;  // 300 rows, J M^-1 J^T
-  Model m;
   std::vector<BodyId> ids;
-  const double R = n / (2 * kPi), L = 2 * R * std::sin(kPi / n);
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * kPi * i / n;
-    Body b;
-    b.name = "l" + std::to_string(i);
-    b.pose = Pose::from(Vec3(R * std::cos(a) + 0.01 * std::sin(7.0 * i),
-                             R * std::sin(a) + 0.01 * std::cos(3.0 * i), 0.01),
-                        Vec3(0, 0, a + kPi / 2 + kPi / n));
-    ids.push_back(m.add_body(b));
-  }
-  for (int i = 0; i < n; ++i) {
-    Joint j;
-    j.body1 = ids[static_cast<size_t>(i)];
-    j.body2 = ids[static_cast<size_t>((i + 1) % n)];
-    j.has_hinge = true;
-    j.p1 = Vec3(L, 0, 0);
-    m.add_joint(j);
-  }
+  Model m = free_ring(n, ids);
   ASSERT_TRUE(assemble(m).converged);
   const BodyId held = ids[n / 2];
   const Pose start = m.body(held).pose;
