@@ -1338,6 +1338,50 @@ class TestDrivePanel(Documents):
         for p, q in zip(moving, start):
             self.assertTrue(same(p.Placement, q, 1e-9), "one undo did not put %s back" % p.Label)
 
+    def test_a_typed_value_is_driven_once_typing_pauses_not_through_its_prefixes(self):
+        from dispcon_fc import operations
+        from dispcon_fc.panels import drive
+
+        asm, joint, moving = self.fourbar_solved()
+        panel = self.open(joint)
+        now = operations.drive_value(joint)
+        driven = []
+        real = operations.drive_to
+
+        def recorded(asm_, joint_, value, **kw):  # the real drive, its values kept
+            driven.append(value)
+            return real(asm_, joint_, value, **kw)
+
+        operations.drive_to = recorded
+        self.addCleanup(setattr, operations, "drive_to", real)
+        # Typed key by key (its prefixes 1, 12, 12.5 are values the box reads): nothing is
+        # driven while the keys come, then the value typed once they pause.
+        target = round(now + 12.5, 2)
+        text = "%.2f" % target
+        type_into(panel.target, text, finish=False)
+        self.assertEqual(driven, [], "driven through the prefixes of %r" % text)
+        self.assertAlmostEqual(operations.drive_value(joint), now, places=7)
+        pause(drive.TYPING_PAUSE_MS * 2)
+        self.assertEqual(driven, [target])
+        self.assertAlmostEqual(operations.drive_value(joint), target, places=7)
+        self.assertIn("%g" % target, panel.message.text())
+        # An arrow key's step is driven at once.
+        key = QtGui.QKeyEvent(QtCore.QEvent.KeyPress, QtCore.Qt.Key_Up, QtCore.Qt.NoModifier)
+        QtWidgets.QApplication.sendEvent(panel.target, key)
+        settle()
+        self.assertEqual(len(driven), 2)
+        self.assertAlmostEqual(operations.drive_value(joint), raw_of(panel.target), places=7)
+        self.assertGreater(raw_of(panel.target), target)
+        # Typed, then OK before the pause: the value typed is driven, then kept as one undo step.
+        last = round(now - 7.25, 2)
+        type_into(panel.target, "%.2f" % last, finish=False)
+        self.assertEqual(len(driven), 2)
+        self.assertTrue(panel.accept())
+        settle()
+        self.assertEqual(driven[2:], [last])
+        self.assertFalse(Gui.Control.activeDialog(), "the panel stayed open")
+        self.assertAlmostEqual(operations.drive_value(joint), last, places=7)
+
     def test_a_slider_in_mm_and_a_lock_said_in_the_panel(self):
         from dispcon_fc import operations
         import parts
@@ -1409,6 +1453,14 @@ def type_into(box, text, finish=True):
     if finish:
         box.clearFocus()
         settle()
+
+
+def pause(ms):
+    """The GUI's events processed for `ms` milliseconds, as a person's pause lets them run."""
+    end = time.monotonic() + ms / 1000.0
+    while time.monotonic() < end:
+        settle()
+        time.sleep(0.01)
 
 
 def raw_prop(box, name):

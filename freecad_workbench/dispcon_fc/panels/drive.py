@@ -5,25 +5,48 @@ Like the joint panel, it holds one transaction open from the moment it opens: ev
 previews is inside it, so OK is one undo step and Cancel aborts it, which puts every part back.
 The box's range is the joint's limits, so a value outside them cannot be typed (drive_to refuses
 one from a script, said in the panel, before anything moves);
-a drive that locks on the way stops there and says where."""
+a drive that locks on the way stops there and says where.
+
+A value typed key by key is driven once typing pauses (or editing ends: Enter, Tab, OK), not at
+each prefix: `12` typed is not driven through 1 first, a prefix that could leave a linkage on
+another branch than the value would. The arrows, the wheel and a script's value drive at once."""
 import math
 
 import FreeCADGui as Gui
 
 from .. import operations, panels
 from .base import TransactionPanel
-from ..qt import QtGui, QtWidgets
+from ..qt import QtCore, QtGui, QtWidgets
 from ..resources import icon_path
 from .joint import TypedText, markers_icon, quantity_box, raw, set_unit
 
 UNIT_TEXT = {"deg": "°", "mm": " mm"}
 FULL_RANGE = 1e6  # a joint without limits: degrees or mm either way
+TYPING_PAUSE_MS = 400  # a typed value is driven once the keys pause this long
+STEP_KEYS = (QtCore.Qt.Key_Up, QtCore.Qt.Key_Down, QtCore.Qt.Key_PageUp, QtCore.Qt.Key_PageDown)
 
 
 def drivable_joints(asm):
     """The joints of `asm` a drive can move, in the assembly's order: its own, then its flexible
     sub-assemblies' at every depth (Walk2.Leg3.Revolute)."""
     return operations.drivable_joints(asm)
+
+
+class StepOrKey(QtCore.QObject):
+    """Tells the panel whether the box's next change is typed (a key that edits its text) or a
+    step (an arrow key, the wheel, a click on its arrows)."""
+
+    def __init__(self, panel, parent):
+        super().__init__(parent)
+        self.panel = panel
+
+    def eventFilter(self, obj, event):
+        kind = event.type()
+        if kind == QtCore.QEvent.KeyPress:
+            self.panel.keyed = event.key() not in STEP_KEYS
+        elif kind in (QtCore.QEvent.Wheel, QtCore.QEvent.MouseButtonPress):
+            self.panel.keyed = False
+        return False
 
 
 class DrivePanel(TransactionPanel):
@@ -39,6 +62,7 @@ class DrivePanel(TransactionPanel):
         self.closed = False
         self.busy = False  # a drive is running (its frames process the GUI's events)
         self.pending = False  # the value changed meanwhile: drive again once it ends
+        self.keyed = False  # the box's last change is being typed (not an arrow's step)
         self.form = self._build()
         start = joint if joint in self.joints else self.joints[0]
         self.joint_box.setCurrentIndex(self.joints.index(start))
@@ -71,7 +95,7 @@ class DrivePanel(TransactionPanel):
         self.target = quantity_box("deg", -FULL_RANGE, FULL_RANGE)
         self.target.setObjectName("target")
         self.target.setToolTip("Where the joint goes, measured as its limits are (from where it was "
-                               "made); the parts follow as you type")
+                               "made); the parts follow once you pause typing, or at once with the arrows")
         form.addRow("Drive to", self.target)
         self.message = QtWidgets.QLabel()
         self.message.setObjectName("message")
@@ -79,9 +103,31 @@ class DrivePanel(TransactionPanel):
         top.addWidget(self.message)
         top.addStretch(1)
         self.joint_box.currentIndexChanged.connect(self._joint_changed)
+        self.pause = QtCore.QTimer(w)
+        self.pause.setSingleShot(True)
+        self.pause.setInterval(TYPING_PAUSE_MS)
+        self.pause.timeout.connect(self._drive)
         self.target.valueChanged.connect(self._changed)
+        self.keys = StepOrKey(self, w)
+        self.target.installEventFilter(self.keys)
+        self.target.editingFinished.connect(self._flush)
         self.typing = TypedText(self, [(self.target, "Drive to")], w)
         return w
+
+    def _changed(self, *_):
+        """Typed: driven once the keys pause; stepped (arrows, wheel) or set: driven now."""
+        if self.keyed and self.target.hasFocus() and not self.busy:
+            self.pause.start()
+            return
+        self.pause.stop()
+        self._drive()
+
+    def _flush(self):
+        """Editing ended: what was typed and not yet driven is driven now."""
+        self.keyed = False
+        if self.pause.isActive():
+            self.pause.stop()
+            self._drive()
 
     def joint(self):
         return self.joints[self.joint_box.currentIndex()]
@@ -151,8 +197,8 @@ class DrivePanel(TransactionPanel):
                                                                   limits[1], unit)
         return None
 
-    def _changed(self, *_):
-        if self._gone():
+    def _drive(self):
+        if self.closed or self._gone():  # (closing takes the focus: the box says its value again)
             return
         if self.busy:
             self.pending = True
@@ -182,12 +228,14 @@ class DrivePanel(TransactionPanel):
         else:
             self._say("%s locks at %.3f%s on the way to %g%s: the parts stay where it locks "
                       "(OK keeps them so)." % (j.Label, reached, unit, value, unit), True)
-        if self.pending:
+        if self.pending:  # (a change during the drive to the value it drove to is none)
             self.pending = False
-            self._changed()
+            if self.value() != value:
+                self._drive()
 
     # -- the task dialog ----------------------------------------------------------------------
     def accept(self):
+        self._flush()  # (Enter or OK before typing paused: the value typed, then the commit)
         bad = self.problem()
         if bad:
             self._say(bad, True)
@@ -199,6 +247,7 @@ class DrivePanel(TransactionPanel):
         if self.closed or self._gone():  # its document closed: nothing to commit or abort
             return
         self.closed = True
+        self.pause.stop()
         if commit:
             self.transaction.commit()
         else:
