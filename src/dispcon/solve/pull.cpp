@@ -495,13 +495,16 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     if (stepped) now = measure(s, group, joint, joint_r);
     // A bound the step went past is met as a row from now on (the linkage slides along it
     // rather than the corrections undoing most of each step): the step is made again. Not a
-    // turn's step cut short by the seed's turn (far from the nearest pose): it goes on to its
-    // curve, whose corrections, the band widened, put the part at the bound, and the next step
-    // holds it. A pull step spared each time (4 to 7 of a far turn's steps were made twice);
-    // with kTurnCutShare, the robot arm's hand turned 3 rad about z and about (1, -2, 0.5) ends
+    // turn's step cut short by the seed's turn after a kept one (far from the nearest pose): it
+    // goes on to its curve, whose corrections, the band widened, put the part at the bound, and
+    // the next step holds it. A pull step spared each time (up to 7 of a far turn's steps were
+    // made twice). (The first step is made again: its curve, kinked by the bound, set the next
+    // damping 9,000 times its own on the robot arm's upper arm turned about z, which then ran
+    // out of its iterations 1e-8 rad short of the nearest pose it had reached after 43; now 30.)
+    // With kTurnCutShare, the robot arm's hand turned 3 rad about z and about (1, -2, 0.5) ends
     // at the nearest pose within the drag step's 60 iterations again (53 and 42).
     if (stepped && widen(s, group, joint, joint_r, o.tolerance, band, holds) &&
-        !(turn && polisher.cut_short())) {
+        !(turn && polisher.cut_short() && moved)) {
       load_poses(s, group, before);
       now = kept;
       rows.read(s, pulled, band_soft, true);
