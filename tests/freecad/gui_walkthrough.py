@@ -386,12 +386,7 @@ class PreferencesPage(unittest.TestCase):
         asm = [o for o in self.doc.Objects if objects.is_assembly(o)][-1]
         self.assertEqual(asm.Tolerance, 1e-6)
         # The next mouse drag drawn in full: each part by its own view, shaded with its edges.
-        base = self.doc.addObject("Part::Feature", "Base")
-        base.Shape = parts.ground([(0, 0)])
-        operations.add_part(asm, base, grounded=True)
-        arm = self.doc.addObject("Part::Feature", "Arm")
-        arm.Shape = parts.link(1.5)
-        operations.add_part(asm, arm)
+        base, arm = gw.base_and_arm(asm)
         operations.add_joint(asm, "Revolute", (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0))),
                              (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))))
         view = Gui.getDocument(self.doc.Name).ActiveView

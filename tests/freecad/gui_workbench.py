@@ -267,12 +267,7 @@ class Documents(unittest.TestCase):
         import parts
 
         asm = operations.create_assembly(self.doc)
-        base = self.doc.addObject("Part::Feature", "Base")
-        base.Shape = parts.ground([(0, 0)])
-        operations.add_part(asm, base, grounded=True)
-        arm = self.doc.addObject("Part::Feature", "Arm")
-        arm.Shape = parts.link(1.5)
-        operations.add_part(asm, arm)
+        base, arm = base_and_arm(asm)
         arm.Placement = App.Placement(App.Vector(0.3, 0.2, 0.4), App.Rotation(App.Vector(0, 0, 1), 20))
         e1 = (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0)))
         e2 = (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0)))
@@ -1417,6 +1412,21 @@ class TestDrivePanel(Documents):
         panel.reject()
 
 
+def base_and_arm(asm):
+    """A grounded base with a pin at its origin and a free arm of 1.5 mm, added to `asm`:
+    (base, arm)."""
+    from dispcon_fc import operations
+    import parts
+
+    base = asm.Document.addObject("Part::Feature", "Base")
+    base.Shape = parts.ground([(0, 0)])
+    operations.add_part(asm, base, grounded=True)
+    arm = asm.Document.addObject("Part::Feature", "Arm")
+    arm.Shape = parts.link(1.5)
+    operations.add_part(asm, arm)
+    return base, arm
+
+
 def slider_on_a_pin(test):
     """A grounded base and an arm on a Slider along the base's pin, travel -0.5 .. 0.5 mm, solved:
     (asm, base, arm, the pin's reference, the slider)."""
@@ -1424,12 +1434,7 @@ def slider_on_a_pin(test):
     import parts
 
     asm = operations.create_assembly(test.doc)
-    base = test.doc.addObject("Part::Feature", "Base")
-    base.Shape = parts.ground([(0, 0)])
-    operations.add_part(asm, base, grounded=True)
-    arm = test.doc.addObject("Part::Feature", "Arm")
-    arm.Shape = parts.link(1.5)
-    operations.add_part(asm, arm)
+    base, arm = base_and_arm(asm)
     pin = (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0)))
     slider = operations.add_joint(asm, "Slider", pin, (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))),
                                   travel=(-0.5, 0.5))
