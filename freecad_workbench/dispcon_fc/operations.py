@@ -257,12 +257,17 @@ def _defaults(joint_type, f1, f2):
     return {}
 
 
+def _parts_base(part1, part2):
+    """A joint's label from its parts before any numbering: part 1's first, "Ground-Crank"."""
+    return "%s-%s" % (part1.Label, part2.Label)
+
+
 def parts_label(doc, part1, part2, joint=None):
     """The label a joint between `part1` and `part2` gets from them (the joint panel's): their
     labels, part 1 (the guide's) first, "Ground-Crank"; made unique in `doc` (whatever FreeCAD's
     duplicate-labels preference says) by FreeCAD's numbering, "Ground-Crank001". `joint`: the
     joint to be so named (its own label is no clash)."""
-    base = "%s-%s" % (part1.Label, part2.Label)
+    base = _parts_base(part1, part2)
     taken = {o.Label for o in doc.Objects if o != joint}
     label, k = base, 0
     while label in taken:
@@ -277,7 +282,7 @@ def named_from_parts(joint):
     r1, r2 = joint.Reference1, joint.Reference2
     if not r1 or not r2:
         return False
-    base = "%s-%s" % (r1[0].Label, r2[0].Label)
+    base = _parts_base(r1[0], r2[0])
     rest = joint.Label[len(base):] if joint.Label.startswith(base) else None
     return rest is not None and (rest == "" or (len(rest) == 3 and rest.isdigit()))
 
