@@ -57,7 +57,7 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
     has_multipliers_ = !reused_;
     // dq = M^-1 J^T y, each body's terms summed in the order of its rows
     for (Vec6& d : w_->dq_) d.setZero();
-    if (dense()) {  // with the M^-1 J^T that couplings() kept
+    if (dense()) {  // with the M^-1 J^T that row_products() kept
       for (int v = 0; v < nv_; ++v) {
         Vec6& d = w_->dq_[static_cast<size_t>(v)];
         for (int p = w_->var_start_[static_cast<size_t>(v)];

@@ -34,7 +34,7 @@ struct PolishWork {
   std::vector<int> listed_;
   int listed_nv_ = -1;
   std::vector<Vec6> dq_;
-  std::vector<Vec6> u_;  // M^-1 times the blocks of one body's rows, or all rows' (couplings)
+  std::vector<Vec6> u_;  // M^-1 times the blocks of one body's rows, or all rows' (row_products)
   // Plain buffers under Eigen maps: groups of different sizes share them, and an Eigen matrix
   // would reallocate at every change of size.
   std::vector<double> y_;
@@ -143,7 +143,7 @@ class Polisher {
                           std::vector<double>* joint_r);
   double measure_moved(const SolverState& s, const std::vector<double>& band,
                        std::vector<double>& joint_r);
-  // Inline: the dense step's couplings() call it once a row and side, where the call's own
+  // Inline: the dense step's row_products() call it once a row and side, where the call's own
   // cost was a third of its arithmetic.
   static Vec6 apply_inverse_mass(const BodyState& b, const Vec6& j) {
     Vec6 u;
@@ -158,13 +158,15 @@ class Polisher {
   // Lists each unknown's rows (var_start_, var_rows_, in row order), counted then placed, so
   // nothing is allocated once warm.
   void list_rows_by_body();
-  // Calls f(a, b, value) for every coupling a >= b of J M^-1 J^T, body by body. Without
-  // Values, the same calls in the same order with 0 for the value: the pattern alone, without
-  // the products.
+  // Calls f(a, b, value) for every entry a >= b of J M^-1 J^T that two rows sharing a body give,
+  // body by body: the product j_a . M^-1 j_b of their blocks on that body (every group has them,
+  // couplings among its joints or not: in the 400 four-bars 110 products of six terms a step).
+  // Without Values, the same calls in the same order with 0 for the value: the pattern alone,
+  // without the products.
   // A dense system's M^-1 J^T is kept whole (u_[p] for var_rows_[p]) for the step's dq, which
   // then need not compute it again; a large system's one body at a time (see Entry).
   template <bool Values = true, typename F>
-  void couplings(F&& f) {
+  void row_products(F&& f) {
     list_rows_by_body();
     const bool keep = dense();
     if (keep) w_->u_.resize(static_cast<size_t>(w_->var_start_.back()));

@@ -24,7 +24,7 @@ bool Polisher::factor_dense(double lambda) {
     // The whole matrix in one fill, not the lower triangle column by column (a call each): the
     // upper triangle is never read.
     std::fill(w_->dense_.begin(), w_->dense_.end(), 0.0);
-    couplings([&](int a, int b, double v) { A(a, b) += v; });
+    row_products([&](int a, int b, double v) { A(a, b) += v; });
     const double scale = A.diagonal().maxCoeff();
     A.diagonal().array() += lambda * scale;
     // A pull's own damping (none elsewhere: adding 0 a row cost 110 instructions a step).

@@ -20,7 +20,7 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   factored_ = false;
   if (!big_) big_ = std::make_unique<Large>();
   const bool same = same_pattern();
-  lists_current_ = same && w_->lists_of_ == this;  // couplings() need not list the rows again
+  lists_current_ = same && w_->lists_of_ == this;  // row_products() need not list the rows again
   if (!same) {
     std::vector<double>& per_body = w_->rows_per_body_;
     per_body.assign(static_cast<size_t>(nv_), 0.0);
@@ -60,13 +60,13 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
     factored_ = true;
     return solve_blocks(w_->residual_);
   }
-  // The rows form: the couplings first, whose diagonal entries are then the two bodies' terms
+  // The rows form: the row products first, whose diagonal entries are then the two bodies' terms
   // of each row, d1 + d2, the very sums a pass of their own computed before (one pass over the
   // rows fewer each step); then the damping on the diagonal.
   double* values = big_->ldlt_.values.data();
   std::fill(big_->ldlt_.values.begin(), big_->ldlt_.values.end(), 0.0);
   const int* slot = big_->slots_.data();
-  couplings([&](int, int, double v) { values[*slot++] += v; });
+  row_products([&](int, int, double v) { values[*slot++] += v; });
   const int* diagonal = slot;  // the last m slots: each row's diagonal entry
   for (int a = 0; a < m; ++a) scale = std::max(scale, values[diagonal[a]]);
   if (!(scale > 0)) return false;
@@ -158,7 +158,7 @@ void compress(int n, Entries&& entries, Eigen::SparseMatrix<double>& matrix,
 // systems the fill-reducing order is found on blocks, each joint's rows, which share their
 // neighbours: AMD on the 300,000 rows of a 100,000-link chain took 0.2 s, on its 100,000 joints
 // 5 ms. Below kBlockOrdering unknowns the analysis is cheap and AMD on single unknowns leaves
-// less fill, which every drag frame pays. The pattern was once gathered from the couplings
+// less fill, which every drag frame pays. The pattern was once gathered from the row products
 // themselves, three passes computing every product and sorting every column of the result:
 // most of the 100,000-link chain's analysis.
 void Polisher::analyze_rows() {
@@ -260,7 +260,7 @@ void Polisher::analyze_rows() {
   outer[static_cast<size_t>(n)] = kept;
   inner.resize(static_cast<size_t>(kept));
   big_->ldlt_.values.resize(static_cast<size_t>(kept));
-  // Where each value lands, in the order factor_sparse() writes them: the couplings, then the
+  // Where each value lands, in the order factor_sparse() writes them: the row products, then the
   // diagonal.
   auto slot = [&](int a, int b) {
     const int pa = big_->order_[static_cast<size_t>(a)], pb = big_->order_[static_cast<size_t>(b)];
@@ -278,7 +278,7 @@ void Polisher::analyze_rows() {
   }
   big_->slots_.clear();
   big_->slots_.reserve(writes);
-  couplings<false>([&](int a, int b, double) { big_->slots_.push_back(slot(a, b)); });
+  row_products<false>([&](int a, int b, double) { big_->slots_.push_back(slot(a, b)); });
   for (int a = 0; a < n; ++a) big_->slots_.push_back(slot(a, a));
   big_->ldlt_.analyze();
 }
