@@ -23,8 +23,8 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   // since), not the Jacobian nor M^-1 J^T.
   // A small group's, with its dense factor: still in the work while no other group has gathered
   // since, and only where its rows leave no free motion.
-  const bool small =
-      reuse && !soft && small_factored_ && work.chord_of_ == this && small_without_free_motion();
+  const bool small = reuse && !soft && small_factored_ && work.caches_.of(Caches::kChord, this) &&
+                     small_without_free_motion();
   if (small) {
     reused_ = small_residuals(s, band);
   } else if (reuse && factored_ && kkt_ && !soft) {
@@ -36,11 +36,12 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   measured_ = false;  // the poses move below
   if (!reused_) {
     small_factored_ = false;
-    work.chord_of_ = nullptr;  // the dense factor and the row lists are rewritten below
+    work.caches_.drop(Caches::kChord);  // the dense factor and the row lists are rewritten below
     // A large rows-form group's measure of these poses gathered the rows already.
-    if (!(measured && !soft && !let_go && work.rows_of_ == this)) gather(s, band, soft, let_go);
+    if (!(measured && !soft && !let_go && work.caches_.of(Caches::kRows, this)))
+      gather(s, band, soft, let_go);
   }
-  work.rows_of_ = nullptr;  // the poses move below
+  work.caches_.drop(Caches::kRows);  // the poses move below
   const int m = reused_ && !small ? big_->chord_.rows : static_cast<int>(w_->rows_.size());
   if (m == 0 || nv_ == 0) return false;
   if (reused_ && small) {
@@ -142,7 +143,7 @@ double for_each_row(const SolverState& s, const int* first, const int* last,
 double Polisher::gather(const SolverState& s, const std::vector<double>& band,
                         const std::vector<double>* soft, const LetGo* let_go,
                         std::vector<double>* joint_r) {
-  w_->rows_of_ = nullptr;
+  w_->caches_.drop(Caches::kRows);
   w_->rows_.clear();
   w_->residual_.clear();
   w_->soft_.clear();
@@ -224,7 +225,7 @@ double Polisher::measure(const SolverState& s, const std::vector<double>& band,
                          std::vector<double>& joint_r, bool since_kept) {
   // Rows this polisher's last measure gathered are of the poses then: a solve's first measure
   // comes after the poses were given anew (a drag's next frame).
-  if (w_ && w_->rows_of_ == this) w_->rows_of_ = nullptr;
+  if (w_) w_->caches_.drop(Caches::kRows, this);
   const bool kept = since_kept && kept_;
   kept_ = false;
   if (since_kept) small_factored_ = false;  // a small group's chord steps stay within a solve
@@ -234,7 +235,7 @@ double Polisher::measure(const SolverState& s, const std::vector<double>& band,
   // 100,000-link chain's joints fewer each step; the last measure's rows go unused).
   if (!since_kept && w_ && analyzed_ && !kkt_ && !dense() && without_couplings(s)) {
     const double largest = gather(s, band, nullptr, nullptr, &joint_r);
-    w_->rows_of_ = this;
+    w_->caches_.made(Caches::kRows, this);
     return largest;
   }
   if (!measured_) return max_residual(s, group_->joints, joint_r);
@@ -345,17 +346,11 @@ void Polisher::list_rows_by_body() {
   // step, or the next group of the same shape (the 400 four-bars list theirs once).
   const auto& rows = w_->rows_;
   const bool small = dense();
-  if (!small && lists_current_ && w_->lists_of_ == this) return;
-  w_->lists_of_ = nullptr;
-  if (small && w_->listed_nv_ == nv_ && w_->listed_.size() == 2 * rows.size()) {
-    size_t a = 0;
-    while (a < rows.size() && rows[a].v1 == w_->listed_[2 * a] &&
-           rows[a].v2 == w_->listed_[2 * a + 1]) {
-      ++a;
-    }
-    if (a == rows.size()) return;
-  }
-  w_->listed_nv_ = -1;
+  Caches& caches = w_->caches_;
+  if (!small && lists_current_ && caches.of(Caches::kLists, this)) return;
+  caches.drop(Caches::kLists);
+  if (small && caches.listed_for(rows, nv_)) return;
+  caches.drop(Caches::kListed);
   w_->var_start_.assign(static_cast<size_t>(nv_) + 1, 0);
   for (const Entry& e : w_->rows_) {
     if (e.v1 >= 0) ++w_->var_start_[static_cast<size_t>(e.v1) + 1];
@@ -373,14 +368,9 @@ void Polisher::list_rows_by_body() {
       w_->var_rows_[static_cast<size_t>(w_->fill_[static_cast<size_t>(e.v2)]++)] = {a, 2};
   }
   if (small) {
-    w_->listed_.resize(2 * rows.size());
-    for (size_t a = 0; a < rows.size(); ++a) {
-      w_->listed_[2 * a] = rows[a].v1;
-      w_->listed_[2 * a + 1] = rows[a].v2;
-    }
-    w_->listed_nv_ = nv_;
+    caches.made_listed(rows, nv_);
   } else {
-    w_->lists_of_ = this;
+    caches.made(Caches::kLists, this);
     lists_current_ = true;
   }
 }

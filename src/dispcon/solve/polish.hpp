@@ -29,10 +29,6 @@ struct PolishWork {
   std::vector<double> residual_;
   std::vector<int> var_start_, fill_;         // rows of body v: var_rows_[var_start_[v] ...]
   HugeVector<std::pair<int, int>> var_rows_;  // (row, side 1 or 2)
-  // The unknowns of each row's two bodies (v1, v2), and the unknowns' count, when var_rows_ was
-  // listed for a dense system (-1: not valid).
-  std::vector<int> listed_;
-  int listed_nv_ = -1;
   std::vector<Vec6> dq_;
   std::vector<Vec6> u_;  // M^-1 times the blocks of one body's rows, or all rows' (row_products)
   // Plain buffers under Eigen maps: groups of different sizes share them, and an Eigen matrix
@@ -53,15 +49,68 @@ struct PolishWork {
   PoseBuffer before_;
   // ... and the best poses seen of the group it runs (solver.cpp's Session::Impl::run).
   PoseBuffer best_;
-  // The polisher whose small group's factorisation dense_, u_ and the row lists hold for a chord
-  // step (none: nullptr).
-  const void* chord_of_ = nullptr;
-  // The polisher whose measure() gathered rows_ (and residual_, joint_rows_) at the poses it
-  // measured, for its next step (none: nullptr; any other gather clears it).
-  const void* rows_of_ = nullptr;
-  // The large group whose rows var_start_ and var_rows_ list (none: nullptr; see
-  // Polisher::lists_current_).
-  const void* lists_of_ = nullptr;
+  // What the buffers above hold beyond the step in hand, and for which polisher: the caches a
+  // step may find again. One record, its tags set by made() and let go by drop() alone, so that
+  // a cache added to the work is one more Cache here, dropped where the others are.
+  class Caches {
+   public:
+    enum Cache : unsigned {
+      // A small group's dense factorisation (dense_, u_) with its rows and row lists, for a
+      // chord step.
+      kChord = 1,
+      // rows_ (and residual_, joint_rows_) gathered by a measure at the poses it measured, for
+      // the next step.
+      kRows = 2,
+      // var_start_ and var_rows_: a large group's rows listed by body (see
+      // Polisher::lists_current_).
+      kLists = 4,
+      // var_start_ and var_rows_: a dense system's, of rows joining the unknowns that
+      // made_listed() was given; any polisher whose rows join the same unknowns may take them
+      // (the 400 four-bars list theirs once). Tagged by those unknowns, not by an owner.
+      kListed = 8,
+    };
+    // Whether the cache (kChord, kRows or kLists: those tagged by an owner) was made by `owner`;
+    // and the cache so tagged.
+    bool of(Cache c, const void* owner) const { return owner_[index(c)] == owner; }
+    void made(Cache c, const void* owner) { owner_[index(c)] = owner; }
+    // Whether kListed holds lists of rows joining `rows`' unknowns, of nv unknowns in all.
+    template <typename Rows>
+    bool listed_for(const Rows& rows, int nv) const {
+      if (listed_nv_ != nv || listed_.size() != 2 * rows.size()) return false;
+      size_t a = 0;
+      while (a < rows.size() && rows[a].v1 == listed_[2 * a] && rows[a].v2 == listed_[2 * a + 1])
+        ++a;
+      return a == rows.size();
+    }
+    // kListed made for `rows`, of nv unknowns in all.
+    template <typename Rows>
+    void made_listed(const Rows& rows, int nv) {
+      listed_.resize(2 * rows.size());
+      for (size_t a = 0; a < rows.size(); ++a) {
+        listed_[2 * a] = rows[a].v1;
+        listed_[2 * a + 1] = rows[a].v2;
+      }
+      listed_nv_ = nv;
+    }
+    // Lets go of the caches in `caches` (a sum of Cache); with `owner`, only of those it made
+    // (kListed, made for any polisher of the same rows, goes only without).
+    void drop(unsigned caches, const void* owner = nullptr) {
+      for (unsigned i = 0; i < kOwned; ++i) {
+        if ((caches >> i & 1u) && (!owner || owner_[i] == owner)) owner_[i] = nullptr;
+      }
+      if ((caches & kListed) && !owner) listed_nv_ = -1;
+    }
+
+   private:
+    static constexpr unsigned kOwned = 3;  // kChord, kRows, kLists: tagged with their owner
+    static unsigned index(Cache c) { return c == kChord ? 0 : c == kRows ? 1 : 2; }
+    const void* owner_[kOwned] = {};
+    // kListed's rows: the unknowns of each row's two bodies (v1, v2), and the unknowns' count
+    // (-1: none listed).
+    std::vector<int> listed_;
+    int listed_nv_ = -1;
+  };
+  Caches caches_;
 };
 
 // The bounds a pull has let go (pull.cpp): bit p of parts[c] for joint c's p-th part (as
@@ -131,6 +180,7 @@ class Polisher {
  private:
   using Vec6 = PolishWork::Vec6;
   using Entry = PolishWork::Entry;
+  using Caches = PolishWork::Caches;
 
   // The rows of the group's joints into the work; with `joint_r`, each joint's residual too, from
   // the same look at its geometry (the largest returned).
@@ -291,7 +341,7 @@ class Polisher {
   bool analyzed_ = false;
   // The work's row lists (var_start_, var_rows_) are of this group's analysed pattern, and the
   // rows have kept it since: a large group's step need not list them again (set by
-  // factor_sparse(); they are read while w_->lists_of_ is this polisher).
+  // factor_sparse(); they are read while the work's Caches::kLists is this polisher's).
   bool lists_current_ = false;
   // The group's joints have no coupling (whose rows may change between a measure and the next
   // step, when its turns are followed): -1 until worked out.

@@ -41,7 +41,7 @@ bool Polisher::factor_dense(double lambda) {
     w_->chol_.solve(A.data(), y.data());
     small_factored_ = small_chord_ && w_->soft_.empty();
     if (small_factored_) {
-      w_->chord_of_ = this;
+      w_->caches_.made(Caches::kChord, this);
       small_damping_ = lambda * scale;
       small_scale_ = scale;
       small_free_ = -1;

@@ -20,7 +20,8 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
   factored_ = false;
   if (!big_) big_ = std::make_unique<Large>();
   const bool same = same_pattern();
-  lists_current_ = same && w_->lists_of_ == this;  // row_products() need not list the rows again
+  // row_products() need not list the rows again
+  lists_current_ = same && w_->caches_.of(Caches::kLists, this);
   if (!same) {
     std::vector<double>& per_body = w_->rows_per_body_;
     per_body.assign(static_cast<size_t>(nv_), 0.0);
