@@ -203,11 +203,38 @@ BENCHMARK(BM_Command_AssembleJson_FourBarsVaried)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
+// The closed chain of n links (bench::closed_chain, BM_ClosedChain_Large's model) as dispcon
+// writes it, once per size beside the benchmark binary's build: 100,000 links are 21 MB of text,
+// made here rather than kept in the repository.
+std::string closed_chain_file(int n) {
+  const std::string path =
+      std::string(DISPCON_BUILD_DIR) + "/closed-chain-" + std::to_string(n) + ".dcl";
+  std::ofstream(path, std::ios::binary) << write_dcl(bench::closed_chain(n));
+  return path;
+}
+
+// The whole `dispcon assemble FILE` of the 100,000-link closed chain as a user meets it (issue
+// 14: under a second): a process that reads the file, solves once (its first solve: every buffer
+// fresh) and prints the poses, in text (Arg 0) or with --json (Arg 1). Twice only: a run takes
+// about a second.
+void BM_Command_Assemble_ClosedChain(benchmark::State& state) {
+  std::vector<std::string> args{"assemble", closed_chain_file(static_cast<int>(state.range(0)))};
+  if (state.range(1)) args.push_back("--json");
+  time_process(state, DISPCON_BIN, args);
+}
+BENCHMARK(BM_Command_Assemble_ClosedChain)
+    ->Args({100000, 0})
+    ->Args({100000, 1})
+    ->Iterations(2)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
 // The same command of other builds, named by DISPCON_BENCH_OTHER (paths separated by ':';
 // registered only when set): builds compared in one run, their repetitions alternated with
 // --benchmark_enable_random_interleaving=true (the machine's load changes from minute to minute).
-// The k-th is BM_Command_AssembleJson_FourBars_Other<k>, and of the varied file
-// BM_Command_AssembleJson_FourBarsVaried_Other<k>.
+// The k-th is BM_Command_AssembleJson_FourBars_Other<k>, of the varied file
+// BM_Command_AssembleJson_FourBarsVaried_Other<k>, and of the chain
+// BM_Command_Assemble_ClosedChain_Other<k>.
 void BM_Command_AssembleJson_FourBars_Other(benchmark::State& state, const std::string& other) {
   time_process(state, other,
                {"assemble", fourbars_file(static_cast<int>(state.range(0))), "--json"});
@@ -216,6 +243,11 @@ void BM_Command_AssembleJson_FourBarsVaried_Other(benchmark::State& state,
                                                   const std::string& other) {
   time_process(state, other,
                {"assemble", fourbars_varied_file(static_cast<int>(state.range(0))), "--json"});
+}
+void BM_Command_Assemble_ClosedChain_Other(benchmark::State& state, const std::string& other) {
+  std::vector<std::string> args{"assemble", closed_chain_file(static_cast<int>(state.range(0)))};
+  if (state.range(1)) args.push_back("--json");
+  time_process(state, other, args);
 }
 const int others_registered = [] {
   const char* list = std::getenv("DISPCON_BENCH_OTHER");
@@ -234,6 +266,14 @@ const int others_registered = [] {
         ("BM_Command_AssembleJson_FourBarsVaried_Other" + std::to_string(k)).c_str(),
         BM_Command_AssembleJson_FourBarsVaried_Other, other)
         ->Arg(400)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(
+        ("BM_Command_Assemble_ClosedChain_Other" + std::to_string(k)).c_str(),
+        BM_Command_Assemble_ClosedChain_Other, other)
+        ->Args({100000, 0})
+        ->Args({100000, 1})
+        ->Iterations(2)
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond);
   }
