@@ -87,6 +87,29 @@ class Assemble(unittest.TestCase):
             self.assertEqual(r.returncode, 2)
             self.assertIn("big.dcl:3:9: error: axial u is a zero vector", r.stderr)
 
+    def test_the_listing_is_printfs_fixed_point_to_the_last_digit(self):
+        # Fixed bodies keep their positions bit for bit: ties at the seventh decimal (1/128 and
+        # its negative, dyadic, so exactly halfway: to even), negative zero and a negative value
+        # that rounds to zero, a number that rounds up past the column's width, and one in
+        # exponent form (its name longer than the name's column); each line as C's
+        # printf("%11.6f") writes it (Python's % rounds alike).
+        xs = [0.0078125, -0.0078125, -0.0, -4e-7, 999999.9999996, 123456.5000005, 2.0 ** -20]
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "places.dcl")
+            with open(path, "w") as f:
+                for i, x in enumerate(xs):
+                    f.write(f"object b{i}; fixed; position {x!r} {-x!r} 1e-9; end\n")
+                f.write("object far_from_the_origin; fixed; position 2e6 0 0; end\n")
+            r = run("assemble", path)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            lines = r.stdout.splitlines()
+            self.assertEqual(lines[1], "  body            position                                rotation vector")
+            rot = "       %10.6f %10.6f %10.6f" % (0.0, 0.0, 0.0)
+            for i, x in enumerate(xs):
+                want = "  %-16s%11.6f %11.6f %11.6f" % (f"b{i}", x, -x, 1e-9) + rot
+                self.assertEqual(lines[2 + i], want)
+            self.assertEqual(lines[2 + len(xs)], "  %-16s%11.5g %11.5g %11.5g" % ("far_from_the_origin", 2e6, 0, 0) + rot)
+
     def test_defaults_are_the_engines(self):
         r = run("assemble", "--help")
         self.assertRegex(r.stdout, r"--tolerance \S*=1e-0?9\b")
