@@ -354,12 +354,9 @@ def write_sheet(asm, sub_assemblies_as="indented", part_info=None):
         if sheet is None:
             sheet = doc.addObject("Spreadsheet::Sheet", "BOM")
             objects._mark(sheet, "BOM")
-            sheet.addProperty("App::PropertyLink", "Assembly", "Dispcon", "the assembly this is the bill of")
-            sheet.Assembly = asm
-            sheet.addProperty("App::PropertyEnumeration", "SubAssemblies", "Dispcon",
-                              "sub-assemblies: one row each, with their parts indented, or expanded into parts")
-            sheet.SubAssemblies = list(SUB_ASSEMBLIES)
-            sheet.addProperty("App::PropertyInteger", "BomRows", "Dispcon", "the rows written last (the header's too)")
+            objects._add(sheet, "BOM", "App::PropertyLink", "Assembly", "Dispcon", asm)
+            objects._add(sheet, "BOM", "App::PropertyEnumeration", "SubAssemblies", "Dispcon", list(SUB_ASSEMBLIES))
+            objects._add(sheet, "BOM", "App::PropertyInteger", "BomRows", "Dispcon")
             sheet.setEditorMode("BomRows", 2)
         if sheet.getContents("C1") != COLUMNS[2]:  # new, or written before the part number's column
             for k, width in enumerate((60, 180, 110, 200, 70, 140, 110, 90, 140)):

@@ -79,20 +79,18 @@ class ExplodedViewProxy(objects.Stateless):
     def attach(self, obj):
         objects._mark(obj, "ExplodedView")
         add = objects._add
-        add(obj, "App::PropertyLink", "Assembly", "Exploded view", "the assembly drawn exploded")
         old = "StepModes" not in obj.PropertiesList and "Mode" in obj.PropertiesList
-        add(obj, "App::PropertyStringList", "StepModes", "Exploded view",
-            "each step's way: Radial (away from the centre), Direction (along it), Stack (stacked along it)")
-        add(obj, "App::PropertyFloatList", "StepDistances", "Exploded view",
-            "each step's distance (mm): Radial, how far its farthest part moves; Direction, how far each moves; "
-            "Stack, the step between two parts")
-        add(obj, "App::PropertyVectorList", "StepDirections", "Exploded view", "each step's direction (Direction, Stack)")
-        add(obj, "App::PropertyLinkList", "StepParts", "Exploded view",
-            "the parts the steps move, step after step (a sub-assembly moves as one)")
-        add(obj, "App::PropertyIntegerList", "StepSizes", "Exploded view", "how many of StepParts each step moves")
-        add(obj, "App::PropertyBool", "Lines", "Exploded view", "lines along the way each part is drawn", True)
-        add(obj, "App::PropertyLinkList", "Parts", "Result", "the parts drawn, in the order of Offsets")
-        add(obj, "App::PropertyVectorList", "Offsets", "Result", "how far each part is drawn from its place")
+        for type_id, name, group, value in (
+                ("App::PropertyLink", "Assembly", "Exploded view", None),
+                ("App::PropertyStringList", "StepModes", "Exploded view", None),
+                ("App::PropertyFloatList", "StepDistances", "Exploded view", None),
+                ("App::PropertyVectorList", "StepDirections", "Exploded view", None),
+                ("App::PropertyLinkList", "StepParts", "Exploded view", None),
+                ("App::PropertyIntegerList", "StepSizes", "Exploded view", None),
+                ("App::PropertyBool", "Lines", "Exploded view", True),
+                ("App::PropertyLinkList", "Parts", "Result", None),
+                ("App::PropertyVectorList", "Offsets", "Result", None)):
+            add(obj, "ExplodedView", type_id, name, group, value)
         for name in ("Parts", "Offsets"):
             obj.setEditorMode(name, 1)  # read only: made from the steps
         if old:

@@ -68,19 +68,36 @@ def preferences():
             "DragSteps": steps if steps > 0 else DEFAULT_DRAG_STEPS}
 
 
-def _add(obj, type_id, name, group, doc, value=None):
+def _add(obj, kind, type_id, name, group, value=None):
     """Adds a property the object lacks (new objects, and documents saved by an older workbench
-    or without it); keeps the value of one it has."""
+    or without it), its tooltip DOCS[kind][name]; keeps the value of one it has, and gives it the
+    tooltip of now (a document saved with older words reads the current ones once reopened)."""
     if name not in obj.PropertiesList:
-        obj.addProperty(type_id, name, group, doc)
+        obj.addProperty(type_id, name, group, DOCS[kind][name])
         if value is not None:
             setattr(obj, name, value)
+    else:
+        _document(obj, name, DOCS[kind][name])
+
+
+def _document(obj, name, doc):
+    if obj.getDocumentationOfProperty(name) != doc:
+        obj.setDocumentationOfProperty(name, doc)
+
+
+def refresh_docs(obj, kind):
+    """The tooltips of DOCS[kind] on the properties `obj` has (what a reopened document's objects
+    without a proxy of their own get: parts, instances' links, the bill of materials' sheet)."""
+    props = obj.PropertiesList
+    for name, doc in DOCS[kind].items():
+        if name in props:
+            _document(obj, name, doc)
 
 
 def _mark(obj, kind):
     """The stored property that says what the object is, so it is recognised even when its
     Python proxy could not be restored (the workbench missing when the file was opened)."""
-    _add(obj, "App::PropertyString", "DispconType", "Dispcon", "what this object is to the Dispcon workbench")
+    _add(obj, "Any", "App::PropertyString", "DispconType", "Dispcon")
     if obj.DispconType != kind:
         obj.DispconType = kind
     obj.setEditorMode("DispconType", 2)  # hidden: it is what the object is, not a setting
@@ -102,12 +119,20 @@ class AssemblyProxy(_Proxy):
             # as "0.00": the same value in a property that shows its digits.
             tolerance = obj.Tolerance
             obj.removeProperty("Tolerance")
-        _add(obj, "App::PropertyPrecision", "Tolerance", "Dispcon", "largest violation accepted", tolerance)
-        _add(obj, "App::PropertyInteger", "MaxIterations", "Dispcon", "iteration cap", prefs["MaxIterations"])
-        _add(obj, "App::PropertyString", "LastSolve", "Dispcon", "what the last solve said")
+        _add(obj, "Assembly", "App::PropertyPrecision", "Tolerance", "Dispcon", tolerance)
+        _add(obj, "Assembly", "App::PropertyInteger", "MaxIterations", "Dispcon", prefs["MaxIterations"])
+        _add(obj, "Assembly", "App::PropertyString", "LastSolve", "Dispcon")
 
     def onDocumentRestored(self, obj):
         self.attach(obj)
+        # Its parts and its bill of materials' sheet have no proxy of their own to do it: their
+        # properties' tooltips of now.
+        for o in parts(obj):
+            refresh_docs(o, "Part")
+        for o in obj.InList:
+            if getattr(o, "DispconType", "") == "BOM":
+                refresh_docs(o, "BOM")
+                refresh_docs(o, "Any")
         _view_restored(obj, "Assembly")
 
 
@@ -130,35 +155,28 @@ class JointProxy(_Proxy):
 
     def attach(self, obj):
         _mark(obj, "Joint")
-        if "JointType" not in obj.PropertiesList:
-            obj.addProperty("App::PropertyEnumeration", "JointType", "Joint", "the kind of joint")
-            obj.JointType = JOINT_TYPES
-        elif list(obj.getEnumerationsOfProperty("JointType")) != JOINT_TYPES:
+        _add(obj, "Joint", "App::PropertyEnumeration", "JointType", "Joint", JOINT_TYPES)
+        if list(obj.getEnumerationsOfProperty("JointType")) != JOINT_TYPES:
             # Saved by a workbench with fewer types: the full list, the joint's type kept.
             kind = obj.JointType
             obj.JointType = JOINT_TYPES
             obj.JointType = kind
-        _add(obj, "App::PropertyLinkSub", "Reference1", "Joint", "part and element 1 (carries the guide)")
-        _add(obj, "App::PropertyLinkSub", "Reference2", "Joint", "part and element 2")
-        for name, doc in (("Point1", "joint point, part 1's frame"), ("Axis1", "joint axis, part 1's frame"),
-                          ("Perp1", "reference across the axis, part 1's frame"),
-                          ("Point2", "joint point, part 2's frame"), ("Axis2", "joint axis, part 2's frame"),
-                          ("Perp2", "reference across the axis, part 2's frame")):
-            _add(obj, "App::PropertyVector", name, "Geometry", doc)
-        _add(obj, "App::PropertyBool", "HasRotationLimits", "Limits", "bound the turn about the axis")
-        _add(obj, "App::PropertyAngle", "RotationMin", "Limits", "lowest turn from the creation pose")
-        _add(obj, "App::PropertyAngle", "RotationMax", "Limits", "highest turn from the creation pose")
-        _add(obj, "App::PropertyBool", "HasTravelLimits", "Limits", "bound the travel along the axis")
-        _add(obj, "App::PropertyDistance", "TravelMin", "Limits", "lowest travel")
-        _add(obj, "App::PropertyDistance", "TravelMax", "Limits", "highest travel")
-        _add(obj, "App::PropertyAngle", "ConeAngle", "Limits", "ball joint: largest tilt of axis 2 from axis 1 (0: none)")
-        _add(obj, "App::PropertyAngle", "AngleMin", "Limits", "Angle joint: lowest angle between the axes")
-        _add(obj, "App::PropertyAngle", "AngleMax", "Limits", "Angle joint: highest angle between the axes", 180)
-        _add(obj, "App::PropertyFloat", "Move", "Abilities", MOVE_DOC, -1)
-        if obj.getDocumentationOfProperty("Move") != MOVE_DOC:  # saved with the earlier, terser words
-            obj.setDocumentationOfProperty("Move", MOVE_DOC)
-        _add(obj, "App::PropertyFloat", "Residual", "Solve", "violation after the last solve")
-        _add(obj, "App::PropertyBool", "Violated", "Solve", "not satisfied after the last solve")
+        _add(obj, "Joint", "App::PropertyLinkSub", "Reference1", "Joint")
+        _add(obj, "Joint", "App::PropertyLinkSub", "Reference2", "Joint")
+        for name in ("Point1", "Axis1", "Perp1", "Point2", "Axis2", "Perp2"):
+            _add(obj, "Joint", "App::PropertyVector", name, "Geometry")
+        _add(obj, "Joint", "App::PropertyBool", "HasRotationLimits", "Limits")
+        _add(obj, "Joint", "App::PropertyAngle", "RotationMin", "Limits")
+        _add(obj, "Joint", "App::PropertyAngle", "RotationMax", "Limits")
+        _add(obj, "Joint", "App::PropertyBool", "HasTravelLimits", "Limits")
+        _add(obj, "Joint", "App::PropertyDistance", "TravelMin", "Limits")
+        _add(obj, "Joint", "App::PropertyDistance", "TravelMax", "Limits")
+        _add(obj, "Joint", "App::PropertyAngle", "ConeAngle", "Limits")
+        _add(obj, "Joint", "App::PropertyAngle", "AngleMin", "Limits")
+        _add(obj, "Joint", "App::PropertyAngle", "AngleMax", "Limits", 180)
+        _add(obj, "Joint", "App::PropertyFloat", "Move", "Abilities", -1)
+        _add(obj, "Joint", "App::PropertyFloat", "Residual", "Solve")
+        _add(obj, "Joint", "App::PropertyBool", "Violated", "Solve")
         joint_extras(obj)
 
     def onChanged(self, obj, prop):
@@ -224,6 +242,9 @@ class SubAssemblyProxy(_Proxy):
 
     def onDocumentRestored(self, obj):
         self.attach(obj)
+        refresh_docs(obj, "NestedInstance")  # (those it has: a nested instance's)
+        for link in instance_parts(obj):
+            refresh_docs(link, "InstanceLink")
         _view_restored(obj, "SubAssembly")
         grounding_modes(obj)
         if getattr(obj, "SourceName", ""):
@@ -254,14 +275,10 @@ class SubAssemblyProxy(_Proxy):
 def sub_assembly_properties(obj):
     """The stored properties of a sub-assembly (kept when the file is opened without the
     workbench): the assembly it places, Rigid, its Placement and Grounded."""
-    _add(obj, "App::PropertyXLink", "Assembly", "Sub-assembly", "the assembly placed here (this or another document)")
-    _add(obj, "App::PropertyBool", "Rigid", "Sub-assembly",
-         "moves as one part (its own joints solved inside it); off: its parts and joints join this assembly's solve",
-         True)
-    _add(obj, "App::PropertyPlacement", "Placement", "Sub-assembly", "where the instance's frame is")
-    _add(obj, "App::PropertyBool", "Grounded", "Dispcon", INSTANCE_GROUNDED)
-    if obj.getDocumentationOfProperty("Grounded") != INSTANCE_GROUNDED:  # a part's words, before
-        obj.setDocumentationOfProperty("Grounded", INSTANCE_GROUNDED)
+    _add(obj, "SubAssembly", "App::PropertyXLink", "Assembly", "Sub-assembly")
+    _add(obj, "SubAssembly", "App::PropertyBool", "Rigid", "Sub-assembly", True)
+    _add(obj, "SubAssembly", "App::PropertyPlacement", "Placement", "Sub-assembly")
+    _add(obj, "SubAssembly", "App::PropertyBool", "Grounded", "Dispcon")
 
 
 # An instance's Grounded means something only where the instance is one body of the solve:
@@ -306,8 +323,7 @@ def nested_rigidity_property(obj):
     """A nested instance's Rigid is its place's (editable) and RigidInFile what its placed file
     said when it took it (hidden): equal, the place follows the file; different, it was set here.
     A nested instance saved before either was editable took its file's rigidity: it follows."""
-    _add(obj, "App::PropertyBool", "RigidInFile", "Sub-assembly",
-         "whether the placed file had this place rigid when it was last taken (Rigid unlike it: set here)", obj.Rigid)
+    _add(obj, "NestedInstance", "App::PropertyBool", "RigidInFile", "Sub-assembly", obj.Rigid)
     obj.setEditorMode("RigidInFile", 2)
 
 
@@ -329,26 +345,23 @@ def joint_extras(obj):
     """Reversed, Offset and the frame's rotation offset (the joint panel's), the features picked, a
     Distance's value and the couplings' values, which joints made before them lack: a joint
     without them reads as not reversed, offset 0, not turned, a coupling of ratio 1."""
-    _add(obj, "App::PropertyBool", "Reversed", "Joint", "part 2's axis flipped")
-    _add(obj, "App::PropertyDistance", "Offset", "Joint", "part 2's point this far from part 1's, along part 1's axis")
+    _add(obj, "Joint", "App::PropertyBool", "Reversed", "Joint")
+    _add(obj, "Joint", "App::PropertyDistance", "Offset", "Joint")
     # The rotation offset of part 2's joint frame (FreeCAD 1.x's Assembly has an offset
     # placement on each joint's frames): yaw about the joint's axis, then pitch and roll.
-    for name, doc in (("FrameYaw", "part 2 turned this far about the joint's axis from the picked frame"),
-                      ("FramePitch", "part 2's axis tilted this far about the frame's y (after the yaw)"),
-                      ("FrameRoll", "part 2's axis tilted this far about the frame's x (after the pitch)")):
-        _add(obj, "App::PropertyAngle", name, "Joint", doc)
+    for name in ("FrameYaw", "FramePitch", "FrameRoll"):
+        _add(obj, "Joint", "App::PropertyAngle", name, "Joint")
     # Its translation offset across the axis (along the axis: Offset): part 2's joint frame moved
     # in its own x and y, so part 2 stands that far off part 1's point in the joint's frame.
-    for name, doc in (("FrameX", "part 2 moved this far along the joint frame's x (across the axis)"),
-                      ("FrameY", "part 2 moved this far along the joint frame's y (across the axis)")):
-        _add(obj, "App::PropertyDistance", name, "Joint", doc)
-    _add(obj, "App::PropertyString", "Feature1", "Geometry", "what reference 1 is: point, line, plane, circle, ...")
-    _add(obj, "App::PropertyString", "Feature2", "Geometry", "what reference 2 is")
-    _add(obj, "App::PropertyDistance", "Distance", "Joint", "Distance joint: the distance between the features")
-    _add(obj, "App::PropertyFloat", "Ratio", "Coupling", "Gears, Belt: part 2's turn per turn of part 1", 1.0)
-    _add(obj, "App::PropertyDistance", "Radius", "Coupling", "RackPinion: the pinion's pitch radius (travel per radian)")
-    _add(obj, "App::PropertyDistance", "Pitch", "Coupling", "Screw: travel per turn", 1.0)
-    _add(obj, "App::PropertyBool", "LeftHanded", "Coupling", "Screw: a left-handed thread")
+    for name in ("FrameX", "FrameY"):
+        _add(obj, "Joint", "App::PropertyDistance", name, "Joint")
+    _add(obj, "Joint", "App::PropertyString", "Feature1", "Geometry")
+    _add(obj, "Joint", "App::PropertyString", "Feature2", "Geometry")
+    _add(obj, "Joint", "App::PropertyDistance", "Distance", "Joint")
+    _add(obj, "Joint", "App::PropertyFloat", "Ratio", "Coupling", 1.0)
+    _add(obj, "Joint", "App::PropertyDistance", "Radius", "Coupling")
+    _add(obj, "Joint", "App::PropertyDistance", "Pitch", "Coupling", 1.0)
+    _add(obj, "Joint", "App::PropertyBool", "LeftHanded", "Coupling")
     phase_property(obj)
     show_properties(obj)
     read_only_derived(obj)
@@ -425,20 +438,15 @@ def phase_property(obj):
             obj.removeProperty(name)
             if known:
                 obj.PhaseKnown = False
-    _add(obj, want, "MeshOffset", "Coupling",
-         "how far part 2 is turned (deg; a rack's or a screw's part 2: moved, mm) against part 1 from where "
-         "the coupling was made, part 1 held (the joint's panel previews it; here, the next Solve takes it)")
-    _add(obj, want, "Phase", "Coupling", "the engine's constant of the coupling's equation (kept for it; "
-         "MeshOffset is its reading): ratio x turn1 + turn2 (Gears; Belt: -ratio), or travel - radius x turn "
-         "(RackPinion; Screw: pitch / 2 pi), each turn measured from the line of centres")
+    _add(obj, "Joint", want, "MeshOffset", "Coupling")
+    _add(obj, "Joint", want, "Phase", "Coupling")
     # FreeCAD holds an angle property within +-360 deg, and a gear's phase goes round with the
     # turns: the whole turns of part 2 are kept beside it (the engine's phase is Phase + 360 deg
     # x PhaseTurns; a turn of part 2 is the same pose, so Phase alone says where its teeth are).
-    _add(obj, "App::PropertyInteger", "PhaseTurns", "Coupling",
-         "Gears, Belt: whole turns of part 2 in the phase (the engine's is Phase + 360 deg x PhaseTurns)")
-    _add(obj, "App::PropertyBool", "PhaseKnown", "Coupling", "Phase is the engine's (else made at the poses)")
+    _add(obj, "Joint", "App::PropertyInteger", "PhaseTurns", "Coupling")
+    _add(obj, "Joint", "App::PropertyBool", "PhaseKnown", "Coupling")
     # A joint saved before it: its Phase holds the offset it has.
-    _add(obj, want, "MeshOffsetHeld", "Coupling", "the mesh offset the stored Phase holds", obj.MeshOffset.Value)
+    _add(obj, "Joint", want, "MeshOffsetHeld", "Coupling", obj.MeshOffset.Value)
     # Hidden: the workbench's bookkeeping (the engine's value is read only: show_properties).
     for name in ("PhaseKnown", "MeshOffsetHeld"):
         obj.setEditorMode(name, 2)
@@ -512,13 +520,12 @@ def remake_phase(joint, keep_offset=False):
 
 def part_properties(obj):
     """The properties that make `obj` a part: Grounded, AbilityToRotate, Density."""
-    if not hasattr(obj, "Grounded"):
-        obj.addProperty("App::PropertyBool", "Grounded", "Dispcon", "never moves")
-    if not hasattr(obj, "AbilityToRotate"):
-        obj.addProperty("App::PropertyFloat", "AbilityToRotate", "Dispcon",
-                        "no-physics ability to rotate (0: from the part's size)")
-    if not hasattr(obj, "Density"):
-        obj.addProperty("App::PropertyFloat", "Density", "Dispcon", "mass per unit volume").Density = 1.0
+    for type_id, name, value in (("App::PropertyBool", "Grounded", None),
+                                 ("App::PropertyFloat", "AbilityToRotate", None), ("App::PropertyFloat", "Density", 1.0)):
+        if not hasattr(obj, name):  # (a link reads one it lacks from its linked part)
+            _add(obj, "Part", type_id, name, "Dispcon", value)
+        elif name in obj.PropertiesList:
+            _document(obj, name, DOCS["Part"][name])
     if obj.TypeId != "App::Link":  # a link's part number is its linked object's, in its file
         part_number_property(obj)
 
@@ -526,8 +533,7 @@ def part_properties(obj):
 def part_number_property(obj):
     """PartNumber, the bill of materials' part number of a part defined here (its description is
     FreeCAD's own Label2)."""
-    _add(obj, "App::PropertyString", "PartNumber", "Bill of materials",
-         "the part number the bill of materials lists (its description: the Description, Label2)")
+    _add(obj, "Part", "App::PropertyString", "PartNumber", "Bill of materials")
 
 
 def _kind(obj):
@@ -688,3 +694,104 @@ def new_joint(doc, name):
     _view(obj, "Joint")
     return obj
 
+
+# Every property the workbench gives an object, by the kind of object, with its tooltip: the one
+# table read when a property is made (_add) and when a document is opened (_add again, and
+# refresh_docs for the objects without a proxy of their own), so a document saved with older
+# words shows these once reopened. What the property editor shows, so in a designer's words.
+_PART = {
+    "Grounded": "never moves: the other parts are placed around it",
+    "AbilityToRotate": "how readily the part turns rather than moves when a joint pulls it (the paper's "
+                       "no-physics ability to rotate; 0: from the part's size)",
+    "Density": "mass per unit volume: the parts' masses say which gives way (a joint's Move), and the "
+               "bill of materials lists them",
+}
+DOCS = {
+    "Any": {"DispconType": "what this object is to the Dispcon workbench"},
+    "Assembly": {
+        "Tolerance": "largest violation of a joint a solve accepts",
+        "MaxIterations": "the most iterations a solve takes before it stops and says so",
+        "LastSolve": "what the last solve said",
+    },
+    "Joint": {
+        "JointType": "the kind of joint (the joint's panel changes it with its fields)",
+        "Reference1": "part and element 1 (carries the guide)",
+        "Reference2": "part and element 2",
+        "Point1": "joint point, part 1's frame (made from Reference1 at every solve)",
+        "Axis1": "joint axis, part 1's frame (made from Reference1 at every solve)",
+        "Perp1": "reference across the axis, part 1's frame (made from Reference1 at every solve)",
+        "Point2": "joint point, part 2's frame (made from Reference2 at every solve)",
+        "Axis2": "joint axis, part 2's frame (made from Reference2 at every solve)",
+        "Perp2": "reference across the axis, part 2's frame (made from Reference2 at every solve)",
+        "HasRotationLimits": "bound the turn about the axis (between RotationMin and RotationMax)",
+        "RotationMin": "lowest turn from the creation pose",
+        "RotationMax": "highest turn from the creation pose",
+        "HasTravelLimits": "bound the travel along the axis (between TravelMin and TravelMax)",
+        "TravelMin": "lowest travel",
+        "TravelMax": "highest travel",
+        "ConeAngle": "ball joint: largest tilt of axis 2 from axis 1 (0: none)",
+        "AngleMin": "Angle joint: lowest angle between the axes",
+        "AngleMax": "Angle joint: highest angle between the axes",
+        "Move": MOVE_DOC,
+        "Residual": "violation after the last solve",
+        "Violated": "not satisfied after the last solve",
+        "Reversed": "part 2's axis flipped",
+        "Offset": "part 2's point this far from part 1's, along part 1's axis",
+        "FrameYaw": "part 2 turned this far about the joint's axis from the picked frame",
+        "FramePitch": "part 2's axis tilted this far about the frame's y (after the yaw)",
+        "FrameRoll": "part 2's axis tilted this far about the frame's x (after the pitch)",
+        "FrameX": "part 2 moved this far along the joint frame's x (across the axis)",
+        "FrameY": "part 2 moved this far along the joint frame's y (across the axis)",
+        "Feature1": "what reference 1 is: point, line, plane, circle, ...",
+        "Feature2": "what reference 2 is",
+        "Distance": "Distance joint: the distance between the features",
+        "Ratio": "Gears, Belt: part 2's turn per turn of part 1",
+        "Radius": "RackPinion: the pinion's pitch radius (travel per radian)",
+        "Pitch": "Screw: travel per turn",
+        "LeftHanded": "Screw: a left-handed thread",
+        "MeshOffset": "how far part 2 is turned (deg; a rack's or a screw's part 2: moved, mm) against part 1 "
+                      "from where the coupling was made, part 1 held (the joint's panel previews it; here, the "
+                      "next Solve takes it)",
+        "Phase": "the engine's constant of the coupling's equation (kept for it; MeshOffset is its reading): "
+                 "ratio x turn1 + turn2 (Gears; Belt: -ratio), or travel - radius x turn (RackPinion; Screw: "
+                 "pitch / 2 pi), each turn measured from the line of centres",
+        "PhaseTurns": "Gears, Belt: whole turns of part 2 in the phase (the engine's is Phase + 360 deg x PhaseTurns)",
+        "PhaseKnown": "Phase is the engine's (else made at the poses)",
+        "MeshOffsetHeld": "the mesh offset the stored Phase holds",
+    },
+    "SubAssembly": {
+        "Assembly": "the assembly placed here (this or another document)",
+        "Rigid": "moves as one part (its own joints solved inside it); off: its parts and joints join this "
+                 "assembly's solve",
+        "Placement": "where the instance's frame is",
+        "Grounded": INSTANCE_GROUNDED,
+    },
+    # An instance inside an instance (its place mirrors a sub-assembly of the file placed).
+    "NestedInstance": {
+        "SourceName": "the Name of the sub-assembly this nested instance mirrors in the assembly its container places",
+        "LocalPlacement": "this nested instance's frame in its container's frame (stored here, per instance)",
+        "RigidInFile": "whether the placed file had this place rigid when it was last taken (Rigid unlike it: set here)",
+    },
+    "Part": dict(_PART, PartNumber="the part number the bill of materials lists (its description: the "
+                                   "Description, Label2)"),
+    # An instance's part: a link to the placed assembly's part, its pose kept per instance.
+    "InstanceLink": dict(_PART, LocalPlacement="this part's placement in its instance's frame (stored here, per "
+                                               "instance)"),
+    "ExplodedView": {
+        "Assembly": "the assembly drawn exploded",
+        "StepModes": "each step's way: Radial (away from the centre), Direction (along it), Stack (stacked along it)",
+        "StepDistances": "each step's distance (mm): Radial, how far its farthest part moves; Direction, how far "
+                         "each moves; Stack, the step between two parts",
+        "StepDirections": "each step's direction (Direction, Stack)",
+        "StepParts": "the parts the steps move, step after step (a sub-assembly moves as one)",
+        "StepSizes": "how many of StepParts each step moves",
+        "Lines": "lines along the way each part is drawn",
+        "Parts": "the parts drawn, in the order of Offsets",
+        "Offsets": "how far each part is drawn from its place",
+    },
+    "BOM": {
+        "Assembly": "the assembly this is the bill of",
+        "SubAssemblies": "sub-assemblies: one row each, with their parts indented, or expanded into parts",
+        "BomRows": "the rows written last (the header's too)",
+    },
+}

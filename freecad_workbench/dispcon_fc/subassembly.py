@@ -226,10 +226,8 @@ def _new_link(sub, part, local):
 
 
 def nested_properties(inst):
-    objects._add(inst, "App::PropertyString", "SourceName", "Sub-assembly",
-                 "the Name of the sub-assembly this nested instance mirrors in the assembly its container places")
-    objects._add(inst, "App::PropertyPlacement", "LocalPlacement", "Sub-assembly",
-                 "this nested instance's frame in its container's frame (stored here, per instance)")
+    objects._add(inst, "NestedInstance", "App::PropertyString", "SourceName", "Sub-assembly")
+    objects._add(inst, "NestedInstance", "App::PropertyPlacement", "LocalPlacement", "Sub-assembly")
     objects.nested_rigidity_property(inst)
     inst.setEditorMode("SourceName", 1)
 
@@ -462,12 +460,10 @@ def instance_link_properties(link):
     """A link's own part properties. An App::Link reads a property it lacks from the object it
     links (hasattr would see the placed part's Grounded): each is added by name, and a part
     grounded in the placed assembly is free here (the parent's joints hold the instance)."""
-    objects._add(link, "App::PropertyPlacement", "LocalPlacement", "Sub-assembly",
-                 "this part's placement in its instance's frame (stored here, per instance)")
-    objects._add(link, "App::PropertyBool", "Grounded", "Dispcon", "never moves", False)
-    objects._add(link, "App::PropertyFloat", "AbilityToRotate", "Dispcon",
-                 "no-physics ability to rotate (0: from the part's size)")
-    objects._add(link, "App::PropertyFloat", "Density", "Dispcon", "mass per unit volume",
+    objects._add(link, "InstanceLink", "App::PropertyPlacement", "LocalPlacement", "Sub-assembly")
+    objects._add(link, "InstanceLink", "App::PropertyBool", "Grounded", "Dispcon", False)
+    objects._add(link, "InstanceLink", "App::PropertyFloat", "AbilityToRotate", "Dispcon")
+    objects._add(link, "InstanceLink", "App::PropertyFloat", "Density", "Dispcon",
                  getattr(link.LinkedObject, "Density", 1.0))
 
 

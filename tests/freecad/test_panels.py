@@ -4,6 +4,7 @@ kept), a sub-assembly instance's Grounded where it means holding the instance an
 it means nothing, and a joint's Move explained. Each class opens and closes its own documents;
 the panels themselves are tested under Xvfb (gui_workbench.py's TestPanelFixes)."""
 import os
+import re
 import sys
 import tempfile
 import unittest
@@ -195,9 +196,96 @@ class MoveExplained(unittest.TestCase):
         self.assertEqual(j.Move, -1)
 
 
+def kinds_of(obj):
+    """The DOCS tables (objects.DOCS) that say `obj`'s properties, by what the object is."""
+    out = ["Any"]
+    if objects.is_assembly(obj):
+        out.append("Assembly")
+    elif objects.is_joint(obj):
+        out.append("Joint")
+    elif objects.is_sub_assembly(obj):
+        out += ["SubAssembly"] + (["NestedInstance"] if getattr(obj, "SourceName", "") else [])
+    elif obj.TypeId == "App::Link" and "LocalPlacement" in obj.PropertiesList:
+        out.append("InstanceLink")
+    elif getattr(obj, "DispconType", "") in ("ExplodedView", "BOM"):
+        out.append(obj.DispconType)
+    elif "Grounded" in obj.PropertiesList:
+        out.append("Part")
+    else:
+        return []
+    return out
+
+
+class PropertyDocs(unittest.TestCase):
+    """Every property of every dispcon object (assembly, joints, parts, sub-assembly instances,
+    nested ones and their links, an exploded view, a bill of materials) has its tooltip from one
+    table, objects.DOCS, as made and once a document saved with older words is reopened."""
+
+    def setUp(self):
+        os.environ["DISPCON_NESTED_IMPORT_ONLY"] = "1"
+        import test_nested as tn
+
+        self.tmp = tempfile.mkdtemp()
+        _, walker, _ = tn.make_walker_file(self.tmp, hip_joints=("Revolute",) * 4)
+        self.doc, self.asm, track, walks = tn.make_parade(self.tmp, walker, rigid=False)
+        from dispcon_fc import bom, exploded
+
+        exploded.new_exploded_view(self.asm)
+        bom.write_sheet(self.asm)
+        self.doc.recompute()
+
+    def tearDown(self):
+        close_all()
+
+    def dispcon_properties(self, doc):
+        """{(object name, property): (its tooltip, the table's)} for every property the workbench
+        gave an object of `doc` (those a bare object of its type lacks)."""
+        bare = {}
+        scratch = App.newDocument("bare")
+        out, kinds = {}, set()
+        try:
+            for o in doc.Objects:
+                tables = kinds_of(o)
+                if not tables:
+                    continue
+                kinds.update(tables)
+                if o.TypeId not in bare:
+                    bare[o.TypeId] = set(scratch.addObject(o.TypeId, "Bare").PropertiesList)
+                for name in set(o.PropertiesList) - bare[o.TypeId]:
+                    if o.TypeId == "Spreadsheet::Sheet" and re.match(r"^[A-Z]+[0-9]+$", name):
+                        continue  # a cell of the sheet (FreeCAD's own, a property each)
+                    want = [objects.DOCS[t][name] for t in tables if name in objects.DOCS[t]]
+                    out[(o.Name, name)] = (o.getDocumentationOfProperty(name), want[0] if want else None)
+        finally:
+            App.closeDocument(scratch.Name)
+        return out, kinds
+
+    def test_every_property_has_the_tables_tooltip_made_and_reopened(self):
+        made, kinds = self.dispcon_properties(self.doc)
+        self.assertEqual(kinds, set(objects.DOCS), "an object of each kind in the parade")
+        missing = sorted(k for k, (_, want) in made.items() if want is None)
+        self.assertEqual(missing, [], "properties the table does not say")
+        self.assertEqual({k: v for k, v in made.items() if v[0] != v[1]}, {})
+        self.assertIn(("Track", "Density"), made)
+        self.assertGreater(len(made), 200)
+        # Saved with older words on every one of them, reopened: the table's words.
+        for (name, prop) in made:
+            self.doc.getObject(name).setDocumentationOfProperty(prop, "older words")
+        self.assertEqual(self.doc.getObject("Track").getDocumentationOfProperty("Density"), "older words")
+        path = self.doc.FileName
+        self.doc.save()
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        reopened, _ = self.dispcon_properties(self.doc)
+        self.assertEqual(set(reopened), set(made))
+        self.assertEqual(sorted(k for k, v in reopened.items() if v[0] != v[1]), [])
+        self.assertFalse(self.doc.isTouched())
+
+
 if True:  # run by freecadcmd as a script
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
-                               for c in (JointNames, InstanceGrounded, MoveExplained))
+                               for c in (JointNames, InstanceGrounded, MoveExplained, PropertyDocs)
+                               if not os.environ.get("DISPCON_PANELS_ONLY") or c.__name__ == os.environ["DISPCON_PANELS_ONLY"])
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
     failed = len(result.failures) + len(result.errors)
     print("%d passed, %d failed" % (result.testsRun - failed, failed))
