@@ -2131,6 +2131,171 @@ class TestTypedAndPicked(Documents):
         self.assertEqual(len([o for o in asm.Group if hasattr(o, "JointType")]), 4)
 
 
+def report_view_text():
+    """The Report view's text as a person reads it."""
+    for w in mw().findChildren(QtWidgets.QTextEdit):
+        if "ReportOutput" in w.metaObject().className():
+            return w.toPlainText()
+    raise AssertionError("no Report view")
+
+
+@contextlib.contextmanager
+def answering_questions(answer=QtWidgets.QMessageBox.Yes):
+    """Any question FreeCAD asks meanwhile (a QMessageBox: "delete its content as well?")
+    answered by a click on `answer`, as the designer who chose to delete answers it."""
+    asked = []
+
+    def answer_it():
+        box = QtWidgets.QApplication.activeModalWidget()
+        if isinstance(box, QtWidgets.QMessageBox) and box.button(answer) is not None:
+            asked.append(box.text())
+            box.button(answer).click()
+
+    timer = QtCore.QTimer()
+    timer.timeout.connect(answer_it)
+    timer.start(100)
+    try:
+        yield asked
+    finally:
+        timer.stop()
+
+
+class TestPanelsGone(unittest.TestCase):
+    """Every panel (a new joint, a joint edited, the Drive, an exploded view, the bill of
+    materials, the Check) when what it edits goes from under it while it is open: the object
+    deleted in the tree, its document closed, an undo. The panel closes itself at once, saying
+    why in the Report view, with no traceback; an edit's undo leaves every placement as it was
+    before the panel opened, to the bit. (It stayed open over a closed document, its Cancel
+    doing nothing; the exploded view's Cancel raised "Object has been removed from document"
+    after an undo.)"""
+
+    KINDS = ("joint-new", "joint-edit", "drive", "exploded", "bom", "check")
+    TITLES = {"joint-new": "joint panel", "joint-edit": "joint panel", "drive": "Drive panel",
+              "exploded": "Exploded view panel", "bom": "Bill of materials panel", "check": "Check panel"}
+
+    def tearDown(self):
+        close_dialog()
+        close_documents()
+
+    def setup(self, kind):
+        """A new document with a base and an arm on a revolute, the panel of `kind` open: (doc,
+        asm, the object whose deletion ends the panel, the panel, the placements before)."""
+        from dispcon_fc import operations
+        from dispcon_fc.panels import bom as bp, check as cp, drive, exploded as ep, joint as jp
+        import parts
+
+        close_dialog()
+        doc = App.newDocument("gone")
+        activate(doc)
+        asm = operations.create_assembly(doc)
+        base, arm = base_and_arm(asm)
+        e1 = (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0)))
+        e2 = (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0)))
+        joint = operations.add_joint(asm, "Revolute", e1, e2)
+        self.assertTrue(operations.solve(asm).converged)
+        Gui.SendMsgToActiveView("ViewFit")
+        before = [tuple(o.Placement.Base) + tuple(o.Placement.Rotation.Q) for o in (base, arm)]
+        if kind == "joint-new":
+            Gui.Selection.clearSelection()
+            Gui.Selection.addSelection(*e1)
+            Gui.Selection.addSelection(*e2)
+            Gui.runCommand("Dispcon_JointRevolute")
+            settle()
+            panel = jp.current()
+            target = panel.joint
+        elif kind == "joint-edit":
+            panel, target = jp_edit(joint), joint
+            panel.offset.setProperty("rawValue", 0.5)  # the preview moves the arm up
+            settle()
+            self.assertAlmostEqual(arm.Placement.Base.z, 0.5, places=6)
+        elif kind == "drive":
+            panel, target = drive.open_panel(asm, joint), joint
+            panel.target.setProperty("rawValue", 30.0)
+            pause(500)
+        elif kind == "exploded":
+            panel = ep.open_panel(asm)
+            target = panel.view
+        elif kind == "bom":
+            panel, target = bp.open_panel(asm), asm
+        else:
+            panel, target = panels_show(cp.CheckPanel(asm)), asm
+        settle()
+        self.assertTrue(Gui.Control.activeDialog(), kind)
+        return doc, asm, target, panel, before, (base, arm)
+
+    def gone(self, kind, how):
+        doc, asm, target, panel, before, objs = self.setup(kind)
+        start = len(report_view_text())
+        if how == "deleted" and kind == "joint-edit":
+            # FreeCAD's Delete leaves an object in edit; a macro deletes it, inside the panel's
+            # transaction: taken back with the rest, as Cancel does.
+            label = target.Label
+            doc.removeObject(target.Name)
+            pause(200)
+            said = report_view_text()[start:]
+            self.assertIn("The joint panel closed: %s was deleted. Everything since it opened is taken back, "
+                          "as Cancel does." % label, said)
+            self.assertNotIn("Traceback", said)
+            self.assertFalse(Gui.Control.activeDialog())
+            self.assertEqual([tuple(o.Placement.Base) + tuple(o.Placement.Rotation.Q) for o in objs], before)
+            self.assertEqual([j.Label for j in asm.Group if hasattr(j, "JointType")], [label])
+            return said
+        if how == "deleted":
+            Gui.Selection.clearSelection()
+            Gui.Selection.addSelection(target)
+            with answering_questions():
+                Gui.runCommand("Std_Delete")
+                pause(300)
+            self.assertFalse(target in doc.Objects, "%s not deleted" % target.Label)
+            reason = "%s was deleted" % target.Label
+        elif how == "closed":
+            App.closeDocument(doc.Name)
+            reason = "its document was closed"
+        else:
+            Gui.runCommand("Std_Undo")
+            reason = "an undo changed its document"
+        pause(200)
+        said = report_view_text()[start:]
+        self.assertNotIn("Traceback", said)
+        self.assertNotIn("Error", said)
+        if kind == "check" and how == "undo":  # a report of a moment: it stays, Close closes it
+            self.assertTrue(Gui.Control.activeDialog())
+            panel.reject()
+            settle()
+        else:
+            self.assertIn("The %s closed: %s." % (self.TITLES[kind], reason), said)
+        self.assertFalse(Gui.Control.activeDialog(), "the %s stayed open after %s" % (kind, how))
+        if how == "undo" and kind in ("joint-edit", "drive"):
+            after = [tuple(o.Placement.Base) + tuple(o.Placement.Rotation.Q) for o in objs]
+            self.assertEqual(after, before, "the undo left a part where the panel put it")
+        shot("panel-gone-%s-%s" % (kind, how))
+        return said
+
+    def test_deleted(self):
+        for kind in self.KINDS:
+            with self.subTest(kind=kind):
+                self.gone(kind, "deleted")
+                close_documents()
+
+    def test_document_closed(self):
+        for kind in self.KINDS:
+            with self.subTest(kind=kind):
+                self.gone(kind, "closed")
+                close_documents()
+
+    def test_undo(self):
+        for kind in self.KINDS:
+            with self.subTest(kind=kind):
+                self.gone(kind, "undo")
+                close_documents()
+
+
+def panels_show(panel):
+    from dispcon_fc import panels
+
+    return panels.show(panel)
+
+
 def th_B():
     from test_headless import B
 
@@ -2176,7 +2341,7 @@ def run_in_gui(classes, status_name):
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
     run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestCouplings,
-                                    TestPanelFixes, TestTypedAndPicked)
+                                    TestPanelFixes, TestTypedAndPicked, TestPanelsGone)
                 if not only or only in cls.__name__], "status-workbench")
 
 

@@ -1,10 +1,128 @@
 """What the task panels that hold one transaction share: the message line, the OK button, the
-dialog's buttons, Cancel, and knowing when their document or form is gone."""
+dialog's buttons, Cancel, and knowing when their document or form is gone; and what every panel
+shares: closing itself when what it edits goes from under it."""
+import FreeCAD as App
+import FreeCADGui as Gui
+
 from . import ok_button
 from ..qt import QtCore, QtWidgets, is_alive
 
 
-class TransactionPanel:
+def exists(obj):
+    """Whether `obj` is still an object of its document (not deleted, nor taken away by an undo;
+    its document not closed)."""
+    try:
+        return obj.Document.getObject(obj.Name) is obj
+    except (ReferenceError, RuntimeError):
+        return False
+
+
+class _Watch:
+    """A document observer that tells its panel when the panel's document closes, an undo or a
+    redo changes it, or one of the objects the panel edits (panel.watched()) is deleted. It says
+    so from a timer: FreeCAD is still in the middle of that change when it calls."""
+
+    def __init__(self, panel):
+        self.panel = panel
+
+    def _tell(self, why):
+        panel = self.panel
+        if not getattr(panel, "changing", False):
+            QtCore.QTimer.singleShot(0, lambda: panel._went_away(why))
+
+    def _ours(self, doc):
+        try:
+            return doc is self.panel.doc or doc.Name == self.panel.doc.Name
+        except (ReferenceError, RuntimeError):
+            return True  # its document gone meanwhile
+
+    def slotDeletedDocument(self, doc):
+        if self._ours(doc):
+            self._tell("its document was closed")
+
+    def slotUndoDocument(self, doc):
+        if self.panel.ends_on_undo and self._ours(doc):
+            self._tell("an undo changed its document")
+
+    def slotRedoDocument(self, doc):
+        if self.panel.ends_on_undo and self._ours(doc):
+            self._tell("a redo changed its document")
+
+    def slotDeletedObject(self, obj):
+        try:
+            mine = any(obj is o for o in self.panel.watched())
+            label = obj.Label
+            if getattr(obj.Document, "Transacting", False):
+                return  # an undo or a redo taking it away: that one says so
+        except (ReferenceError, RuntimeError):
+            return
+        if mine:
+            self._tell("%s was deleted" % label)
+
+
+class Watched:
+    """A panel (`self.doc`, `self.closed`, `self.form`) that closes itself, once, when its
+    document closes, an undo or a redo changes it, or an object it edits is deleted: it then
+    lets go of what it holds, takes back what it did where its transaction is still open (as
+    Cancel), and says in the status bar and the Report view why it closed. Its Cancel, its OK
+    and anything later find it closed and do nothing (no deleted object read, no traceback)."""
+
+    title = "panel"
+    ends_on_undo = True  # (a report of a moment, as the Check's, stays)
+    changing = False  # the panel itself is deleting or replacing an object it edits
+
+    def watch(self):
+        self._watch = _Watch(self)
+        App.addDocumentObserver(self._watch)
+
+    def unwatch(self):
+        watch = getattr(self, "_watch", None)
+        if watch is not None:
+            self._watch = None
+            App.removeDocumentObserver(watch)
+
+    def watched(self):
+        """The objects whose deletion ends the panel."""
+        return []
+
+    def _went_away(self, why):
+        if getattr(self, "_watch", None) is None:
+            return  # closed by its OK or Cancel meanwhile, or ended already
+        self.closed = True
+        self.unwatch()
+        try:
+            self._forget()
+        except (ReferenceError, RuntimeError):
+            pass
+        from . import last_panel
+
+        if last_panel is not self or not Gui.Control.activeDialog():
+            return  # its dialog closed already (by another panel opening): nothing to say
+        transaction = getattr(self, "transaction", None)
+        try:
+            alive = bool(self.doc.Name)
+        except (ReferenceError, RuntimeError):
+            alive = False
+        text = "The %s closed: %s." % (self.title, why)
+        if alive and transaction is not None and self.doc.HasPendingTransaction:
+            # Its transaction still open (a script deleted the object inside it): everything
+            # since the panel opened is taken back, as Cancel does, that deletion too.
+            self._take_back()
+            text += " Everything since it opened is taken back, as Cancel does."
+        from .. import feedback
+
+        feedback.report(text)
+        feedback.status(text, 8000)
+        Gui.Control.closeDialog()
+
+    def _take_back(self):
+        self.transaction.abort()
+
+    def _forget(self):
+        """Lets go of what the panel holds outside itself (nothing here)."""
+
+
+class TransactionPanel(Watched):
     """A task panel with a form (`self.form`), a message label (`self.message`), its document
     (`self.doc`) and the transaction it holds open (`self.transaction`). A subclass writes
     `_close(commit)`, and `_forget()` if it holds something to let go of when its document goes."""
@@ -39,11 +157,9 @@ class TransactionPanel:
         except ReferenceError:
             pass
         self.closed = True
+        self.unwatch()
         self._forget()
         return True
-
-    def _forget(self):
-        """Lets go of what the panel holds outside itself (nothing here)."""
 
     # -- the task dialog ----------------------------------------------------------------------
     def getStandardButtons(self):

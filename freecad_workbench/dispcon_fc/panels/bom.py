@@ -11,15 +11,19 @@ from ..adapter import plural
 from ..feedback import report, status
 from ..qt import QtCore, QtGui, QtWidgets
 from ..resources import icon_path
+from .base import Watched
 
 EDITABLE = (bom.COLUMNS.index("Part number"), bom.COLUMNS.index("Description"))
 CHOICES = (("rows", "One row each"), ("indented", "A row, its parts below"), ("expanded", "Only their parts"))
 
 
-class BomPanel:
+class BomPanel(Watched):
+    title = "Bill of materials panel"
+
     def __init__(self, asm):
         self.asm, self.doc = asm, asm.Document
         self.closed = False
+        self.watch()
         self.bill = []
         self.edits = {}  # {Name of the object written on: (a member, part number, description)}
         self.filling = False
@@ -174,13 +178,18 @@ class BomPanel:
             self.message.setStyleSheet("color: #cc0000;")
             return False
         self.closed = True
+        self.unwatch()
         report("%s: %d rows written into '%s'" % (self.asm.Label, len(bill), sheet.Label))
         status("Bill of materials: %d rows in '%s'" % (len(bill), sheet.Label), 8000)
         Gui.Control.closeDialog()
         return True
 
+    def watched(self):
+        return [self.asm]
+
     def reject(self):
         self.closed = True
+        self.unwatch()
         Gui.Control.closeDialog()
         return True
 

@@ -12,11 +12,21 @@ from ..objects import joints as joints_of
 from ..qt import QtGui, QtWidgets
 from ..resources import icon_path
 from . import load_ui
+from .base import Watched
 
 
-class CheckPanel:
+class CheckPanel(Watched):
     """The check's report (ui/check.ui), by the joints' and parts' labels; the conflicting joints'
-    markers turn red in the 3D view (the next Solve or Check that finds none clears them)."""
+    markers turn red in the 3D view (the next Solve or Check that finds none clears them). It
+    closes itself when its assembly is deleted or its document closed (an undo leaves it: a
+    report of the moment it was made)."""
+
+    title = "Check panel"
+    ends_on_undo = False
+    closed = False
+
+    def watched(self):
+        return [self.asm]
 
     def __init__(self, asm, headline=None, result=None):
         c = result if result is not None else operations.check(asm)
@@ -31,7 +41,8 @@ class CheckPanel:
         if headline:
             self.form.summary.setText(headline)
             self.form.summary.setStyleSheet("color: #cc0000; font-weight: bold;")
-        self.asm = asm
+        self.asm, self.doc = asm, asm.Document
+        self.watch()
         # The exports a designer wants next, without another command: the report as JSON, and
         # the motion study (animated SVG, plot, CSV) of the selected joint or the first revolute.
         self.form.exportReport.clicked.connect(lambda *_: self._export_report())
@@ -75,6 +86,8 @@ class CheckPanel:
         return int(QtWidgets.QDialogButtonBox.Close)
 
     def accept(self):
+        self.closed = True
+        self.unwatch()
         Gui.Control.closeDialog()
         return True
 

@@ -52,6 +52,11 @@ class StepOrKey(QtCore.QObject):
 class DrivePanel(TransactionPanel):
     """The task panel that drives one joint of `asm` (`joint`, else the first drivable one)."""
 
+    title = "Drive panel"
+
+    def watched(self):
+        return [self.asm] + list(self.joints)
+
     def __init__(self, asm, joint=None):
         self.asm = asm
         self.doc = asm.Document
@@ -60,6 +65,7 @@ class DrivePanel(TransactionPanel):
             raise ValueError("%s has no Revolute, Cylindrical, Slider or PointOnLine joint to drive" % asm.Label)
         self.transaction = operations.Transaction(self.doc, "Drive")
         self.closed = False
+        self.watch()
         self.busy = False  # a drive is running (its frames process the GUI's events)
         self.pending = False  # the value changed meanwhile: drive again once it ends
         self.keyed = False  # the box's last change is being typed (not an arrow's step)
@@ -247,6 +253,7 @@ class DrivePanel(TransactionPanel):
         if self.closed or self._gone():  # its document closed: nothing to commit or abort
             return
         self.closed = True
+        self.unwatch()
         self.pause.stop()
         if commit:
             self.transaction.commit()

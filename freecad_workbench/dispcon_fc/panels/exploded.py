@@ -13,7 +13,7 @@ import FreeCADGui as Gui
 from .. import exploded, panels
 from ..qt import QtCore, QtGui, QtWidgets
 from ..resources import icon_path
-from .base import TransactionPanel
+from .base import TransactionPanel, exists
 from .joint import quantity_box, raw
 
 # The direction box's choices: a label and the vector.
@@ -25,6 +25,11 @@ NAME_ROLE = QtCore.Qt.UserRole
 
 class ExplodedPanel(TransactionPanel):
     """The task panel of `view`, an exploded view of `asm` (a new one when None)."""
+
+    title = "Exploded view panel"
+
+    def watched(self):
+        return [self.asm, self.view]
 
     def __init__(self, asm, view=None):
         import FreeCAD as App
@@ -43,6 +48,7 @@ class ExplodedPanel(TransactionPanel):
             self.transaction.abort()
             raise
         exploded.show(self.view, True)
+        self.watch()
         # The slider's full travel: twice the assembly's size (a radial step's farthest part
         # that far out; a stack of a few parts that far apart).
         box = App.BoundBox()
@@ -327,18 +333,22 @@ class ExplodedPanel(TransactionPanel):
         self._close(commit=True)
         return True
 
+    def _take_back(self):
+        if self.new and exists(self.view):
+            exploded.show(self.view, False)  # the parts back before the view goes
+        self.transaction.abort()
+        if not self.new and self.was_shown is not None and exists(self.view):
+            exploded.show(self.view, self.was_shown)
+
     def _close(self, commit):
         if self.closed or self._gone():
             return
         self.closed = True
+        self.unwatch()
         if commit:
             self.transaction.commit()
         else:
-            if self.new:
-                exploded.show(self.view, False)  # the parts back before the view goes
-            self.transaction.abort()
-            if not self.new and self.was_shown is not None:
-                exploded.show(self.view, self.was_shown)
+            self._take_back()
         self._forget()
         self.doc.recompute()
         Gui.Control.closeDialog()

@@ -140,6 +140,8 @@ def raw(box):
 class JointPanel(TransactionPanel):
     """The task panel of a new joint (asm, joint_type, refs) or of an existing one (joint)."""
 
+    title = "joint panel"
+
     def __init__(self, asm, joint_type=None, refs=(), joint=None):
         self.asm = asm
         self.joint = joint
@@ -148,6 +150,7 @@ class JointPanel(TransactionPanel):
         self.refs = list(refs)
         self.transaction = operations.Transaction(self.doc, "Edit joint" if joint else "Add joint")
         self.closed = False
+        self.watch()
         self.preview = None  # the marker under the cursor while picking
         self.picked = None  # the references' edges drawn highlighted once the joint is made
         self.form = self._build(joint.JointType if joint else joint_type)
@@ -466,6 +469,9 @@ class JointPanel(TransactionPanel):
         self._say("Pick %s." % PICK[self.type_box.currentText()])
         self._set_ok(False)
 
+    def watched(self):
+        return [self.asm] + ([self.joint] if self.joint is not None else [])
+
     def _forget(self):
         """A panel whose document or form is gone stops listening and drops its drawings."""
         self._hide_preview()
@@ -542,7 +548,11 @@ class JointPanel(TransactionPanel):
             # A label its parts gave it follows the new parts; one typed, or a type's name from
             # an earlier workbench (Revolute001), stays.
             label = None if operations.named_from_parts(self.joint) else self.joint.Label
-            self.doc.removeObject(self.joint.Name)
+            self.changing = True  # (its own deletion: not one that ends the panel)
+            try:
+                self.doc.removeObject(self.joint.Name)
+            finally:
+                self.changing = False
             self.joint = None
             self._create()
             if self.joint is not None and label is not None:
@@ -661,6 +671,7 @@ class JointPanel(TransactionPanel):
         if self.closed or self._gone():  # its document closed: nothing to commit or abort
             return
         self.closed = True
+        self.unwatch()
         self._hide_preview()
         self._hide_picked()
         Gui.Selection.removeObserver(self)
