@@ -2079,6 +2079,71 @@ class TestTypedAndPicked(Documents):
         self.assertAlmostEqual(panel.joint.Offset.Value, 6.35, places=9)
         panel.reject()
 
+    def test_a_text_in_another_unit_typed_key_by_key_moves_nothing_and_cancel_restores_to_the_bit(self):
+        from dispcon_fc.panels import joint as jp
+
+        asm, base, arm, e1, e2 = self.arm()
+        bits = lambda: [tuple(o.Placement.Base) + tuple(o.Placement.Rotation.Q) for o in (base, arm)]
+        before = bits()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(*e1)
+        Gui.Selection.addSelection(*e2)
+        Gui.runCommand("Dispcon_JointRevolute")
+        settle()
+        panel = jp.current()
+        snapped = bits()
+        self.assertNotEqual(snapped, before)
+        box = panel.offset
+        box.setFocus()
+        box.selectAll()
+        seen = []
+        for char in "3 kg":  # as a person types: each key's press and release, the GUI's events run
+            for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
+                QtWidgets.QApplication.sendEvent(box, QtGui.QKeyEvent(kind, 0, QtCore.Qt.NoModifier, char))
+            settle()
+            seen.append((box.text(), bits() == snapped))
+        # No prefix ("3", "3 ", "3 k") moved the arm: the preview waits for typing to pause.
+        self.assertEqual([moved for _, moved in seen], [True] * 4, seen)
+        self.assertRegex(panel.message.text(), r"^Offset: '3 kg?' is not a length \(mm\)\.$")
+        self.assertFalse(panel.ok_button().isEnabled())
+        pause(3 * jp.TYPING_PAUSE_MS)  # a pause with an unreadable text: still nothing moves
+        self.assertEqual(bits(), snapped)
+        self.assertFalse(panel.ok_button().isEnabled())
+        shot("panel-offset-kg-typed")
+        # Cancel (its button, as clicked) puts both parts back where they were, to the bit.
+        buttons = [b for b in mw().findChildren(QtWidgets.QDialogButtonBox) if b.isVisible()]
+        cancel = [b.button(QtWidgets.QDialogButtonBox.Cancel) for b in buttons if b.button(QtWidgets.QDialogButtonBox.Cancel)]
+        self.assertTrue(cancel)
+        cancel[0].click()
+        settle()
+        self.assertFalse(Gui.Control.activeDialog())
+        self.assertEqual(bits(), before)
+        self.assertFalse([o for o in asm.Group if hasattr(o, "JointType")])
+
+    def test_a_typed_offset_is_previewed_once_typing_pauses(self):
+        from dispcon_fc.panels import joint as jp
+
+        panel, asm, base, arm = self.open("Revolute")
+        z0 = arm.Placement.Base.z
+        type_into(panel.offset, "2.5", finish=False)
+        self.assertEqual(arm.Placement.Base.z, z0, "moved through a prefix of 2.5")
+        pause(3 * jp.TYPING_PAUSE_MS)
+        self.assertAlmostEqual(arm.Placement.Base.z, 2.5, places=6)
+        self.assertTrue(panel.ok_button().isEnabled())
+        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):  # an arrow's step: at once
+            QtWidgets.QApplication.sendEvent(panel.offset, QtGui.QKeyEvent(kind, QtCore.Qt.Key_Up, QtCore.Qt.NoModifier))
+        settle()
+        self.assertGreater(raw_of(panel.offset), 2.5)
+        self.assertAlmostEqual(arm.Placement.Base.z, raw_of(panel.offset), places=6)
+        panel.offset.clearFocus()
+        panel.offset.setProperty("rawValue", 1.0)  # a script's value: at once
+        settle()
+        self.assertAlmostEqual(arm.Placement.Base.z, 1.0, places=6)
+        type_into(panel.offset, "4", finish=False)
+        self.assertTrue(panel.accept())  # OK before the pause: the value typed is taken
+        settle()
+        self.assertAlmostEqual(arm.Placement.Base.z, 4.0, places=6)
+
     def test_the_drive_says_a_text_in_another_unit_or_past_the_limits(self):
         from dispcon_fc import operations
         from dispcon_fc.panels import drive

@@ -18,35 +18,16 @@ from .. import operations, panels
 from .base import TransactionPanel
 from ..qt import QtCore, QtGui, QtWidgets
 from ..resources import icon_path
-from .joint import TypedText, markers_icon, quantity_box, raw, set_unit
+from .joint import TYPING_PAUSE_MS, StepOrKey, TypedText, markers_icon, quantity_box, raw, set_unit
 
 UNIT_TEXT = {"deg": "°", "mm": " mm"}
 FULL_RANGE = 1e6  # a joint without limits: degrees or mm either way
-TYPING_PAUSE_MS = 400  # a typed value is driven once the keys pause this long
-STEP_KEYS = (QtCore.Qt.Key_Up, QtCore.Qt.Key_Down, QtCore.Qt.Key_PageUp, QtCore.Qt.Key_PageDown)
 
 
 def drivable_joints(asm):
     """The joints of `asm` a drive can move, in the assembly's order: its own, then its flexible
     sub-assemblies' at every depth (Walk2.Leg3.Revolute)."""
     return operations.drivable_joints(asm)
-
-
-class StepOrKey(QtCore.QObject):
-    """Tells the panel whether the box's next change is typed (a key that edits its text) or a
-    step (an arrow key, the wheel, a click on its arrows)."""
-
-    def __init__(self, panel, parent):
-        super().__init__(parent)
-        self.panel = panel
-
-    def eventFilter(self, obj, event):
-        kind = event.type()
-        if kind == QtCore.QEvent.KeyPress:
-            self.panel.keyed = event.key() not in STEP_KEYS
-        elif kind in (QtCore.QEvent.Wheel, QtCore.QEvent.MouseButtonPress):
-            self.panel.keyed = False
-        return False
 
 
 class DrivePanel(TransactionPanel):
@@ -127,6 +108,8 @@ class DrivePanel(TransactionPanel):
             return
         self.pause.stop()
         self._drive()
+
+    _edited = _changed  # (a text readable again: as any change of the box)
 
     def _flush(self):
         """Editing ended: what was typed and not yet driven is driven now."""

@@ -43,6 +43,12 @@ FIELDS = {
 # one makes the joint again from the references.
 REMADE = ("Distance", "Parallel", "Perpendicular") + COUPLINGS
 
+# A value typed key by key is previewed (the joint's panel) or driven (the Drive's) once the keys
+# pause this long, or editing ends (Enter, Tab, OK): not through its prefixes, "3" of "3 kg" or 1
+# of 12, which moved the parts and left them so.
+TYPING_PAUSE_MS = 400
+STEP_KEYS = (QtCore.Qt.Key_Up, QtCore.Qt.Key_Down, QtCore.Qt.Key_PageUp, QtCore.Qt.Key_PageDown)
+
 # What a greyed-out field's tooltip says while the references are picked.
 WAITING = "Pick both references first: the joint is made on them, then its fields apply to it"
 
@@ -64,6 +70,23 @@ def set_unit(box, unit):
 
 UNIT_WORDS = {"mm": "a length", "deg": "an angle"}
 UNIT_SIGNS = {"mm": " mm", "deg": "°"}
+
+
+class StepOrKey(QtCore.QObject):
+    """Tells the panel whether a box's next change is typed (a key that edits its text) or a
+    step (an arrow key, the wheel, a click on its arrows)."""
+
+    def __init__(self, panel, parent):
+        super().__init__(parent)
+        self.panel = panel
+
+    def eventFilter(self, obj, event):
+        kind = event.type()
+        if kind == QtCore.QEvent.KeyPress:
+            self.panel.keyed = event.key() not in STEP_KEYS
+        elif kind in (QtCore.QEvent.Wheel, QtCore.QEvent.MouseButtonPress):
+            self.panel.keyed = False
+        return False
 
 
 class TypedText(QtCore.QObject):
@@ -96,7 +119,7 @@ class TypedText(QtCore.QObject):
             self.panel._say(bad, True)
             self.panel._set_ok(False)
         elif was:
-            self.panel._changed()
+            self.panel._edited()
 
     def finished(self, box):
         # (a panel closing takes the focus from its box: editing ends then too)
@@ -286,10 +309,20 @@ class JointPanel(TransactionPanel):
         # (clicked passes its checked state, which is no list of references to keep)
         self.pick_button.clicked.connect(lambda *_: self._start_picking())
         self.reverse.toggled.connect(self._changed)
-        for box in (self.offset, self.rot_min, self.rot_max, self.tr_min, self.tr_max, self.cone,
-                    self.ang_min, self.ang_max, self.distance, self.ratio, self.radius, self.pitch, self.phase,
-                    *self.frame, *self.shift):
-            box.valueChanged.connect(self._changed)
+        # A value typed is previewed once the keys pause (or editing ends); a step, at once.
+        self.keyed = False
+        self.pause = QtCore.QTimer(w)
+        self.pause.setSingleShot(True)
+        self.pause.setInterval(TYPING_PAUSE_MS)
+        self.pause.timeout.connect(self._changed)
+        self.keys = StepOrKey(self, w)
+        self.boxes = (self.offset, self.rot_min, self.rot_max, self.tr_min, self.tr_max, self.cone, self.ang_min,
+                      self.ang_max, self.distance, self.ratio, self.radius, self.pitch, self.phase, *self.frame,
+                      *self.shift)
+        for box in self.boxes:
+            box.valueChanged.connect(self._edited)
+            box.installEventFilter(self.keys)
+            box.editingFinished.connect(self._flush)
         for check in (self.has_rotation, self.has_travel, self.left):
             check.toggled.connect(self._changed)
         return w
@@ -630,9 +663,24 @@ class JointPanel(TransactionPanel):
                 return "%s %g%s: it must be above 0." % (what, kw[key], unit)
         return None
 
-    def _changed(self, *_):
-        if self.loading or self._gone():
+    def _edited(self, *_):
+        """A box's value changed: typed, previewed once the keys pause; stepped (arrows, wheel)
+        or set by a script, at once."""
+        if self.keyed and not self.loading and any(box.hasFocus() for box in self.boxes):
+            self.pause.start()
             return
+        self._changed()
+
+    def _flush(self):
+        """Editing ended: what was typed and not yet previewed is previewed now."""
+        self.keyed = False
+        if self.pause.isActive():
+            self._changed()
+
+    def _changed(self, *_):
+        if self.loading or self.closed or self._gone():
+            return
+        self.pause.stop()
         self._show_fields()
         bad = self.problem()
         if bad:
@@ -660,6 +708,7 @@ class JointPanel(TransactionPanel):
 
     # -- the task dialog ----------------------------------------------------------------------
     def accept(self):
+        self._flush()  # (Enter or OK before typing paused: the value typed, then the commit)
         bad = self.problem()
         if bad or self.joint is None:
             self._say(bad or "Pick two references first.", True)
@@ -672,6 +721,7 @@ class JointPanel(TransactionPanel):
             return
         self.closed = True
         self.unwatch()
+        self.pause.stop()
         self._hide_preview()
         self._hide_picked()
         Gui.Selection.removeObserver(self)
