@@ -2336,6 +2336,28 @@ class TestPanelsGone(unittest.TestCase):
         shot("panel-gone-%s-%s" % (kind, how))
         return said
 
+    def test_check_run_with_another_panel_open_shows_its_report(self):
+        from dispcon_fc import panels
+        from dispcon_fc.panels import check
+
+        doc, asm, target, panel, before, objs = self.setup("drive")  # the arm driven to 30 degrees
+        self.assertNotEqual([tuple(o.Placement.Base) + tuple(o.Placement.Rotation.Q) for o in objs], before)
+        start = len(report_view_text())
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        Gui.runCommand("Dispcon_Check")
+        settle()
+        said = report_view_text()[start:]
+        self.assertNotIn("Active task dialog found", said)
+        self.assertIsInstance(panels.last_panel, check.CheckPanel)
+        self.assertTrue(Gui.Control.activeDialog())
+        self.assertTrue(panel.closed)  # the Drive cancelled as its Cancel does: the arm back
+        self.assertEqual([tuple(o.Placement.Base) + tuple(o.Placement.Rotation.Q) for o in objs], before)
+        shot("panel-check-over-drive")
+        panels.last_panel.accept()
+        settle()
+        self.assertFalse(Gui.Control.activeDialog())
+
     def test_deleted(self):
         for kind in self.KINDS:
             with self.subTest(kind=kind):

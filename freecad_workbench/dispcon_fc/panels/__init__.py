@@ -13,8 +13,15 @@ def load_ui(name):
 
 
 def show(panel):
-    """Opens `panel` in the task view and returns it."""
+    """Opens `panel` in the task view and returns it. A panel open already is cancelled first, as
+    its Cancel would (FreeCAD shows one task dialog at a time: Check run with the Drive panel
+    open said only "Active task dialog found", and showed nothing)."""
     global last_panel
+    previous = last_panel
+    if previous is not None and previous is not panel and not previous.closed and Gui.Control.activeDialog():
+        previous.reject()
+    if Gui.Control.activeDialog():
+        Gui.Control.closeDialog()
     last_panel = panel
     Gui.Control.showDialog(panel)
     return panel
