@@ -24,9 +24,14 @@ constexpr int kPullIterations = 40;
 // its own: the sweep's far targets (far_targets_test.cpp) took up to 101 in all, 24 of them
 // still running out of those 80.
 constexpr int kStepIterations = 60;
-// Of those, what the turn leaves for the pull's last correction back onto the joints (up to 6
-// Newton steps, made past its cap so that the poses it leaves are valid).
-constexpr int kTurnReserve = 6;
+// Of those, what the turn's steps leave for the pull's last correction back onto the joints,
+// made past their cap so that the poses it leaves are valid. The step's 60 bound that
+// correction too (Session::pull's all_iterations): where it cannot make the joints hold within
+// them, the turn ends at the last valid pose it kept. 6 before (the correction's most; 0-4
+// used): 2 lets the far turns step on (the sweep's 32 turns out of their iterations nearer by
+// 0.31 rad in all, none farther); at 1 the last correction met the step's end and a turn went
+// back to an early valid pose (the monocycle-push's wheel about x: 0.58 -> 2.14 rad left).
+constexpr int kTurnReserve = 2;
 
 std::vector<bool> held_only(const Model& model, BodyId body) {
   if (body.value <= 0 || body.value >= model.body_count()) {
@@ -427,8 +432,9 @@ SolveResult Dragger::turn(const Pose& target, const std::vector<Pose>& from, int
   }
   std::vector<Pose> poses = from;
   poses.push_back(target);  // the ghost's
-  const int left = std::max(0, kStepIterations - spent - kTurnReserve);
-  SolveResult r = turn_->session->pull(poses, turn_->rotation, left);
+  const int all = std::max(0, kStepIterations - spent);
+  const int left = std::max(0, all - kTurnReserve);
+  SolveResult r = turn_->session->pull(poses, turn_->rotation, left, all);
   r.poses.pop_back();
   r.constraints.resize(static_cast<size_t>(model_.joint_count()));
   r.max_residual = largest_residual(r.constraints);

@@ -387,7 +387,7 @@ struct Rises {
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
                        PolishWork& work, std::vector<double>& band, const SolveOptions& o,
                        std::vector<double>& soft, PoseBuffer& before, PoseBuffer& spare,
-                       std::vector<double>& joint_r, bool follows) {
+                       std::vector<double>& joint_r, bool follows, int most) {
   PullOutcome out;
   const JointState& pulled = s.joints[static_cast<size_t>(joint)];
   double& damping = soft[static_cast<size_t>(joint)];
@@ -401,7 +401,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   auto correct = [&](double within) {
     damping = kOut;
     double lambda = kRegularised;
-    for (int k = 0; k < kCorrections && now.hard > within; ++k) {
+    for (int k = 0; k < kCorrections && now.hard > within && out.iterations < most; ++k) {
       ++out.iterations;
       if (!polisher.step(s, work, band, lambda, o.max_rotation_step, false, false, &soft,
                          &holds.let_go))
@@ -487,8 +487,17 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
     if (released) may_release = false;
     return released;
   };
+  // With `most` bounded: the last pose kept at which the hard joints hold (the start's at least),
+  // where the pull ends if its last correction cannot make them hold within `most`.
+  const bool bounded = most < std::numeric_limits<int>::max();
+  PoseBuffer valid;
+  bool kept_valid = false;
   while (now.distance > o.tolerance && out.iterations < o.max_iterations) {
     const Measure kept = now;
+    if (bounded && now.hard <= o.tolerance) {
+      save_group_poses(s, group, valid);
+      kept_valid = true;
+    }
     const double h0 = h;
     jumped = false;
     const bool stepped = pull_step();
@@ -750,9 +759,15 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   // Ended where the last step's valid poses jumped off the pose kept: no step from it gets
   // nearer, but not because it is least (Rises): no nearest pose is claimed.
   if (jumped) out.stationary = false;
-  // Back onto the valid poses to well within the tolerance.
+  // Back onto the valid poses to well within the tolerance; where `most` stopped that short of
+  // the tolerance, back to the last valid pose kept.
   if (!correct(1e-3 * o.tolerance)) {
-    load_poses(s, group, before);
+    if (kept_valid && out.iterations >= most) {
+      load_group_poses(s, group, valid);
+      out.stationary = false;
+    } else {
+      load_poses(s, group, before);
+    }
   }
   damping = 0;
   now = measure(s, group, joint, joint_r);

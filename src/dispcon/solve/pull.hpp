@@ -2,6 +2,7 @@
 // that the soft joint's residual is as small as the hard joints allow. Internal to the solver.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "dispcon/solve/polish.hpp"
@@ -20,10 +21,15 @@ struct PullOutcome {
 // joints cannot be made to hold, at those given). `soft` has one entry per joint, all zero; it is
 // used as scratch for the pull joint's damping; `before` and `spare` hold poses aside.
 // `max_iterations` caps the Newton steps. `follows`: the last pull of this joint reached its
-// target (a drag in reach, frame after frame): the first step is then damped less.
+// target (a drag in reach, frame after frame): the first step is then damped less. `most`
+// bounds every iteration, the corrections made past the cap included (the poses a pull leaves
+// are corrected back onto the joints past it, up to kCorrections Newton steps, unless `most`
+// comes first): where the joints do not hold by then, the pull ends at the last pose it kept at
+// which they did (no nearest claimed).
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
                        PolishWork& work, std::vector<double>& band, const SolveOptions& o,
                        std::vector<double>& soft, PoseBuffer& before, PoseBuffer& spare,
-                       std::vector<double>& joint_r, bool follows = false);
+                       std::vector<double>& joint_r, bool follows = false,
+                       int most = std::numeric_limits<int>::max());
 
 }  // namespace dispcon

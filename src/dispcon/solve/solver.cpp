@@ -290,7 +290,7 @@ struct Session::Impl {
   void run_groups();
   void run(GroupRun& p, PolishWork& work);
   void run_iterations(GroupRun& p, PolishWork& work);
-  PullOutcome run_pull(int joint);
+  PullOutcome run_pull(int joint, int most);
   SolveResult finish(const std::vector<Pose>& poses);
 
   const Model& model;
@@ -375,7 +375,8 @@ void Session::set_stuck(Stuck stuck) {
   impl_->stuck = stuck;
 }
 
-SolveResult Session::pull(std::vector<Pose>& poses, JointId joint, int most_iterations) {
+SolveResult Session::pull(std::vector<Pose>& poses, JointId joint, int most_iterations,
+                          int all_iterations) {
   Impl& session = current();
   // The cap for this pull alone (the options' again after it, however it ends).
   struct Cap {
@@ -390,7 +391,10 @@ SolveResult Session::pull(std::vector<Pose>& poses, JointId joint, int most_iter
   }
   session.start(poses);
   PullOutcome pulled;
-  if (session.finite) pulled = session.run_pull(joint.value);
+  if (session.finite) {
+    pulled = session.run_pull(
+        joint.value, all_iterations >= 0 ? all_iterations : std::numeric_limits<int>::max());
+  }
   SolveResult result = session.finish(poses);
   // finish() judged the hard joints; the pulled joint is reported as measured.
   result.max_residual = std::max(result.max_residual, pulled.distance);
@@ -409,7 +413,7 @@ SolveResult Session::pull(std::vector<Pose>& poses, JointId joint, int most_iter
 
 // The group of the pulled joint is pulled; the others solve as usual (serially: a pull is an
 // interactive drag's frame, its other groups untouched by it).
-PullOutcome Session::Impl::run_pull(int joint) {
+PullOutcome Session::Impl::run_pull(int joint, int most) {
   soft.assign(s.joints.size(), 0.0);
   PullOutcome out;
   bool found = false;
@@ -423,7 +427,7 @@ PullOutcome Session::Impl::run_pull(int joint) {
     before.assign(given->begin(), given->end());
     spare.assign(given->begin(), given->end());
     out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, spare, joint_r,
-                     reached == joint);
+                     reached == joint, most);
     reached = out.holds && out.distance <= o.tolerance ? joint : -1;
     p.measured = false;  // the pull moved the poses since the first measure
     p.iterations = p.polish = out.iterations;

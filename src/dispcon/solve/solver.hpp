@@ -122,8 +122,12 @@ class Session {
   // cap came first, Stalled when the others could not be made to hold. `poses` are updated in
   // place in the first two cases; the result's poses are those reached. Throws
   // std::invalid_argument for an unknown or inactive joint. `most_iterations`, when not
-  // negative, caps this pull's iterations below the options' cap.
-  SolveResult pull(std::vector<Pose>& poses, JointId joint, int most_iterations = -1);
+  // negative, caps this pull's iterations below the options' cap. `all_iterations`, when not
+  // negative, bounds every iteration, the last correction back onto the joints (made past the
+  // cap) included: where it cannot make them hold by then, the pull ends IterationLimit at the
+  // last pose it kept at which they held.
+  SolveResult pull(std::vector<Pose>& poses, JointId joint, int most_iterations = -1,
+                   int all_iterations = -1);
   // Whether the last solve stopped at slow whole steps (Stuck::StopWhenSlow).
   bool slowed() const;
   // Whether the last solve stopped at steps cut short too far from their end (likewise).

@@ -1334,5 +1334,40 @@ TEST(Reach, SnakePulledAlongItsChainEndsAtTheNearestPoseOrSaysNot) {
   }
 }
 
+// The same pull cut off: with all_iterations (a drag step's turn: Dragger::turn, the step's 60)
+// no iteration is made past it, the last correction back onto the joints included (made past
+// the cap, it could add up to 6: 0-4 in the far-targets sweep), and the poses reached are
+// valid and no farther from the target than the start (IterationLimit, no nearest claimed), for
+// a cap at the bound itself or short of it.
+TEST(Reach, PullCutOffMakesNoIterationPastAllIterations) {
+  ParseResult parsed = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/snake.dcl");
+  ASSERT_TRUE(parsed.ok()) << parsed.messages();
+  Model m = std::move(*parsed.model);
+  ASSERT_TRUE(assemble(m).converged);
+  const BodyId s3 = *m.find("s3");
+  const Vec3 target(0, 10, 0);
+  const JointId soft = m.add_joint(pin(Model::kWorld, s3, target));
+  const SolveOptions o;
+  const double began = (m.body(s3).pose.x - target).norm();
+  for (int all : {3, 8, 20, 40}) {
+    for (int reserve : {0, 2}) {
+      SCOPED_TRACE(std::to_string(all) + " in all, " + std::to_string(reserve) + " reserved");
+      Session session(m, o);
+      std::vector<Pose> poses = m.poses();
+      const std::vector<Pose> given = poses;
+      const SolveResult r = session.pull(poses, soft, all - reserve, all);
+      ASSERT_EQ(r.status, SolveStatus::IterationLimit) << r.message;
+      EXPECT_LE(r.iterations, all);
+      EXPECT_TRUE(same_bits(poses, given));  // not called the nearest: left as they were
+      for (const ConstraintReport& c : measure(m, r.poses, o)) {
+        if (c.joint.value != soft.value) EXPECT_TRUE(c.satisfied) << c.joint.value;
+      }
+      const double left = (r.poses[static_cast<size_t>(s3.value)].x - target).norm();
+      EXPECT_NEAR(r.distance_left, left, 1e-9);
+      EXPECT_LE(left, began + o.tolerance);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dispcon
