@@ -62,6 +62,9 @@ const Far kTargets[] = {
 // within 60, with the valid pose they reached; so do two that ended at it after 55 and 56 (the
 // monocycle-push's left foot about z, the otary's head about x), now after 54, at the same pose
 // to 2.4e-10 rad.
+// Since the thirteenth round the turn's steps stop 2 short of the 60 (6 before) and its last
+// correction is bounded by them (drag.cpp's kTurnReserve, Session::pull's all_iterations): no
+// step can go over 60, and of the 32 turns that ran out of them none ends farther.
 // Since the tenth round a turn that holds a bound takes reduced quasi-Newton steps on the
 // directions the held rows leave free (rim.hpp, up to 5): the robot arm's hand about z (81 -> 32),
 // the monocycle's body about x (85, out of its steps -> 32) and the monocycle-push's left foot
