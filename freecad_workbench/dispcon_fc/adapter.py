@@ -575,6 +575,40 @@ def plural(n, word):
     return "%d %s%s" % (n, word, "" if n == 1 else "s")
 
 
+# The joints that hold part 2's turn about the axis where it was when the joint was made.
+HOLD_TWIST = ("Fixed", "Slider")
+
+
+def made_askew(j):
+    """How far apart (degrees, at least) the two parts' axes of a joint holding the turn were
+    when it was made, from its stored twist reference: made lined up, part 2's reference is square
+    to its axis; made with part 2 tipped by t away from part 1's axis, their dot product is up to
+    sin(t). 0 for a joint that holds no turn."""
+    if j.JointType not in HOLD_TWIST or "Perp2" not in j.PropertiesList:
+        return 0.0
+    axis, perp = App.Vector(j.Axis2), App.Vector(j.Perp2)
+    if axis.Length < 1e-12 or perp.Length < 1e-12:
+        return 0.0
+    return math.degrees(math.asin(min(1.0, abs(axis.dot(perp)) / (axis.Length * perp.Length))))
+
+
+def made_askew_hints(joints, least=10.0):
+    """What to do about each joint made with its parts' axes `least` degrees apart or more: it
+    holds part 2 turned about the axis as it stood then, a turn with which the other joints may
+    have no pose (the slider-crank's Slider made after its Ball's solve had tipped the piston
+    over, the third workbench audit)."""
+    hints = []
+    for j in joints:
+        t = made_askew(j)
+        if t >= least:
+            part1, part2 = j.Reference1[0].Label, j.Reference2[0].Label
+            hints.append("%s was made with %s's axis %.0f degrees or more off %s's and holds %s "
+                         "turned about it as it stood then: if the joints cannot hold so, stand %s "
+                         "lined up with %s's axis and make %s again (or make it before the joints "
+                         "that move %s)" % (j.Label, part2, t, part1, part2, part2, part1, j.Label, part2))
+    return hints
+
+
 class Result:
     """What a solve said, with the joints still violated named as the user knows them."""
 
@@ -587,6 +621,7 @@ class Result:
         self.skipped = [j for j, _ in adapter.skipped]
         if not r.converged:
             self.message = "could not make every joint hold; still violated: " + names
+            self.message += "".join("; " + hint for hint in made_askew_hints(adapter.joints))
         elif r.iterations == 0:
             self.message = ALREADY_HELD
         else:

@@ -335,6 +335,98 @@ def test_slider_crank_from_picked_faces_and_edges():
     App.closeDocument(doc.Name)
 
 
+def sample_slider_crank(doc):
+    """samples/freecad's slider-crank, its parts placed as build_samples.py places them and no
+    joint yet: (asm, ground, crank, rod, piston) and the Ball's and the Slider's references."""
+    asm = da.create_assembly(doc)
+    made = []
+    for name, shape in (("Ground", parts.ground_with_rail([(0, 0)], (1.5, 5.0))), ("Crank", parts.link(1)),
+                        ("Rod", parts.link(3)), ("Piston", parts.piston())):
+        o = doc.addObject("Part::Feature", name)
+        o.Shape = shape
+        da.add_part(asm, o, grounded=name == "Ground")
+        made.append(o)
+    g, crank, rod, piston = made
+    crank.Placement = App.Placement(App.Vector(0, 0, 0.15), App.Rotation(App.Vector(0, 0, 1), 30))
+    rod.Placement = App.Placement(App.Vector(0.8, 0.5, 0.2), App.Rotation(App.Vector(0, 0, 1), -10))
+    piston.Placement = App.Placement(App.Vector(3.5, 0.1, 0.1), App.Rotation())
+
+    def pin(o, x, z):
+        return (o, parts.circle_edge(o.Shape, App.Vector(x, 0, z)))
+
+    def along_x(o, y, z):
+        inv = o.Placement.inverse()
+        for i, e in enumerate(o.Shape.Edges):
+            a, b = inv.multVec(e.Vertexes[0].Point), inv.multVec(e.Vertexes[-1].Point)
+            if (e.Curve.TypeId == "Part::GeomLine" and abs(a.z - z) < 1e-9 and abs(b.z - z) < 1e-9
+                    and abs(a.y - y) < 1e-9 and abs(b.y - y) < 1e-9 and abs(b.x - a.x) > 0.1):
+                return "Edge%d" % (i + 1)
+        raise ValueError("no edge along x at y = %g, z = %g" % (y, z))
+
+    da.add_joint(asm, "Revolute", pin(g, 0, 0.1), pin(crank, 0, 0))
+    da.add_joint(asm, "Revolute", pin(crank, 1, 0.1), pin(rod, 0, 0))
+    top = next("Face%d" % (i + 1) for i, f in enumerate(piston.Shape.Faces)
+               if abs(piston.Placement.inverse().multVec(f.CenterOfMass).z - 0.1) < 1e-9)
+    ball = (pin(rod, 3, 0), (piston, top))
+    slider = ((g, along_x(g, -0.3, 0.1)), (piston, along_x(piston, -0.2, 0)))
+    return asm, (g, crank, rod, piston), ball, slider
+
+
+def is_slider_crank(crank, piston):
+    """The piston upright on the rail (its top centre at y = -0.1, z = 0.2) and 3 from the end
+    of the crank (1 long, turning in the plane about the origin)."""
+    t = angle_of(crank)
+    top = piston.Placement.multVec(App.Vector(0, 0, 0.1))
+    assert abs(piston.Placement.Rotation.Angle) < 1e-8, piston.Placement
+    assert abs(top.y + 0.1) < 1e-8 and abs(top.z - 0.2) < 1e-8, top
+    assert abs((top - App.Vector(math.cos(t), math.sin(t), 0.2)).Length - 3) < 1e-8, top
+
+
+@test
+def test_sample_slider_crank_joint_by_joint():
+    """The third audit's slider-crank made joint by joint, a solve after each (as the joint
+    panel's preview does). The Slider first, then the Ball, closes. In the sample's order the
+    Ball's solve tips the free piston over, and the Slider made then holds the piston turned about
+    the rail as it stood (about 67 degrees): no pose holds that with the Ball and the crank's
+    plane, so its solve fails, moves nothing and says what to do; done so, it closes."""
+    doc = App.newDocument("slider_order")
+    asm, (g, crank, rod, piston), ball, slider = sample_slider_crank(doc)
+    assert da.solve(asm).converged
+    da.add_joint(asm, "Slider", *slider)
+    assert da.solve(asm).converged
+    da.add_joint(asm, "Ball", *ball)
+    r = da.solve(asm)
+    assert r.converged, r.message
+    is_slider_crank(crank, piston)
+    assert "made with" not in r.message, r.message
+    App.closeDocument(doc.Name)
+
+    doc = App.newDocument("slider_order")
+    asm, (g, crank, rod, piston), ball, slider = sample_slider_crank(doc)
+    assert da.solve(asm).converged
+    da.add_joint(asm, "Ball", *ball)
+    assert da.solve(asm).converged
+    assert piston.Placement.Rotation.Angle > 1.0, piston.Placement  # tipped over
+    j = da.add_joint(asm, "Slider", *slider)
+    before = [o.Placement for o in (crank, rod, piston)]
+    r = da.solve(asm)
+    assert not r.converged, r.message
+    assert [o.Placement for o in (crank, rod, piston)] == before
+    said = re.search(r"%s was made with Piston's axis (\d+) degrees or more off Ground's and holds Piston "
+                     r"turned about it as it stood then: if the joints cannot hold so, stand Piston lined up "
+                     r"with Ground's axis and make %s again \(or make it before the joints that move Piston\)"
+                     % (j.Label, j.Label), r.message)
+    assert said and 60 <= int(said.group(1)) <= 90, r.message  # the piston's x edge points nearly down
+    # As the message says: the piston stood upright (where it is), the Slider made again.
+    doc.removeObject(j.Name)
+    piston.Placement = App.Placement(piston.Placement.Base, App.Rotation())
+    da.add_joint(asm, "Slider", *slider)
+    r = da.solve(asm)
+    assert r.converged, r.message
+    is_slider_crank(crank, piston)
+    App.closeDocument(doc.Name)
+
+
 # ---------------------------------------------------------------------------------------------
 # Installed like an addon, and nothing lost where the workbench is missing. These run FreeCAD
 # sessions of their own (freecadcmd in a subprocess) with a temporary HOME, so neither the
