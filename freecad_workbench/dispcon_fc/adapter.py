@@ -315,6 +315,39 @@ def local_mass(shape, placement):
     return volume, geometry.to_local(placement, point=com), local
 
 
+# The parts' centres in their own frames, by document and object name: (the shape they were
+# integrated from, the centre or None). OpenCascade's integration was most of the time a model of
+# a hundred parts took to build (Solve, Check, a drag's press, a joint added each build one);
+# a shape is integrated again only when it is no longer a partner of that one (the same
+# geometry, wherever it is placed): its part recomputed, the document read again.
+_CENTRES = {}
+
+
+def local_centre(owner, shape, placement):
+    """The centre of mass of `owner`'s `shape` (its solids) in the frame of `placement`, the
+    owner's; None when it has no solid or no volume."""
+    key = (owner.Document.Name, owner.Name)
+    # Only a shape placed where its owner is (a Part::Feature's, a link's: to rounding, FreeCAD
+    # places it through a matrix) is known by its geometry: the centre in the owner's frame is
+    # then the same wherever the owner stands, to rounding (a few units in the last place of
+    # the centre integrated anew).
+    rel = placement.inverse().multiply(shape.Placement)
+    q = rel.Rotation.Q
+    placed = rel.Base.Length <= 1e-12 * max(1.0, placement.Base.Length) and math.sqrt(
+        q[0] ** 2 + q[1] ** 2 + q[2] ** 2) <= 1e-12
+    known = _CENTRES.get(key) if placed else None
+    if known is not None and known[0].isPartner(shape):
+        return App.Vector(known[1]) if known[1] is not None else None
+    com = geometry.center_of_mass(shape)
+    centre = geometry.to_local(placement, point=com) if com is not None else None
+    if not placed:
+        return centre
+    if len(_CENTRES) > 100000:  # parts of documents long closed
+        _CENTRES.clear()
+    _CENTRES[key] = (shape, App.Vector(centre) if centre is not None else None)
+    return centre
+
+
 class Adapter:
     """One assembly as a dispcon.Model: bodies are the parts (their Placement is the pose), with
     mass and inertia from their shapes; joints are the joint objects, in order."""
@@ -410,8 +443,8 @@ class Adapter:
         if local is None and not physics:
             # The centre only: the integrations for the mass and inertia were most of the time
             # a drag's press took (it builds the model from every part).
-            com = geometry.center_of_mass(shape)
-            props = (None, geometry.to_local(pl, point=com), None) if com is not None else ()
+            centre = local_centre(owner, shape, pl)
+            props = (None, centre, None) if centre is not None else ()
         else:
             props = local if local is not None else local_mass(shape, pl)
         if props:
