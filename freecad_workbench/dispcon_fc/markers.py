@@ -288,6 +288,20 @@ def glyph(joint_type, size):
     return sep
 
 
+# The unit glyph of each joint type, made once and drawn by every marker of that type (a Coin
+# node may have many parents; nothing changes a glyph once made: a marker's look overrides its
+# colours from above it). Making them anew was most of what a hundred markers cost to open.
+_GLYPHS = {}
+
+
+def shared_glyph(joint_type):
+    """The unit glyph of `joint_type` (glyph(joint_type, 1.0)), shared by the markers."""
+    node = _GLYPHS.get(joint_type)
+    if node is None:
+        node = _GLYPHS[joint_type] = glyph(joint_type, 1.0)
+    return node
+
+
 # A glyph's size on the screen, in pixels (its ring's radius): markers keep it whatever the zoom,
 # as FreeCAD's own draggers and axis crosses do, so they neither swamp a small part nor vanish
 # beside a large one.
@@ -596,7 +610,7 @@ class Marker:
             return
         self.holder.removeAllChildren()
         self.holder.addChild(self.offset)
-        self.holder.addChild(glyph(joint_type, 1.0))
+        self.holder.addChild(shared_glyph(joint_type))
         self.joint_type = joint_type
 
     def place(self, point, axis):
