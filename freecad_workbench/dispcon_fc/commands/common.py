@@ -5,7 +5,7 @@ import FreeCADGui as Gui
 
 from ..feedback import report
 from ..feedback import status as feedback_status
-from ..objects import is_assembly, joints, placed_parts, sub_assemblies
+from ..objects import is_assembly, is_joint, is_sub_assembly, nested_parts
 
 
 def active_assembly():
@@ -70,15 +70,27 @@ def status(text, msecs=8000):
 
 def has_parts(n=1):
     """Whether the assembly has `n` parts, counting those of its sub-assemblies (a joint may
-    hold a leg's hip to the frame)."""
+    hold a leg's hip to the frame). Counted until there are `n`: FreeCAD asks each command after
+    every event, and counting a hundred parts for each took seconds of a document's opening."""
     asm = active_assembly()
-    return asm is not None and len(placed_parts(asm)) >= n
+    if asm is None:
+        return False
+    count = 0
+    for o in asm.Group:
+        if is_sub_assembly(o):
+            count += len(nested_parts(o))
+        elif not is_joint(o) and (hasattr(o, "Shape") or o.TypeId == "App::Link"):  # objects.parts'
+            count += 1
+        if count >= n:
+            return True
+    return False
 
 
 def has_joints():
-    """Whether the assembly has a joint to solve: its own, or a sub-assembly's."""
+    """Whether the assembly has a joint to solve: its own, or a sub-assembly's. Looked for from
+    the end of its group, where joints are added after their parts."""
     asm = active_assembly()
-    return asm is not None and (bool(joints(asm)) or bool(sub_assemblies(asm)))
+    return asm is not None and any(is_joint(o) or is_sub_assembly(o) for o in reversed(asm.Group))
 
 
 def no_task_dialog():
