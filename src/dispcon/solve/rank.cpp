@@ -2,6 +2,7 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <cmath>
 
 #include "dispcon/solve/group.hpp"
 #include "dispcon/solve/jacobian.hpp"
@@ -13,15 +14,23 @@ namespace {
 
 constexpr double kRankTolerance = 1e-8;
 
+// A's singular values, largest first (none when A is empty).
 template <typename M>
-int rank_of(const M& A) {
-  if (A.rows() == 0 || A.cols() == 0) return 0;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A);
-  const auto& s = svd.singularValues();
+Eigen::VectorXd singular_values(const M& A) {
+  if (A.rows() == 0 || A.cols() == 0) return {};
+  return Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues();
+}
+
+int rank_from(const Eigen::VectorXd& s) {
   if (s.size() == 0 || s(0) == 0) return 0;
   int r = 0;
   for (Eigen::Index k = 0; k < s.size(); ++k) r += s(k) > kRankTolerance * s(0);
   return r;
+}
+
+template <typename M>
+int rank_of(const M& A) {
+  return rank_from(singular_values(A));
 }
 
 // Every row scaled to unit norm (a row in radians and a row in lengths weigh the same), then
@@ -59,6 +68,54 @@ struct Rows {
   std::vector<int> start;
 };
 
+// The redundant joints of a block in one pass, without the SVD of every leading block of rows
+// (one per joint: a hundred-part chain's Check took minutes). The rows of each joint in turn have
+// what the rows before them span taken out (twice, for the rounding); the singular values of what
+// is left say how many of them add rank, and their directions join the basis. It gives the SVDs'
+// answers where they are not close: a value left far above the rank's tolerance (over 1e-5 of the
+// block's largest singular value, `scale`) is new rank, one far under it (under 1e-10 of the
+// largest row so far, the left-overs of every repeated row together under 1e-9 of it: the
+// leading block's new singular value is at most that) repeats, and the new ranks add up to the
+// block's (`rank`). Otherwise it returns false having added nothing, and the caller takes the
+// SVDs.
+bool repeated_in_one_pass(const Eigen::MatrixXd& A, const Block& b, const Rows& rows, int rank,
+                          double scale, std::vector<Repeated>& redundant) {
+  if (A.rows() == 0 || A.cols() == 0 || rank <= 0 || !(scale > 0)) return false;
+  Eigen::MatrixXd basis(A.cols(), rank);  // orthonormal columns: the rows' span so far
+  Eigen::Index spanned = 0, row = 0;
+  double largest_row = 0, left_over = 0;  // the latter squared
+  std::vector<Repeated> found;
+  for (int c : b.joints) {
+    const int k = rows.count(c);
+    if (k == 0) continue;
+    largest_row = std::max(largest_row, A.middleRows(row, k).rowwise().norm().maxCoeff());
+    Eigen::MatrixXd left = A.middleRows(row, k).transpose();
+    row += k;
+    for (int pass = 0; pass < 2 && spanned > 0; ++pass) {
+      left -= basis.leftCols(spanned) * (basis.leftCols(spanned).transpose() * left);
+    }
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(left, Eigen::ComputeThinU);
+    const auto& s = svd.singularValues();
+    int added = 0;
+    for (Eigen::Index i = 0; i < s.size(); ++i) {
+      if (s(i) > 1e-5 * scale) {
+        ++added;
+      } else if (s(i) < 1e-10 * largest_row) {
+        left_over += s(i) * s(i);
+      } else {
+        return false;  // close: the SVDs decide
+      }
+    }
+    if (spanned + added > rank || !(std::sqrt(left_over) < 1e-9 * largest_row)) return false;
+    basis.middleCols(spanned, added) = svd.matrixU().leftCols(added);
+    spanned += added;
+    if (added < k) found.push_back(Repeated{JointId{c}, k, k - added});
+  }
+  if (spanned != rank) return false;
+  redundant.insert(redundant.end(), found.begin(), found.end());
+  return true;
+}
+
 // Ranks one block and adds its answers to `out`. `column` maps a Jacobian column to the block's
 // (-1 elsewhere); it is left as it was found.
 void analyse(const Block& b, const ConstraintJacobian& cj, const Rows& rows,
@@ -84,14 +141,18 @@ void analyse(const Block& b, const ConstraintJacobian& cj, const Rows& rows,
     for (int d = 0; d < 6; ++d) column[static_cast<size_t>(6 * body + d)] = -1;
   }
   equilibrate(A);
-  const int dof = n - rank_of(A);
+  // One SVD gives the rank and the nullspace (its singular values are those of an SVD without
+  // V: V only gathers the rotations).
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd;
+  if (m > 0 && n > 0) svd.compute(A, Eigen::ComputeFullV);
+  const Eigen::VectorXd singular = m > 0 && n > 0 ? svd.singularValues() : Eigen::VectorXd();
+  const int dof = n - rank_from(singular);
   out.dof += dof;
 
   // Per body: how many independent motions it has in the block's nullspace.
   if (m == 0) {
     for (int body : b.bodies) out.body_dof[static_cast<size_t>(body)] = 6;
   } else if (dof > 0) {
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
     const Eigen::MatrixXd N = svd.matrixV().rightCols(dof);
     // N's columns are orthonormal, so its singular values are at most 1: a body's rows count
     // against that scale, not against their own largest value (a body that does not move has
@@ -107,6 +168,8 @@ void analyse(const Block& b, const ConstraintJacobian& cj, const Rows& rows,
 
   // Redundant: going through the joints in order, a joint whose rows add less rank than they
   // count repeats equations of the joints before it.
+  if (repeated_in_one_pass(A, b, rows, n - dof, singular.size() ? singular(0) : 0.0, out.redundant))
+    return;
   int acc_rows = 0, acc_rank = 0;
   for (int c : b.joints) {
     const int k = rows.count(c);

@@ -187,6 +187,54 @@ TEST(Check, GroupByGroupGivesTheWholeJacobiansAnswers) {
   EXPECT_EQ(c.body_dof.back(), 6);
 }
 
+// A row of `cranks` parallelograms in the plane (gui_drag.py's chain): cranks of length 1 pinned
+// 1.5 apart on the ground, each pair of neighbours joined by a coupler; the cranks' pins first,
+// then each coupler's two pins. Every revolute is a hinge with its axes held parallel.
+Model parallelogram_chain(int cranks) {
+  std::string text;
+  const auto num = [](double v) { return std::to_string(v); };
+  for (int k = 0; k < cranks; ++k) {
+    text += "object c" + std::to_string(k) + "; position " + num(1.5 * k) +
+            " 0 0; rotation 0 0 1.0471975511965976; end\n";
+  }
+  for (int k = 0; k + 1 < cranks; ++k) {
+    text += "object l" + std::to_string(k) + "; position " + num(1.5 * k + 0.5) +
+            " 0.8660254037844386 0; end\n";
+  }
+  const std::string parallel = "; angle 0 0 1 0 0 1 max 0; end\n";
+  for (int k = 0; k < cranks; ++k) {
+    text += "constraint object2 c" + std::to_string(k) + "; hinge " + num(1.5 * k) + " 0 0  0 0 0" +
+            parallel;
+  }
+  for (int k = 0; k + 1 < cranks; ++k) {
+    const std::string l = " object2 l" + std::to_string(k) + ";";
+    text += "constraint object1 c" + std::to_string(k) + ";" + l + " hinge 1 0 0  0 0 0" + parallel;
+    text += "constraint object1 c" + std::to_string(k + 1) + ";" + l + " hinge 1 0 0  1.5 0 0" +
+            parallel;
+  }
+  ParseResult r = parse_dcl(text);
+  EXPECT_TRUE(r.ok()) << r.messages();
+  return *r.model;
+}
+
+// A long chain (one group of 59 bodies, 88 joints): its redundant joints found without the SVD of
+// every leading block of rows (which took minutes for the 100-part chain in FreeCAD), and they
+// are the ones the geometry says: the pin that closes each parallelogram, 3 of its 5 equations
+// repeating the planar loop's.
+TEST(Check, ALongChainOfParallelogramsHasEachLoopsClosingPinRedundant) {
+  const int cranks = 30;
+  const CheckResult c = check(parallelogram_chain(cranks));
+  ASSERT_TRUE(c.solve.converged) << c.message;
+  EXPECT_EQ(c.dof, 1) << c.message;
+  std::vector<int> closing;
+  for (int k = 0; k + 1 < cranks; ++k) closing.push_back(cranks + 2 * k + 1);
+  EXPECT_EQ(values(c.redundant), closing) << c.message;
+  for (const std::string& a : c.advice) {
+    EXPECT_NE(a.find("3 of its 5 equations"), std::string::npos) << a;
+  }
+  EXPECT_TRUE(c.conflicting.empty());
+}
+
 TEST(Check, AConflictInOneGroupIsFoundThere) {
   // The conflicting four-bar third of three: its joint 4 is joint 4 + 4 + 4 = 12 here.
   const Model m = side_by_side({"fourbar.dcl", "slider-crank.dcl", "conflicting.dcl"});
