@@ -97,6 +97,28 @@ void BM_Check_FourBars(benchmark::State& state) {
 }
 BENCHMARK(BM_Check_FourBars)->Arg(25)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 
+// `dispcon check` of one large group: the grid of coupled four-bars (n x n cells; 7: 105 links),
+// whose Jacobian is one dense block for the rank, the nullspace and the redundant joints. Refuses
+// to time a run whose answer is not the first run's (the answers themselves are tested in
+// tests/cpp/solve/diagnostics_test.cpp).
+void BM_Check_FourBarGrid(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Model m = bench::fourbar_grid(n, n);
+  const CheckResult first = check(m);
+  if (!first.solve.converged) state.SkipWithError("the grid does not assemble");
+  for (auto _ : state) {
+    const CheckResult c = check(m);
+    if (c.dof != first.dof || c.redundant.size() != first.redundant.size()) {
+      state.SkipWithError("check's answer changed from run to run");
+    }
+    benchmark::DoNotOptimize(c);
+  }
+  state.counters["bodies"] = m.body_count() - 1;
+  state.counters["dof"] = first.dof;
+  state.counters["redundant"] = static_cast<double>(first.redundant.size());
+}
+BENCHMARK(BM_Check_FourBarGrid)->Arg(7)->Unit(benchmark::kMillisecond);
+
 // A closed chain of n point-to-point links, one fixed, from a perturbed circle.
 void BM_ClosedChain(benchmark::State& state) {
   assemble_copies(state, bench::closed_chain(static_cast<int>(state.range(0))));
