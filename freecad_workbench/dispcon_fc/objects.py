@@ -134,6 +134,11 @@ class AssemblyProxy(_Proxy):
                 refresh_docs(o, "BOM")
                 refresh_docs(o, "Any")
         _view_restored(obj, "Assembly")
+        # It computes nothing (execute is empty), so a touch saved with it is no recompute
+        # waiting: an undo or redo that changed its Group or LastSolve touches it with no
+        # recompute after, FreeCAD saves the mark, and the reopened, unmodified document showed
+        # its Assembly touched (the third audit). Cleared, as a recompute would.
+        obj.purgeTouched()
 
 
 # The paper's "ability to move" mu_12 of a constraint (section 3.1.4, in place of eq. 19's
