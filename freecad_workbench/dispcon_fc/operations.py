@@ -631,8 +631,9 @@ def edit_joint(joint, joint_type=None, undo_step=True, **limits):
 
 def solve(asm, undo_step=True):
     """Snap: moves the parts from wherever they are until every joint holds (the seed's automatic
-    assembly), grounded parts still. One undo step; a failed solve moves nothing and marks the
-    joints still violated. A joint that lost a part is skipped and named in the message."""
+    assembly), grounded parts still. One undo step; a failed solve writes nothing to the
+    document (no undo step: its result names the joints still violated, which the GUI marks in
+    the view). A joint that lost a part is skipped and named in the message."""
     _assembly(asm)
     if subassembly.out_of_step(asm):  # a placed assembly gained or lost parts since
         with _step(asm.Document, "Update sub-assemblies", undo_step):
@@ -640,6 +641,11 @@ def solve(asm, undo_step=True):
     adapter = Adapter(asm)
     with adapter.engine_errors():
         r = adapter.model.assemble(tolerance=tolerance(asm), max_iterations=asm.MaxIterations)
+    if not r.converged:
+        # A failure writes nothing (no Residual, Violated, LastSolve, stored geometry): no undo
+        # step, the document not modified, so the first undo takes back what the designer did
+        # last. What it says is the result's; the GUI marks its joints in the view (feedback).
+        return Result(adapter, r)
     with _step(asm.Document, "Solve assembly", undo_step):
         if r.converged:
             adapter.write_back(moved=r.iterations > 0)

@@ -1211,6 +1211,66 @@ class TestErrors(Documents):
         self.assertNotIn("Impossible", mw().statusBar().currentMessage())
 
 
+    def test_a_failed_solve_is_no_undo_step_and_saved_reopens_untouched(self):
+        """The third audit: a failed Solve left "Solve assembly" in the undo list (the marks,
+        Residual and LastSolve it wrote) so the first Ctrl+Z took those back, not the joint; and
+        the document saved after it reopened with its Assembly touched. Now the failure writes
+        nothing: the undo list, the document's modified flag and every object's state are as they
+        were, the red mark and the message are the view's, and Ctrl+Z takes back the joint."""
+        from dispcon_fc import objects, operations, viewproviders
+        import parts
+
+        asm, g, crank, coupler, rocker = self.fourbar()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        Gui.runCommand("Dispcon_Solve")
+        settle()
+        close_dialog()
+        bad = operations.add_joint(asm, "Revolute",
+                                   (g, parts.circle_edge(g.Shape, App.Vector(3, 0, 0))),
+                                   (crank, parts.circle_edge(crank.Shape, App.Vector(1, 0, 0))))
+        bad.Label = "Rod-to-ground"
+        name = bad.Name
+        self.doc.recompute()
+        tmp = tempfile.mkdtemp()
+        self.doc.saveAs(os.path.join(tmp, "conflict.FCStd"))
+        gui_doc = Gui.getDocument(self.doc.Name)
+        Gui.SendMsgToActiveView("Save")  # the GUI's save: its document no longer modified
+        settle()
+        self.assertFalse(gui_doc.Modified)
+        undo_names = list(self.doc.UndoNames)
+        self.assertEqual(undo_names[0], "Add joint", undo_names)
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        Gui.runCommand("Dispcon_Solve")
+        settle()
+        self.assertIn("Rod-to-ground", mw().statusBar().currentMessage())
+        self.assertIn("Rod-to-ground", gui_text(Gui.Control.activeDialog() and mw()))
+        self.assertEqual(list(self.doc.UndoNames), undo_names, "the failed Solve left an undo step")
+        self.assertFalse(gui_doc.Modified, "the failed Solve marked the document modified")
+        self.assertEqual([o.Name for o in self.doc.Objects if "Touched" in o.State], [])
+        self.assertEqual(viewproviders.joint_view(bad).marker.look, "error")
+        close_dialog()
+        self.assertEqual(viewproviders.joint_view(bad).marker.look, "error", "the mark went before the next solve")
+        App.setActiveDocument(self.doc.Name)
+        Gui.runCommand("Std_Undo")
+        settle()
+        self.assertIsNone(self.doc.getObject(name), "Ctrl+Z did not take back the joint")
+        self.assertEqual(len(objects.joints(asm)), 4)
+        # Saved after the undo (which touched the Assembly: its Group) and reopened, as the audit
+        # did: nothing touched, nothing modified.
+        saved = os.path.join(tmp, "after-undo.FCStd")
+        self.doc.saveCopy(saved)
+        reopened = App.openDocument(saved)
+        try:
+            settle()
+            self.assertEqual([o.Name for o in reopened.Objects if "Touched" in o.State], [])
+            self.assertFalse(Gui.getDocument(reopened.Name).Modified)
+        finally:
+            App.closeDocument(reopened.Name)
+            settle()
+
+
 class TestDrivePanel(Documents):
     """The Drive panel: a motor on a joint, with units, limits said in the panel, the linkage
     following the value as it is typed, one undo step, Cancel putting every part back."""
