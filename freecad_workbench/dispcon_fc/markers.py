@@ -581,11 +581,16 @@ class Marker:
             style.lineWidth.setValue(6.0)
             style.setOverride(True)
             g.addChild(style)
-            if colour == ERROR:
-                grow = coin.SoScale()
-                grow.scaleFactor.setValue(1.5, 1.5, 1.5)
-                g.addChild(grow)
             self.look_switch.addChild(g)
+        # The error look's glyph half as large again, about its own centre: in the holder after
+        # the layout's shift (offset), so the shift stays the layout's. Before the screen scale, it
+        # grew the shift too and more than half again (the third audit: a stacked marker in error
+        # 142 px from its joint where the layout put it 43 px away, its ring 3.3 times as large).
+        self.grow = coin.SoSwitch()
+        grow = coin.SoScale()
+        grow.scaleFactor.setValue(1.5, 1.5, 1.5)
+        self.grow.addChild(grow)
+        self.grow.whichChild.setValue(coin.SO_SWITCH_NONE)
         # Drawn or not, as a view's own state (a drag hides the markers: docs/performance.md);
         # above the annotation, so a hidden marker costs no delayed-render path.
         self.visible = coin.SoSwitch()
@@ -610,6 +615,7 @@ class Marker:
             return
         self.holder.removeAllChildren()
         self.holder.addChild(self.offset)
+        self.holder.addChild(self.grow)
         self.holder.addChild(shared_glyph(joint_type))
         self.joint_type = joint_type
 
@@ -644,6 +650,7 @@ class Marker:
             raise ValueError("unknown marker look %r (expected one of %s)" % (look, ", ".join(LOOKS)))
         self.look = look
         self.look_switch.whichChild.setValue(LOOKS.index(look) - 1 if look != "normal" else -1)
+        self.grow.whichChild.setValue(_coin().SO_SWITCH_ALL if look == "error" else _coin().SO_SWITCH_NONE)
 
 
 def joint_frame(joint):

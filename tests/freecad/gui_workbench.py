@@ -1271,6 +1271,76 @@ class TestErrors(Documents):
             settle()
 
 
+    def test_a_marker_in_error_stays_where_the_layout_puts_it(self):
+        """The third audit: the conflicting joint's red marker sat about 150 px from its joint at
+        fit-all zoom. A stacked marker is set beside the first at its place (markers.stacks) and
+        the layout may push it further (spread); the error look's half-again scale came before
+        that shift in the scene, so a marker in error went half as far again from its joint as
+        the layout put it. Its red centre on the screen is now its joint's projected point and
+        the layout's shift, to a few pixels."""
+        from dispcon_fc import markers, objects, operations, viewproviders
+        import parts
+
+        asm, g, crank, coupler, rocker = self.fourbar()
+        operations.solve(asm)
+        # On the ground's second pin, where the rocker's revolute is: the second of that stack.
+        bad = operations.add_joint(asm, "Revolute",
+                                   (g, parts.circle_edge(g.Shape, App.Vector(3, 0, 0))),
+                                   (crank, parts.circle_edge(crank.Shape, App.Vector(1, 0, 0))))
+        view = self.view()
+        view.viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        Gui.runCommand("Dispcon_Solve")
+        settle()
+        close_dialog()
+        for j in objects.joints(asm):
+            if j != bad:
+                j.ViewObject.Visibility = False
+        for _ in range(5):  # the layout once the camera rests
+            time.sleep(0.1)
+            settle()
+        marker = viewproviders.joint_view(bad).marker
+        self.assertEqual(marker.look, "error")
+        shift = marker.offset_units().Length * markers.PIXELS
+        self.assertGreater(shift, 20, "the stacked marker was not set apart")
+        width, height = view.getSize()
+
+        def drawn(name, colour):
+            """The centre and the width of what is drawn in `colour` ("red", "orange") in pixels."""
+            path = os.path.join(OUT, name + ".png")
+            view.saveImage(path, width, height, "White")
+            img = QtGui.QImage(path)
+            hit = []
+            for x in range(width):
+                for y in range(height):
+                    c = QtGui.QColor(img.pixel(x, y))
+                    if c.red() > 200 and c.blue() < 70 and (c.green() < 70 if colour == "red" else 60 < c.green() < 170):
+                        hit.append((x, y))
+            self.assertTrue(hit, "nothing %s drawn in %s" % (colour, path))
+            xs, ys = [x for x, _ in hit], [y for _, y in hit]
+            return sum(xs) / len(xs), sum(ys) / len(ys), max(xs) - min(xs)
+
+        rx, ry, red_across = drawn("marker-error-place", "red")
+        marker.set_look("normal")
+        settle()
+        ox, oy, orange_across = drawn("marker-normal-place", "orange")
+        marker.set_look("error")
+        settle()
+        px, py = view.getPointOnScreen(markers.joint_frame(bad)[0])
+        py = height - py  # from the top, as the image
+        away, normal_away = math.hypot(rx - px, ry - py), math.hypot(ox - px, oy - py)
+        print("marker: the layout's shift %.1f px; drawn %.1f px from its joint in error, %.1f px normal; "
+              "%d px across in error, %d px normal (view %d x %d)"
+              % (shift, away, normal_away, red_across, orange_across, width, height))
+        # In error the glyph is half as large again about its own centre, where it is normal.
+        # (The ring is open, its arrow head another red: the centres a few pixels apart; before,
+        # 47 px.)
+        self.assertLess(math.hypot(rx - ox, ry - oy), 5.0, "the error look moved the marker")
+        self.assertAlmostEqual(red_across / orange_across, 1.5, delta=0.15)
+
+
 class TestDrivePanel(Documents):
     """The Drive panel: a motor on a joint, with units, limits said in the panel, the linkage
     following the value as it is typed, one undo step, Cancel putting every part back."""
