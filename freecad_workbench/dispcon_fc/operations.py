@@ -647,14 +647,13 @@ def solve(asm, undo_step=True):
         # last. What it says is the result's; the GUI marks its joints in the view (feedback).
         return Result(adapter, r)
     with _step(asm.Document, "Solve assembly", undo_step):
-        if r.converged:
-            adapter.write_back(moved=r.iterations > 0)
+        adapter.write_back(moved=r.iterations > 0)
         adapter.update_joints()
         adapter.mark(r)
         result = Result(adapter, r)
         if _new_news(asm.LastSolve, result.message):
             asm.LastSolve = result.message
-        if r.converged and r.iterations > 0:
+        if r.iterations > 0:
             exploded.follow(asm)  # in this undo step: undo takes the view back with the parts
     asm.Document.recompute()
     return result
