@@ -93,20 +93,10 @@ def slider_crank(doc):
     place(piston, 3.5, 0.1, 0.1)
     da.add_joint(asm, "Revolute", pin(g, (0, 0, 0), top=True), pin(crank, (0, 0, 0)))
     da.add_joint(asm, "Revolute", pin(crank, (1, 0, 0), top=True), pin(rod, (0, 0, 0)))
-    top = next("Face%d" % (i + 1) for i, f in enumerate(piston.Shape.Faces)
-               if abs(piston.Placement.inverse().multVec(f.CenterOfMass).z - 0.1) < 1e-9)
+    top = parts.face_at_height(piston.Shape, 0.1)
     da.add_joint(asm, "Ball", pin(rod, (3, 0, 0)), (piston, top))
-
-    def along_x(obj, y, z):
-        inv = obj.Placement.inverse()
-        for i, e in enumerate(obj.Shape.Edges):
-            a, b = inv.multVec(e.Vertexes[0].Point), inv.multVec(e.Vertexes[-1].Point)
-            if (e.Curve.TypeId == "Part::GeomLine" and abs(a.z - z) < 1e-9 and abs(b.z - z) < 1e-9
-                    and abs(a.y - y) < 1e-9 and abs(b.y - y) < 1e-9 and abs(b.x - a.x) > 0.1):
-                return "Edge%d" % (i + 1)
-        raise ValueError("no edge along x at y = %g, z = %g" % (y, z))
-
-    da.add_joint(asm, "Slider", (g, along_x(g, -0.3, 0.1)), (piston, along_x(piston, -0.2, 0)))
+    da.add_joint(asm, "Slider", (g, parts.line_edge_along_x(g.Shape, -0.3, 0.1)),
+                 (piston, parts.line_edge_along_x(piston.Shape, -0.2)))
     return asm
 
 

@@ -81,6 +81,28 @@ def circle_edge(shape, point, tol=1e-6, radius=None):
     return best[0]
 
 
+def line_edge_along_x(shape, y, z=0.0):
+    """The name of the straight edge of `shape` along x at this y and height z (in the shape's own
+    frame): what a designer clicks for a slot or a slider's side."""
+    to_local = shape.Placement.inverse()
+    for i, e in enumerate(shape.Edges):
+        a, b = to_local.multVec(e.Vertexes[0].Point), to_local.multVec(e.Vertexes[-1].Point)
+        if (e.Curve.TypeId == "Part::GeomLine" and abs(a.z - z) < 1e-9 and abs(b.z - z) < 1e-9
+                and abs(a.y - y) < 1e-9 and abs(b.y - y) < 1e-9 and abs(b.x - a.x) > 0.1):
+            return "Edge%d" % (i + 1)
+    raise ValueError("no edge along x at y = %g, z = %g" % (y, z))
+
+
+def face_at_height(shape, z):
+    """The name of the first face of `shape` whose centre is at height z (in the shape's own
+    frame): a block's top or bottom face."""
+    to_local = shape.Placement.inverse()
+    for i, f in enumerate(shape.Faces):
+        if abs(to_local.multVec(f.CenterOfMass).z - z) < 1e-9:
+            return "Face%d" % (i + 1)
+    raise ValueError("no face at height %g" % z)
+
+
 def write_step(shape, path):
     os.makedirs(os.path.dirname(path), exist_ok=True)
     shape.exportStep(path)

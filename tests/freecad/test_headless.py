@@ -371,18 +371,8 @@ def test_slider_crank_from_picked_faces_and_edges():
                   if abs(f.CenterOfMass.z) < 1e-9)
     da.add_joint(asm, "Ball", edge(rod, (3, 0, 0)), (piston, bottom))
     # The slider along the ground's straight edge along x (y = -1 line of the plate, through z = 0).
-    def along_x(shape, y):
-        # The straight edge along x at height 0 and this y: what a designer clicks for the slot.
-        local = shape.Placement.inverse()
-        for i, e in enumerate(shape.Edges):
-            a, b = local.multVec(e.Vertexes[0].Point), local.multVec(e.Vertexes[-1].Point)
-            if (e.Curve.TypeId == "Part::GeomLine" and abs(a.z) < 1e-9 and abs(b.z) < 1e-9
-                    and abs(a.y - y) < 1e-9 and abs(b.y - y) < 1e-9 and abs(b.x - a.x) > 0.1):
-                return "Edge%d" % (i + 1)
-        raise ValueError("no edge along x at y = %g" % y)
-
-    line = along_x(g.Shape, -0.3)
-    piston_edge = along_x(piston.Shape, -0.2)
+    line = parts.line_edge_along_x(g.Shape, -0.3)
+    piston_edge = parts.line_edge_along_x(piston.Shape, -0.2)
     da.add_joint(asm, "Slider", (g, line), (piston, piston_edge))
     r = da.solve(asm)
     assert r.converged, r.message
@@ -415,21 +405,11 @@ def sample_slider_crank(doc):
     def pin(o, x, z):
         return (o, parts.circle_edge(o.Shape, App.Vector(x, 0, z)))
 
-    def along_x(o, y, z):
-        inv = o.Placement.inverse()
-        for i, e in enumerate(o.Shape.Edges):
-            a, b = inv.multVec(e.Vertexes[0].Point), inv.multVec(e.Vertexes[-1].Point)
-            if (e.Curve.TypeId == "Part::GeomLine" and abs(a.z - z) < 1e-9 and abs(b.z - z) < 1e-9
-                    and abs(a.y - y) < 1e-9 and abs(b.y - y) < 1e-9 and abs(b.x - a.x) > 0.1):
-                return "Edge%d" % (i + 1)
-        raise ValueError("no edge along x at y = %g, z = %g" % (y, z))
-
     da.add_joint(asm, "Revolute", pin(g, 0, 0.1), pin(crank, 0, 0))
     da.add_joint(asm, "Revolute", pin(crank, 1, 0.1), pin(rod, 0, 0))
-    top = next("Face%d" % (i + 1) for i, f in enumerate(piston.Shape.Faces)
-               if abs(piston.Placement.inverse().multVec(f.CenterOfMass).z - 0.1) < 1e-9)
-    ball = (pin(rod, 3, 0), (piston, top))
-    slider = ((g, along_x(g, -0.3, 0.1)), (piston, along_x(piston, -0.2, 0)))
+    ball = (pin(rod, 3, 0), (piston, parts.face_at_height(piston.Shape, 0.1)))
+    slider = ((g, parts.line_edge_along_x(g.Shape, -0.3, 0.1)),
+              (piston, parts.line_edge_along_x(piston.Shape, -0.2)))
     return asm, (g, crank, rod, piston), ball, slider
 
 
