@@ -2488,23 +2488,20 @@ class TestPanelsGone(unittest.TestCase):
         settle()
         self.assertFalse(Gui.Control.activeDialog())
 
-    def test_deleted(self):
+    def gone_for_every_kind(self, how):
         for kind in self.KINDS:
             with self.subTest(kind=kind):
-                self.gone(kind, "deleted")
+                self.gone(kind, how)
                 close_documents()
+
+    def test_deleted(self):
+        self.gone_for_every_kind("deleted")
 
     def test_document_closed(self):
-        for kind in self.KINDS:
-            with self.subTest(kind=kind):
-                self.gone(kind, "closed")
-                close_documents()
+        self.gone_for_every_kind("closed")
 
     def test_undo(self):
-        for kind in self.KINDS:
-            with self.subTest(kind=kind):
-                self.gone(kind, "undo")
-                close_documents()
+        self.gone_for_every_kind("undo")
 
 
 def panels_show(panel):
