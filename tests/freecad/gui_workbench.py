@@ -883,11 +883,14 @@ class TestRestored(unittest.TestCase):
             self.assertIn("%s: %s" % (asm.Label, asm.LastSolve), mw().statusBar().currentMessage())
 
 
-def picking_panel(kind="Revolute"):
-    """The joint panel of a `kind` joint opened with nothing selected: picking."""
+def picking_panel(kind="Revolute", picks=()):
+    """The joint panel of a `kind` joint opened with `picks` ((object, element) pairs) selected,
+    as a designer's clicks before the command; none: the panel picking."""
     from dispcon_fc.panels import joint as jp
 
     Gui.Selection.clearSelection()
+    for pick in picks:
+        Gui.Selection.addSelection(*pick)
     Gui.runCommand("Dispcon_Joint" + kind)
     settle()
     return jp.current()
@@ -895,15 +898,8 @@ def picking_panel(kind="Revolute"):
 
 class TestJointPanel(Documents):
     def open(self, kind="Revolute"):
-        from dispcon_fc.panels import joint as jp
-
         asm, base, arm, e1, e2 = self.arm()
-        Gui.Selection.clearSelection()
-        Gui.Selection.addSelection(*e1)
-        Gui.Selection.addSelection(*e2)
-        Gui.runCommand("Dispcon_Joint" + kind)
-        settle()
-        panel = jp.current()
+        panel = picking_panel(kind, (e1, e2))
         self.assertIsNotNone(panel, "the joint panel did not open")
         self.assertTrue(Gui.Control.activeDialog())
         return panel, asm, base, arm
@@ -2215,12 +2211,7 @@ class TestTypedAndPicked(Documents):
         asm, base, arm, e1, e2 = self.arm()
         bits = lambda: [tuple(o.Placement.Base) + tuple(o.Placement.Rotation.Q) for o in (base, arm)]
         before = bits()
-        Gui.Selection.clearSelection()
-        Gui.Selection.addSelection(*e1)
-        Gui.Selection.addSelection(*e2)
-        Gui.runCommand("Dispcon_JointRevolute")
-        settle()
-        panel = jp.current()
+        panel = picking_panel("Revolute", (e1, e2))
         snapped = bits()
         self.assertNotEqual(snapped, before)
         box = panel.offset
@@ -2376,7 +2367,7 @@ class TestPanelsGone(unittest.TestCase):
         """A new document with a base and an arm on a revolute, the panel of `kind` open: (doc,
         asm, the object whose deletion ends the panel, the panel, the placements before)."""
         from dispcon_fc import operations
-        from dispcon_fc.panels import bom as bp, check as cp, drive, exploded as ep, joint as jp
+        from dispcon_fc.panels import bom as bp, check as cp, drive, exploded as ep
         import parts
 
         close_dialog()
@@ -2391,12 +2382,7 @@ class TestPanelsGone(unittest.TestCase):
         Gui.SendMsgToActiveView("ViewFit")
         before = [tuple(o.Placement.Base) + tuple(o.Placement.Rotation.Q) for o in (base, arm)]
         if kind == "joint-new":
-            Gui.Selection.clearSelection()
-            Gui.Selection.addSelection(*e1)
-            Gui.Selection.addSelection(*e2)
-            Gui.runCommand("Dispcon_JointRevolute")
-            settle()
-            panel = jp.current()
+            panel = picking_panel("Revolute", (e1, e2))
             target = panel.joint
         elif kind == "joint-edit":
             panel, target = jp_edit(joint), joint
