@@ -8,8 +8,8 @@ import re
 import FreeCAD as App
 
 from . import engine, geometry, subassembly
-from .objects import (COUPLINGS, JOINT_TYPES, LENGTH_PHASE, frame_rotation, frame_shift, joints, parts, phase_value,
-                      offset_text, remake_phase, set_phase, shape_of)
+from .objects import (COUPLINGS, HOLD_TWIST, JOINT_TYPES, LENGTH_PHASE, PICKED_FRAMES, frame_rotation, frame_shift,
+                      joints, parts, phase_value, offset_text, remake_phase, set_phase, shape_of, twist_from_picks)
 
 
 def _vec(v):
@@ -61,11 +61,13 @@ def live_anchors(j):
     faces as the parts' shapes are now (a Pad made longer, a hole moved): {"Point1": ..., ...}.
     What did not change keeps its stored value exactly; an axis keeps the sense it was given
     (part 2's flipped when the picked axes pointed apart) and the twist reference stays across
-    it. A joint on the whole part keeps what it has. ValueError, naming the joint, when a
-    referenced element is gone (FreeCAD renumbers the edges and faces of a changed shape)."""
+    it; a Fixed or Slider whose twist comes from the picked frames (TwistFrom) reads that too
+    (picked_across). A joint on the whole part keeps what it has. ValueError, naming the joint,
+    when a referenced element is gone (FreeCAD renumbers the edges and faces of a changed shape)."""
     out = {name: App.Vector(getattr(j, name)) for name in ANCHORS}
     if j.JointType not in LIVE_TYPES:  # a Distance keeps what it was made with
         return out
+    picked = twist_from_picks(j)
     axis1 = None
     for k, ref in (("1", j.Reference1), ("2", j.Reference2)):
         part, subs = ref[0], ref[1]
@@ -88,18 +90,49 @@ def live_anchors(j):
         stored = out["Point" + k]
         if (point - stored).Length > 1e-9 * max(1.0, stored.Length):
             out["Point" + k] = point
-        if f.kind not in OWN_AXIS:
-            continue
-        axis = geometry.to_local(part.Placement, axis=f.axis)
-        stored = out["Axis" + k]
-        if axis.dot(stored) < 0:
-            axis = axis * -1
-        if (axis - stored).Length > 1e-9:
-            out["Axis" + k] = axis
-            perp = out["Perp" + k]
-            perp = perp - axis * perp.dot(axis)
-            out["Perp" + k] = perp.normalize() if perp.Length > 1e-9 else _across(axis)
+        if f.kind in OWN_AXIS:
+            axis = geometry.to_local(part.Placement, axis=f.axis)
+            stored = out["Axis" + k]
+            if axis.dot(stored) < 0:
+                axis = axis * -1
+            if (axis - stored).Length > 1e-9:
+                out["Axis" + k] = axis
+                perp = out["Perp" + k]
+                perp = perp - axis * perp.dot(axis)
+                out["Perp" + k] = perp.normalize() if perp.Length > 1e-9 else _across(axis)
+        if picked:
+            perp = picked_across(part.Placement, f, out["Axis" + k])
+            if (perp - out["Perp" + k]).Length > 1e-9:
+                out["Perp" + k] = perp
     return out
+
+
+# The part's own axes in the order picked_across prefers them on a tie: z first (parts drawn on
+# the xy plane stand up along it), then x, then y.
+_PART_AXES = (App.Vector(0, 0, 1), App.Vector(1, 0, 0), App.Vector(0, 1, 0))
+
+
+def picked_across(placement, f, axis):
+    """The twist reference a picked element gives, in its part's frame (`placement`: the part's),
+    square to `axis` (the joint's axis there): the x of the element's own frame where it has one
+    (f.across: a circle's, a planar or cylindrical face's), else, by a rule of the part's frame
+    alone, that one of the part's own z, x and y which lies most across the axis (z first, then
+    x, on a tie: a line along x gives z, a line along z gives x), made square to it. Either way a
+    function of the part and its geometry, never of the pose it stands in; the same for the axis
+    either way round, so a flipped part 2 (Reversed, picked axes pointing apart) turns over about
+    it."""
+    a = App.Vector(axis).normalize()
+    if f is not None and f.across is not None:
+        x = geometry.to_local(placement, axis=f.across)
+        x = x - a * x.dot(a)
+        if x.Length > 1e-9:
+            return x.normalize()
+    best = _PART_AXES[0]
+    for e in _PART_AXES[1:]:
+        if abs(e.dot(a)) < abs(best.dot(a)) - 1e-9:
+            best = e
+    x = best - a * best.dot(a)
+    return x.normalize()
 
 
 def _across(v):
@@ -608,16 +641,13 @@ def plural(n, word):
     return "%d %s%s" % (n, word, "" if n == 1 else "s")
 
 
-# The joints that hold part 2's turn about the axis where it was when the joint was made.
-HOLD_TWIST = ("Fixed", "Slider")
-
-
 def made_askew(j):
-    """How far apart (degrees, at least) the two parts' axes of a joint holding the turn were
-    when it was made, from its stored twist reference: made lined up, part 2's reference is square
-    to its axis; made with part 2 tipped by t away from part 1's axis, their dot product is up to
-    sin(t). 0 for a joint that holds no turn."""
-    if j.JointType not in HOLD_TWIST or "Perp2" not in j.PropertiesList:
+    """How far apart (degrees, at least) the two parts' axes of a joint holding the turn as it
+    was when made (HOLD_TWIST, TwistFrom "Pose when made") were then, from its stored twist
+    reference: made lined up, part 2's reference is square to its axis; made with part 2 tipped
+    by t away from part 1's axis, their dot product is up to sin(t). 0 for a joint that holds no
+    turn, or takes it from the picked frames (made in any pose, it means the same)."""
+    if j.JointType not in HOLD_TWIST or "Perp2" not in j.PropertiesList or twist_from_picks(j):
         return 0.0
     axis, perp = App.Vector(j.Axis2), App.Vector(j.Perp2)
     if axis.Length < 1e-12 or perp.Length < 1e-12:
@@ -626,19 +656,21 @@ def made_askew(j):
 
 
 def made_askew_hints(joints, least=10.0):
-    """What to do about each joint made with its parts' axes `least` degrees apart or more: it
-    holds part 2 turned about the axis as it stood then, a turn with which the other joints may
-    have no pose (the slider-crank's Slider made after its Ball's solve had tipped the piston
-    over, the third workbench audit)."""
+    """What to do about each joint whose TwistFrom is "Pose when made" and that was made with its
+    parts' axes `least` degrees apart or more: it holds part 2 turned about the axis as it stood
+    then, a turn with which the other joints may have no pose (the slider-crank's Slider made
+    after its Ball's solve had tipped the piston over, the third workbench audit); its TwistFrom
+    set to "Picked frames" takes the turn from the picked elements instead."""
     hints = []
     for j in joints:
         t = made_askew(j)
         if t >= least:
             part1, part2 = j.Reference1[0].Label, j.Reference2[0].Label
-            hints.append("%s was made with %s's axis %.0f degrees or more off %s's and holds %s "
-                         "turned about it as it stood then: if the joints cannot hold so, stand %s "
-                         "lined up with %s's axis and make %s again (or make it before the joints "
-                         "that move %s)" % (j.Label, part2, t, part1, part2, part2, part1, j.Label, part2))
+            hints.append("%s was made with %s's axis %.0f degrees or more off %s's and, its TwistFrom being "
+                         "'Pose when made', holds %s turned about it as it stood then: if the joints cannot "
+                         "hold so, set its TwistFrom to '%s' (the joint panel's Twist from), which lines up "
+                         "the picked elements' frames whatever the pose"
+                         % (j.Label, part2, t, part1, part2, PICKED_FRAMES))
     return hints
 
 

@@ -4,13 +4,17 @@ import FreeCAD as App
 
 class Feature:
     """A point and a unit axis in world coordinates, where they came from, and the radius of a
-    circular edge or a cylindrical face (None for others): a gear's pitch circle."""
+    circular edge or a cylindrical face (None for others): a gear's pitch circle. `across`: the x
+    direction of the element's own frame, in world coordinates, where it has one (a circle's, a
+    planar or cylindrical face's surface frame; FreeCAD's Assembly takes a joint's frame from
+    it), else None: a line, a vertex, a sphere define no direction across their axis."""
 
-    def __init__(self, point, axis, kind, radius=None):
+    def __init__(self, point, axis, kind, radius=None, across=None):
         self.point = App.Vector(point)
         self.axis = App.Vector(axis).normalize() if App.Vector(axis).Length > 0 else App.Vector(0, 0, 1)
         self.kind = kind
         self.radius = radius
+        self.across = App.Vector(across) if across is not None else None
 
     @property
     def shape(self):
@@ -42,7 +46,7 @@ def feature(obj, sub):
         return Feature(element.Point, App.Vector(0, 0, 1), "vertex")
     if sub.startswith("Edge"):
         if hasattr(curve, "Radius") and hasattr(curve, "Center"):
-            return Feature(curve.Center, curve.Axis, "circle", curve.Radius)
+            return Feature(curve.Center, curve.Axis, "circle", curve.Radius, getattr(curve, "XAxis", None))
         if curve is not None and curve.TypeId == "Part::GeomLine":
             a, b = element.Vertexes[0].Point, element.Vertexes[-1].Point
             return Feature((a + b) * 0.5, b - a, "line")
@@ -54,14 +58,21 @@ def feature(obj, sub):
             centre = element.CenterOfMass
             base, axis = surface.Center, surface.Axis
             foot = base + axis * (centre - base).dot(axis)
-            return Feature(foot, axis, "cylinder", surface.Radius)
+            return Feature(foot, axis, "cylinder", surface.Radius, _surface_x(surface))
         if kind == "Part::GeomPlane":
             u0, u1, v0, v1 = element.ParameterRange
-            return Feature(element.CenterOfMass, element.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1)), "plane")
+            return Feature(element.CenterOfMass, element.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1)), "plane",
+                           across=_surface_x(surface))
         if kind == "Part::GeomSphere":
             return Feature(surface.Center, App.Vector(0, 0, 1), "sphere")
         return Feature(element.CenterOfMass, App.Vector(0, 0, 1), "face")
     raise ValueError("%s.%s: expected a VertexN, EdgeN or FaceN" % (obj.Label, sub))
+
+
+def _surface_x(surface):
+    """The x direction of a surface's own frame (a plane's, a cylinder's), world coordinates."""
+    rotation = getattr(surface, "Rotation", None)
+    return rotation.multVec(App.Vector(1, 0, 0)) if rotation is not None else None
 
 
 def to_local(placement, point=None, axis=None):

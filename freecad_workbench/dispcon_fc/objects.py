@@ -18,6 +18,12 @@ COUPLINGS = ("Gears", "Belt", "RackPinion", "Screw")
 # orientation by its axis and the twist reference across it (a coupling measures its turns from
 # its axes as picked, a ball or a point holds no orientation).
 FRAME_ROTATED = ("Fixed", "Revolute", "Slider", "Cylindrical", "Planar")
+# The joint types that hold part 2's turn about the joint's axis, and where that turn is measured
+# from (TwistFrom): the frames of the picked elements, as FreeCAD 1.x's Assembly aligns a joint's
+# two coordinate systems (what the joint means whatever pose the parts were in when it was made),
+# or the turn part 2 had when the joint was made (every joint saved before TwistFrom existed).
+HOLD_TWIST = ("Fixed", "Slider")
+PICKED_FRAMES, POSE_WHEN_MADE = TWIST_FROM = ("Picked frames", "Pose when made")
 
 
 class Stateless:
@@ -368,8 +374,27 @@ def joint_extras(obj):
     _add(obj, "Joint", "App::PropertyDistance", "Pitch", "Coupling", 1.0)
     _add(obj, "Joint", "App::PropertyBool", "LeftHanded", "Coupling")
     phase_property(obj)
+    twist_property(obj)
     show_properties(obj)
     read_only_derived(obj)
+
+
+def twist_property(obj):
+    """TwistFrom: a joint without it (saved before it existed, or one whose proxy was lost) was
+    made holding the turn its parts had then, and keeps doing so; new_joint gives a new joint
+    the picked frames."""
+    if "TwistFrom" not in obj.PropertiesList:
+        obj.addProperty("App::PropertyEnumeration", "TwistFrom", "Joint", DOCS["Joint"]["TwistFrom"])
+        obj.TwistFrom = list(TWIST_FROM)
+        obj.TwistFrom = POSE_WHEN_MADE
+    else:
+        _document(obj, "TwistFrom", DOCS["Joint"]["TwistFrom"])
+
+
+def twist_from_picks(joint):
+    """Whether the joint's twist reference is read from its picked elements' frames (a Fixed or
+    a Slider whose TwistFrom says so), not kept as recorded when it was made."""
+    return getattr(joint, "JointType", "") in HOLD_TWIST and getattr(joint, "TwistFrom", POSE_WHEN_MADE) == PICKED_FRAMES
 
 
 # What the workbench derives and a person reads but never types: the picked geometry in each
@@ -390,7 +415,7 @@ def read_only_derived(obj):
 _USED_BY = {"Ratio": ("Gears", "Belt"), "Radius": ("RackPinion",), "Pitch": ("Screw",), "LeftHanded": ("Screw",),
             "MeshOffset": COUPLINGS, "Phase": COUPLINGS, "PhaseTurns": ("Gears", "Belt"),
             "Distance": ("Distance",), "FrameYaw": FRAME_ROTATED, "FramePitch": FRAME_ROTATED,
-            "FrameRoll": FRAME_ROTATED, "FrameX": FRAME_ROTATED, "FrameY": FRAME_ROTATED}
+            "FrameRoll": FRAME_ROTATED, "FrameX": FRAME_ROTATED, "FrameY": FRAME_ROTATED, "TwistFrom": HOLD_TWIST}
 _READ_ONLY = ("Phase", "PhaseTurns")  # the engine's: the mesh offset sets them
 
 
@@ -696,6 +721,7 @@ def new_part(obj):
 def new_joint(doc, name):
     obj = doc.addObject("App::FeaturePython", name)
     JointProxy(obj)
+    obj.TwistFrom = PICKED_FRAMES  # a new joint means the same whatever pose its parts are in
     _view(obj, "Joint")
     return obj
 
@@ -742,6 +768,11 @@ DOCS = {
         "Violated": "not satisfied after the last solve",
         "Reversed": "part 2's axis flipped",
         "Offset": "part 2's point this far from part 1's, along part 1's axis",
+        "TwistFrom": "Fixed, Slider: where part 2's turn about the axis is held from. Picked frames: the picked "
+                     "elements' own frames lined up (a circle's or a face's x, else the part's z, x or y most "
+                     "across the axis): the same whatever pose the parts were in when the joint was made. Pose "
+                     "when made: the turn part 2 had then (set from the joint's panel: the turn it has then); "
+                     "joints saved before this existed",
         "FrameYaw": "part 2 turned this far about the joint's axis from the picked frame",
         "FramePitch": "part 2's axis tilted this far about the frame's y (after the yaw)",
         "FrameRoll": "part 2's axis tilted this far about the frame's x (after the pitch)",

@@ -302,7 +302,10 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, named_by_parts=False,
     Cylindrical and Planar: frame=(yaw, pitch, roll) in degrees turns part 2's joint frame, so that
     part 2 stands so turned against part 1 (yaw about the joint's axis, then pitch and roll);
     shift=(x, y) in mm moves it along the frame's x and y (across the axis; along it: offset), so
-    that part 2 stands that far off part 1's point in the joint's frame. The joint's label is its
+    that part 2 stands that far off part 1's point in the joint's frame. Fixed and Slider:
+    twist_from="Picked frames" (the default) holds part 2's turn about the axis where the picked
+    elements' own frames line up, whatever the pose now; "Pose when made" holds the turn it has
+    now (objects.TWIST_FROM; every joint saved before the choice existed). The joint's label is its
     type's, numbered (Revolute001) as FreeCAD 1.x names joints and as scripts and `--joint` name
     them; named_by_parts=True (the joint panel) labels it from its parts (parts_label)."""
     _assembly(asm)
@@ -325,9 +328,12 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, named_by_parts=False,
     limits = dict(_defaults(joint_type, f1, f2), **limits)
     _check_limits(joint_type, **limits)
     _check_distance(joint_type, joint_type, f1, limits.get("distance"))
+    _check_twist_type(joint_type, joint_type, limits.get("twist_from"))
     with _step(asm.Document, "Add joint", undo_step):
         j = objects.new_joint(asm.Document, joint_type)
         j.JointType = joint_type
+        if limits.get("twist_from") is not None:
+            j.TwistFrom = limits["twist_from"]  # before _place, which takes the twist reference by it
         _place(j, joint_type, a, b)
         _set_limits(j, **limits)
         if named_by_parts:
@@ -387,11 +393,77 @@ def _place(j, joint_type, a, b):
     # stays as picked: it lies across the pinion's axis).
     if f1.axis.dot(f2.axis) < 0 and joint_type != "RackPinion":
         j.Axis2 = j.Axis2 * -1
-    # The twist reference: a vector across axis 1, and the same world vector in part 2's frame
-    # at the creation pose, so the turn is measured from where the parts were.
-    perp_world = _perpendicular(f1.axis)
-    j.Perp1 = geometry.to_local(o1.Placement, axis=perp_world)
-    j.Perp2 = geometry.to_local(o2.Placement, axis=perp_world)
+    j.Perp1, j.Perp2 = twist_reference(j, (o1, f1), (o2, f2), axis1=f1.axis)
+
+
+def twist_reference(j, side1, side2, picked=None, axis1=None):
+    """The joint's twist references (Perp1, Perp2), each in its part's frame, from its parts and
+    picked features ((part, geometry.Feature) each) and its axes as stored: from the picked
+    elements' own frames (adapter.picked_across) for a Fixed or Slider whose TwistFrom says so
+    (`picked`: that choice instead of the joint's), else a vector across axis 1 and the same world
+    vector in part 2's frame at the pose the parts have now, so the turn is measured from where
+    the parts are (every other type: a Revolute's turn limits count from there); `axis1`: axis 1
+    in world coordinates when known (the picked feature's), else from the stored one."""
+    (o1, f1), (o2, f2) = side1, side2
+    if picked is None:
+        picked = objects.twist_from_picks(j)
+    if picked:
+        from .adapter import picked_across
+
+        return picked_across(o1.Placement, f1, j.Axis1), picked_across(o2.Placement, f2, j.Axis2)
+    perp_world = _perpendicular(axis1 if axis1 is not None else o1.Placement.Rotation.multVec(j.Axis1))
+    return geometry.to_local(o1.Placement, axis=perp_world), geometry.to_local(o2.Placement, axis=perp_world)
+
+
+def _referenced_features(joint):
+    """((part, feature), (part, feature)) of the joint's two references as the parts stand now."""
+    out = []
+    for ref in (joint.Reference1, joint.Reference2):
+        if not ref or ref[0] is None:
+            raise ValueError("%s: one of its parts was deleted" % joint.Label)
+        sub = ref[1][0] if ref[1] else ""
+        f = geometry.feature(ref[0], sub) if sub else None
+        out.append((ref[0], f))
+    return tuple(out)
+
+
+def _check_twist_type(label, kind, twist_from):
+    """A TwistFrom that is one of objects.TWIST_FROM, on a type that holds a turn: else refused,
+    naming the joint and the choices."""
+    if twist_from is None:
+        return
+    if twist_from not in objects.TWIST_FROM:
+        raise ValueError("%s: twist from %r is not one of %s" % (label, twist_from,
+                                                                 ", ".join(repr(t) for t in objects.TWIST_FROM)))
+    if kind not in objects.HOLD_TWIST:
+        raise ValueError("%s: a %s joint holds no turn about its axis to take from anywhere (only %s)"
+                         % (label, kind, ", ".join(objects.HOLD_TWIST)))
+
+
+def _check_twist(joint, kind, twist_from):
+    """A new TwistFrom of the joint, checked before anything changes: its value, then the twist
+    references it gives, by the engine (the model's door): the joint added again with them to a
+    model of its assembly as it stands."""
+    _check_twist_type(joint.Label, kind, twist_from)
+    adapter = _door(joint, kind)
+    if adapter is None:
+        return
+    from .adapter import joint_kwargs
+
+    a = adapter.anchors[joint.Name, joint.Document.Name]
+    perp1, perp2 = twist_reference(joint, *_referenced_features(joint), picked=twist_from == objects.PICKED_FRAMES)
+    kw = joint_kwargs(adapter.dispcon, joint, dict(a, Perp1=perp1, Perp2=perp2))
+    try:
+        with adapter.engine_errors():
+            adapter.add_joint(joint, **kw)
+    except ValueError as e:
+        raise ValueError("%s: its twist taken from the %s: %s" % (joint.Label, twist_from.lower(), e)) from None
+
+
+def _retwist(joint):
+    """The joint's twist references made again by its TwistFrom (just changed): from the picked
+    frames, or from the pose the parts have now."""
+    joint.Perp1, joint.Perp2 = twist_reference(joint, *_referenced_features(joint))
 
 
 def _check_distance(label, joint_type, f1, distance):
@@ -403,7 +475,7 @@ def _check_distance(label, joint_type, f1, distance):
 
 def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None,
                   offset=None, distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None,
-                  mesh_offset=None, frame=None, shift=None):
+                  mesh_offset=None, frame=None, shift=None, twist_from=None):
     """Refuses limits that cannot hold, before anything changes; names the joint and the limit."""
     for what, pair, unit in (("rotation", rotation, "deg"), ("travel", travel, "mm"), ("angle", angle, "deg")):
         if pair not in (None, False):
@@ -423,7 +495,7 @@ def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move
 
 def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None, offset=None,
                 distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None, mesh_offset=None,
-                frame=None, shift=None):
+                frame=None, shift=None, twist_from=None):
     # rotation=False, travel=False: no such limits any more.
     if rotation is not None:
         j.HasRotationLimits = rotation is not False
@@ -444,6 +516,9 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None,
         j.FrameYaw, j.FramePitch, j.FrameRoll = (float(a) for a in frame)
     if shift is not None:
         j.FrameX, j.FrameY = (float(d) for d in shift)
+    if twist_from is not None and twist_from != j.TwistFrom:
+        j.TwistFrom = twist_from
+        _retwist(j)
     # What the coupling's phase is measured with changed: the engine makes it again at the
     # poses the parts have (record_phases keeps it), so the parts stay where they are.
     remade = False
@@ -603,6 +678,9 @@ def edit_joint(joint, joint_type=None, undo_step=True, **limits):
     if shift is not None and tuple(shift) != tuple(getattr(joint, name).Value if name in joint.PropertiesList else 0.0
                                                for name in ("FrameX", "FrameY")):
         _check_shift(joint, kind, shift, frame)
+    twist_from = limits.get("twist_from")
+    if twist_from is not None and twist_from != getattr(joint, "TwistFrom", objects.POSE_WHEN_MADE):
+        _check_twist(joint, kind, twist_from)
     offset = limits.pop("mesh_offset", None)
     if offset is not None:
         if kind not in objects.COUPLINGS:

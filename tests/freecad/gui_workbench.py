@@ -956,7 +956,8 @@ class TestJointPanel(Documents):
         self.assertIn("Base", panel.ref_list.item(0).text())
         self.assertIn("Arm", panel.ref_list.item(1).text())
         shot("panel-revolute")
-        for kind, groups in (("Slider", {"reverse", "frame", "travel"}), ("Ball", {"offset", "cone"}),
+        for kind, groups in (("Slider", {"reverse", "frame", "travel", "twist"}), ("Fixed", {"reverse", "offset", "frame", "twist"}),
+                             ("Ball", {"offset", "cone"}),
                              ("PointOnCurve", set()), ("Angle", {"reverse", "angle"})):
             panel.type_box.setCurrentText(kind)
             settle()
@@ -972,6 +973,37 @@ class TestJointPanel(Documents):
         self.assertIsNotNone(ok)
         self.assertTrue(ok.isVisible())
         self.assertGreaterEqual(ok.parentWidget().width(), ok.parentWidget().minimumSizeHint().width())
+
+    def test_twist_from_in_the_panel(self):
+        # A Fixed made on the arm turned 20 degrees about its pin: the panel's Twist from says
+        # "Picked frames" (a new joint's), its tooltip says what each choice means, and the
+        # preview stands the arm square on the base (the pins' circles' frames lined up). "Pose
+        # when made" chosen: the joint's TwistFrom, at the engine's door first; OK keeps it.
+        from dispcon_fc import objects
+
+        panel, asm, base, arm = self.open("Fixed")
+        j = panel.joint
+        self.assertIn("twist", self.visible_groups(panel))
+        self.assertEqual(panel.twist.currentText(), objects.PICKED_FRAMES)
+        self.assertEqual([panel.twist.itemText(k) for k in range(panel.twist.count())], list(objects.TWIST_FROM))
+        for words in ("Picked frames", "Pose when made", "whatever pose"):
+            self.assertIn(words, panel.twist.toolTip())
+        self.assertEqual(j.TwistFrom, objects.PICKED_FRAMES)
+        self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
+        self.assertLess(arm.Placement.Rotation.Angle, 1e-8, arm.Placement)
+        shot("panel-twist-from")
+        panel.twist.setCurrentText(objects.POSE_WHEN_MADE)
+        settle()
+        self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
+        self.assertEqual(j.TwistFrom, objects.POSE_WHEN_MADE)
+        panel.type_box.setCurrentText("Revolute")
+        settle()
+        self.assertNotIn("twist", self.visible_groups(panel))
+        panel.type_box.setCurrentText("Fixed")
+        settle()
+        panel.ok_button().click()
+        settle()
+        self.assertEqual((j.JointType, j.TwistFrom), ("Fixed", objects.POSE_WHEN_MADE))
 
     def test_part_2s_frame_turned_in_the_panel(self):
         # The rotation offset of part 2's joint frame, in degrees: a pitch of 90 stands the arm's

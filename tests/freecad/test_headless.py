@@ -427,9 +427,11 @@ def is_slider_crank(crank, piston):
 def test_sample_slider_crank_joint_by_joint():
     """The third audit's slider-crank made joint by joint, a solve after each (as the joint
     panel's preview does). The Slider first, then the Ball, closes. In the sample's order the
-    Ball's solve tips the free piston over, and the Slider made then holds the piston turned about
-    the rail as it stood (about 67 degrees): no pose holds that with the Ball and the crank's
-    plane, so its solve fails, moves nothing and says what to do; done so, it closes."""
+    Ball's solve tips the free piston over; the Slider made then takes the piston's turn about the
+    rail from the picked edges' frames (TwistFrom "Picked frames", the default) and closes too.
+    Made to hold the turn the piston had then ("Pose when made", as every Slider did before the
+    fourteenth round: about 67 degrees), no pose holds it with the Ball and the crank's plane, so
+    its solve fails, moves nothing and says what to do; done so, it closes."""
     doc = App.newDocument("slider_order")
     asm, (g, crank, rod, piston), ball, slider = sample_slider_crank(doc)
     assert da.solve(asm).converged
@@ -442,30 +444,36 @@ def test_sample_slider_crank_joint_by_joint():
     assert "made with" not in r.message, r.message
     App.closeDocument(doc.Name)
 
-    doc = App.newDocument("slider_order")
-    asm, (g, crank, rod, piston), ball, slider = sample_slider_crank(doc)
-    assert da.solve(asm).converged
-    da.add_joint(asm, "Ball", *ball)
-    assert da.solve(asm).converged
-    assert piston.Placement.Rotation.Angle > 1.0, piston.Placement  # tipped over
-    j = da.add_joint(asm, "Slider", *slider)
-    before = [o.Placement for o in (crank, rod, piston)]
-    r = da.solve(asm)
-    assert not r.converged, r.message
-    assert [o.Placement for o in (crank, rod, piston)] == before
-    said = re.search(r"%s was made with Piston's axis (\d+) degrees or more off Ground's and holds Piston "
-                     r"turned about it as it stood then: if the joints cannot hold so, stand Piston lined up "
-                     r"with Ground's axis and make %s again \(or make it before the joints that move Piston\)"
-                     % (j.Label, j.Label), r.message)
-    assert said and 60 <= int(said.group(1)) <= 90, r.message  # the piston's x edge points nearly down
-    # As the message says: the piston stood upright (where it is), the Slider made again.
-    doc.removeObject(j.Name)
-    piston.Placement = App.Placement(piston.Placement.Base, App.Rotation())
-    da.add_joint(asm, "Slider", *slider)
-    r = da.solve(asm)
-    assert r.converged, r.message
-    is_slider_crank(crank, piston)
-    App.closeDocument(doc.Name)
+    for twist in (None, "Pose when made"):
+        doc = App.newDocument("slider_order")
+        asm, (g, crank, rod, piston), ball, slider = sample_slider_crank(doc)
+        assert da.solve(asm).converged
+        da.add_joint(asm, "Ball", *ball)
+        assert da.solve(asm).converged
+        assert piston.Placement.Rotation.Angle > 1.0, piston.Placement  # tipped over
+        j = da.add_joint(asm, "Slider", *slider, **({"twist_from": twist} if twist else {}))
+        if twist is None:  # the default: the picked frames
+            assert j.TwistFrom == "Picked frames", j.TwistFrom
+            r = da.solve(asm)
+            assert r.converged, r.message
+            is_slider_crank(crank, piston)
+            App.closeDocument(doc.Name)
+            continue
+        before = [o.Placement for o in (crank, rod, piston)]
+        r = da.solve(asm)
+        assert not r.converged, r.message
+        assert [o.Placement for o in (crank, rod, piston)] == before
+        said = re.search(r"%s was made with Piston's axis (\d+) degrees or more off Ground's and, its TwistFrom "
+                         r"being 'Pose when made', holds Piston turned about it as it stood then: if the joints "
+                         r"cannot hold so, set its TwistFrom to 'Picked frames' \(the joint panel's Twist from\), "
+                         r"which lines up the picked elements' frames whatever the pose" % j.Label, r.message)
+        assert said and 60 <= int(said.group(1)) <= 90, r.message  # the piston's x edge points nearly down
+        # As the message says.
+        da.edit_joint(j, twist_from="Picked frames")
+        r = da.solve(asm)
+        assert r.converged, r.message
+        is_slider_crank(crank, piston)
+        App.closeDocument(doc.Name)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -13,16 +13,16 @@ import FreeCADGui as Gui
 from .. import engine, geometry, markers, operations, panels
 from ..guide import PICK
 from ..adapter import ALREADY_HELD, offered_types
-from ..objects import COUPLINGS, LENGTH_PHASE, mesh_offset, phase_value, placed_parts
+from ..objects import COUPLINGS, LENGTH_PHASE, POSE_WHEN_MADE, TWIST_FROM, mesh_offset, phase_value, placed_parts
 
 from ..qt import QtCore, QtGui, QtWidgets
 from .base import TransactionPanel
 
 # Which groups of fields each type shows.
 FIELDS = {
-    "Fixed": ("reverse", "offset", "frame"),
+    "Fixed": ("reverse", "offset", "frame", "twist"),
     "Revolute": ("reverse", "offset", "frame", "rotation"),
-    "Slider": ("reverse", "frame", "travel"),
+    "Slider": ("reverse", "frame", "travel", "twist"),
     "Cylindrical": ("reverse", "frame", "rotation", "travel"),
     "Ball": ("offset", "cone"),
     "Planar": ("reverse", "offset", "frame"),
@@ -48,6 +48,12 @@ REMADE = ("Distance", "Parallel", "Perpendicular") + COUPLINGS
 # of 12, which moved the parts and left them so.
 TYPING_PAUSE_MS = 400
 STEP_KEYS = (QtCore.Qt.Key_Up, QtCore.Qt.Key_Down, QtCore.Qt.Key_PageUp, QtCore.Qt.Key_PageDown)
+
+# The Twist from field's tooltip (the property's, TwistFrom, in the panel's words).
+TWIST_TIP = ("Where part 2's turn about the joint's axis is held from. Picked frames: the picked edges' or "
+             "faces' own frames lined up (a circle's or a face's x; a line's: the part's z, x or y most across "
+             "it), the same whatever pose the parts are in now. Pose when made: the turn part 2 has when this is "
+             "chosen (joints saved before this choice existed keep the turn they were made with)")
 
 # What a greyed-out field's tooltip says while the references are picked.
 WAITING = "Pick both references first: the joint is made on them, then its fields apply to it"
@@ -224,6 +230,15 @@ class JointPanel(TransactionPanel):
         self.reverse = QtWidgets.QCheckBox("Reverse (flip part 2's axis)")
         self.reverse.setToolTip("Part 2 faces the other way along the joint's axis (its picked axis flipped)")
         g.layout().addWidget(self.reverse)
+        # Where a Fixed's or a Slider's hold on part 2's turn about the axis comes from.
+        g = self._group(top, "twist", None)
+        gl = QtWidgets.QFormLayout()
+        g.layout().addLayout(gl)
+        self.twist = QtWidgets.QComboBox()
+        self.twist.setObjectName("twistFrom")
+        self.twist.addItems(list(TWIST_FROM))
+        self.twist.setToolTip(TWIST_TIP)
+        gl.addRow("Twist from", self.twist)
         g = self._group(top, "offset", None)
         gl = QtWidgets.QFormLayout()
         g.layout().addLayout(gl)
@@ -325,6 +340,7 @@ class JointPanel(TransactionPanel):
             box.editingFinished.connect(self._flush)
         for check in (self.has_rotation, self.has_travel, self.left):
             check.toggled.connect(self._changed)
+        self.twist.currentTextChanged.connect(self._changed)
         return w
 
     def _phase_edited(self, *_):
@@ -395,6 +411,7 @@ class JointPanel(TransactionPanel):
             self.ang_max.setProperty("rawValue", j.AngleMax.Value)
             for box, name in zip(self.frame + self.shift, ("FrameYaw", "FramePitch", "FrameRoll", "FrameX", "FrameY")):
                 box.setProperty("rawValue", getattr(j, name).Value if name in j.PropertiesList else 0.0)
+            self.twist.setCurrentText(getattr(j, "TwistFrom", POSE_WHEN_MADE))
             self._load_values()
         else:
             self.ang_max.setProperty("rawValue", 180.0)
@@ -595,8 +612,11 @@ class JointPanel(TransactionPanel):
 
     def _create(self):
         try:
-            self.joint = operations.add_joint(self.asm, self.type_box.currentText(), self.refs[0],
-                                              self.refs[1], undo_step=False, named_by_parts=True)
+            kind = self.type_box.currentText()
+            # (the twist chosen for the joint on the earlier references: taken at the pose now)
+            twist = {"twist_from": self.twist.currentText()} if "twist" in FIELDS[kind] else {}
+            self.joint = operations.add_joint(self.asm, kind, self.refs[0], self.refs[1], undo_step=False,
+                                              named_by_parts=True, **twist)
         except ValueError as e:
             self._start_picking()
             self._say(str(e), True)
@@ -637,6 +657,8 @@ class JointPanel(TransactionPanel):
         if "frame" in shown:
             kw["frame"] = tuple(raw(box) for box in self.frame)
             kw["shift"] = tuple(raw(box) for box in self.shift)
+        if "twist" in shown:
+            kw["twist_from"] = self.twist.currentText()
         if "distance" in shown:
             kw["distance"] = raw(self.distance)
         if "ratio" in shown:
