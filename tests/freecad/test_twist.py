@@ -219,7 +219,7 @@ class PickedAcross(unittest.TestCase):
         self.assertLess((got - App.Vector(0, 1, 0)).Length, 1e-12, got)
 
 
-if not os.environ.get("DISPCON_IMPORT_ONLY"):  # run by freecadcmd as a script
+if not os.environ.get("DISPCON_TWIST_IMPORT_ONLY"):  # run by freecadcmd as a script
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
                                for c in (FixedMadeAskew, SavedBefore, PickedAcross))
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
