@@ -978,7 +978,8 @@ class TestJointPanel(Documents):
         # A Fixed made on the arm turned 20 degrees about its pin: the panel's Twist from says
         # "Picked frames" (a new joint's), its tooltip says what each choice means, and the
         # preview stands the arm square on the base (the pins' circles' frames lined up). "Pose
-        # when made" chosen: the joint's TwistFrom, at the engine's door first; OK keeps it.
+        # when made" chosen: the joint's TwistFrom (at the engine's door first), the arm turned
+        # back as it stood when the joint was made; OK keeps it.
         from dispcon_fc import objects
 
         panel, asm, base, arm = self.open("Fixed")
@@ -996,6 +997,10 @@ class TestJointPanel(Documents):
         settle()
         self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
         self.assertEqual(j.TwistFrom, objects.POSE_WHEN_MADE)
+        # The turn the arm had when the panel made the joint, 20 degrees about its pin, held.
+        turn = arm.Placement.Rotation
+        self.assertLess(abs(abs(math.degrees(turn.Angle)) - 20.0), 1e-6, arm.Placement)
+        self.assertLess(abs(abs(turn.Axis.z) - 1.0), 1e-9, arm.Placement)
         panel.type_box.setCurrentText("Revolute")
         settle()
         self.assertNotIn("twist", self.visible_groups(panel))

@@ -8,6 +8,7 @@ aborts it, which removes a new joint or gives an edited one (and the parts) back
 Only the fields that apply to the chosen type are shown; lengths and angles are FreeCAD quantity
 spin boxes (mm, deg): among them the rotation offset of part 2's joint frame (yaw, pitch, roll).
 A min above its max is said in the panel and disables OK."""
+import FreeCAD as App
 import FreeCADGui as Gui
 
 from .. import engine, geometry, markers, operations, panels
@@ -52,8 +53,9 @@ STEP_KEYS = (QtCore.Qt.Key_Up, QtCore.Qt.Key_Down, QtCore.Qt.Key_PageUp, QtCore.
 # The Twist from field's tooltip (the property's, TwistFrom, in the panel's words).
 TWIST_TIP = ("Where part 2's turn about the joint's axis is held from. Picked frames: the picked edges' or "
              "faces' own frames lined up (a circle's or a face's x; a line's: the part's z, x or y most across "
-             "it), the same whatever pose the parts are in now. Pose when made: the turn part 2 has when this is "
-             "chosen (joints saved before this choice existed keep the turn they were made with)")
+             "it), the same whatever pose the parts are in now. Pose when made: the turn part 2 had when the joint "
+             "was made here (a joint opened again: the turn it has when this is chosen); joints saved before "
+             "this choice existed keep the turn they were made with")
 
 # What a greyed-out field's tooltip says while the references are picked.
 WAITING = "Pick both references first: the joint is made on them, then its fields apply to it"
@@ -623,6 +625,9 @@ class JointPanel(TransactionPanel):
             return
         # add_joint may have put the guide's reference first (a Distance's plane, a pinion).
         self.refs = [(r[0], r[1][0] if r[1] else "") for r in (self.joint.Reference1, self.joint.Reference2)]
+        # Its parts' poses as it is made, before its preview moves them: "Pose when made" chosen
+        # later in this panel means these (_changed).
+        self.made_at = [(o, App.Placement(o.Placement)) for o, _ in self.refs]
         self._list_refs()
         self._load_values()
         self._editable()
@@ -713,7 +718,10 @@ class JointPanel(TransactionPanel):
             self._set_ok(False)
             return
         try:
-            operations.edit_joint(self.joint, undo_step=False, **self.values())
+            values = self.values()
+            if values.get("twist_from") == POSE_WHEN_MADE and self.joint.TwistFrom != POSE_WHEN_MADE:
+                self._back_to_made()
+            operations.edit_joint(self.joint, undo_step=False, **values)
             r = operations.solve(self.asm, undo_step=False)
         except ValueError as e:
             self._say(str(e), True)
@@ -727,6 +735,15 @@ class JointPanel(TransactionPanel):
         else:
             self._say("The parts cannot be placed so: %s. OK keeps the joint anyway." % r.message, True)
         Gui.updateGui()
+
+    def _back_to_made(self):
+        """"Pose when made" chosen for a joint this panel made: its parts back where they stood
+        when it was made (its preview has lined their picked frames up since), so the turn it
+        holds is the one part 2 had then, as the choice says; the solve that follows moves the
+        rest. A joint the panel opened on is taken at the pose its parts have now."""
+        for part, placement in getattr(self, "made_at", ()):
+            if not getattr(part, "Grounded", False) and part.Placement != placement:
+                part.Placement = placement
 
     # -- the task dialog ----------------------------------------------------------------------
     def accept(self):
