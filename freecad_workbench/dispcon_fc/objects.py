@@ -771,8 +771,8 @@ DOCS = {
         "TwistFrom": "Fixed, Slider: where part 2's turn about the axis is held from. Picked frames: the picked "
                      "elements' own frames lined up (a circle's or a face's x, else the part's z, x or y most "
                      "across the axis): the same whatever pose the parts were in when the joint was made. Pose "
-                     "when made: the turn part 2 had then (set on a joint made earlier: the turn it has when set); "
-                     "joints saved before this existed",
+                     "when made: the turn recorded when the joint was made, or when this was last chosen in the "
+                     "joint's panel or by edit_joint; joints saved before this existed",
         "FrameYaw": "part 2 turned this far about the joint's axis from the picked frame",
         "FramePitch": "part 2's axis tilted this far about the frame's y (after the yaw)",
         "FrameRoll": "part 2's axis tilted this far about the frame's x (after the pitch)",

@@ -174,6 +174,12 @@ class SavedBefore(unittest.TestCase):
         want = stored(self.facts["Askew"]["Arm"])
         self.assertTrue(th.same(arm.Placement, want, 1e-9), (arm.Placement, want))
         self.assertAlmostEqual(abs(math.degrees(th.angle_of(arm))), 40.0, delta=3.0)  # still turned
+        # Set to the picked frames in the property editor (no edit_joint): the next solve reads
+        # them from the circles and stands the arm square.
+        self.joint("Askew", "Fixed").TwistFrom = objects.PICKED_FRAMES
+        r = da.solve(self.asm["Askew"])
+        self.assertTrue(r.converged, r.message)
+        self.assertLess(arm.Placement.Rotation.Angle, 1e-9, arm.Placement)
 
     def test_the_slider_made_after_the_ball_still_fails_and_says_what_to_do(self):
         """As the workbench of then: no pose holds the piston turned as it stood; the message
