@@ -1447,9 +1447,9 @@ class TestDrivePanel(Documents):
         start = [p.Placement for p in moving]
         panel = self.open(joint)
         self.assertIn("%g" % top, panel.limits.text())
-        # The box's range is the joint's limits, in degrees: 45 past stops at the limit.
-        self.assertAlmostEqual(raw_prop(panel.target, "minimum"), math.ceil((now - 20.0) * 100) / 100, places=9)
-        self.assertAlmostEqual(raw_prop(panel.target, "maximum"), top - 0.006, places=9)
+        # The box's steps stop at the joint's limits, in degrees (its range stays full, so that a
+        # value typed past a limit is read and refused in words: below).
+        self.assertEqual(panel.ends, (math.ceil((now - 20.0) * 100) / 100, top - 0.006))
         self.assertIn("°", panel.target.text())
         panel.target.setProperty("rawValue", now + 18.0)
         settle()
@@ -1463,18 +1463,20 @@ class TestDrivePanel(Documents):
         self.assertNotIn("outside", panel.message.text())
         self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
         self.assertAlmostEqual(operations.drive_value(joint), top, places=7)
-        # Typed as a person types: a value within the limits is taken, one past them is not
-        # (the box and the parts stay where they were).
+        # Typed as a person types: a value within the limits is taken, one past them is refused
+        # in words (the box keeps it, the parts stay where they were, OK disabled).
         inside = round(now + 5.0, 2)
         type_into(panel.target, "%.2f" % inside)
         self.assertAlmostEqual(raw_of(panel.target), inside, places=9)
         self.assertAlmostEqual(operations.drive_value(joint), inside, places=7)
         type_into(panel.target, "%.2f" % (now + 45.0))
-        print("typed past the limit: the box reads %r, holds %r" % (panel.target.text(), raw_of(panel.target)))
-        self.assertAlmostEqual(raw_of(panel.target), inside, places=9)
+        self.assertAlmostEqual(raw_of(panel.target), round(now + 45.0, 2), places=9)
         self.assertAlmostEqual(operations.drive_value(joint), inside, places=7)
-        self.assertTrue(panel.ok_button().isEnabled())
-        panel.target.stepBy(50)
+        self.assertIn("outside", panel.message.text())
+        self.assertFalse(panel.ok_button().isEnabled())
+        # An arrow's step from there stops at the limit and drives to it.
+        up = QtGui.QKeyEvent(QtCore.QEvent.KeyPress, QtCore.Qt.Key_Up, QtCore.Qt.NoModifier)
+        QtWidgets.QApplication.sendEvent(panel.target, up)
         settle()
         shot("panel-drive-clamped")
         self.assertAlmostEqual(operations.drive_value(joint), top, places=7)
@@ -1495,6 +1497,28 @@ class TestDrivePanel(Documents):
         self.doc.undo()
         for p, q in zip(moving, start):
             self.assertTrue(same(p.Placement, q, 1e-9), "one undo did not put %s back" % p.Label)
+
+    def test_a_value_typed_past_a_limit_is_refused_in_words_not_cut_to_a_prefix(self):
+        """The fourth audit: `40 deg` typed against a limit of 28.65 read `4 deg` (the box, its
+        range the limits, dropped the 0) and the wheel went to 4 degrees without a word."""
+        from dispcon_fc import operations
+
+        asm, joint, moving = self.fourbar_solved()
+        now = operations.drive_value(joint)
+        operations.edit_joint(joint, rotation=(now - 45.0, now + 28.6479))
+        self.assertTrue(operations.solve(asm).converged)
+        panel = self.open(joint)
+        type_into(panel.target, "%g deg" % round(now + 40.0), finish=False)
+        pause(2 * 400)
+        print("typed %g deg: the box reads %r" % (round(now + 40.0), panel.target.text()))
+        self.assertAlmostEqual(raw_of(panel.target), round(now + 40.0), places=9)
+        self.assertAlmostEqual(operations.drive_value(joint), now, places=7)
+        self.assertIn("outside %s's limits" % joint.Label, panel.message.text())
+        self.assertFalse(panel.ok_button().isEnabled())
+        shot("panel-drive-typed-past-limit")
+        self.assertFalse(panel.accept(), "OK took a value past the limit")
+        self.assertAlmostEqual(operations.drive_value(joint), now, places=7)
+        panel.reject()
 
     def test_a_typed_value_is_driven_once_typing_pauses_not_through_its_prefixes(self):
         from dispcon_fc import operations
@@ -1552,11 +1576,13 @@ class TestDrivePanel(Documents):
         settle()
         self.assertAlmostEqual(operations.drive_value(slider), 0.4, places=6)
         self.assertTrue(panel.ok_button().isEnabled())
-        self.assertEqual((raw_prop(panel.target, "minimum"), raw_prop(panel.target, "maximum")), (-0.5, 0.5))
-        panel.target.setProperty("rawValue", 0.7)  # past the limit: not taken
+        self.assertEqual(panel.ends, (-0.5, 0.5))
+        panel.target.setProperty("rawValue", 0.7)  # past the limit (not typed): stops at it
         settle()
-        self.assertEqual(raw_of(panel.target), 0.4)
-        self.assertAlmostEqual(operations.drive_value(slider), 0.4, places=6)
+        self.assertEqual(raw_of(panel.target), 0.5)
+        self.assertAlmostEqual(operations.drive_value(slider), 0.5, places=6)
+        panel.target.setProperty("rawValue", 0.4)
+        settle()
         panel.target.stepBy(1)  # a step of 1 mm up from 0.4 stops at 0.5
         settle()
         self.assertEqual(raw_of(panel.target), 0.5)
@@ -2317,8 +2343,11 @@ class TestTypedAndPicked(Documents):
         self.finish_typing(panel.target)
         self.assertAlmostEqual(operations.drive_value(slider), 0.254, places=6)
         self.assertTrue(panel.ok_button().isEnabled(), panel.message.text())
-        type_into(panel.target, "2", finish=False)  # past the travel: the box takes no such key
-        self.assertLessEqual(raw_of(panel.target), 0.5)
+        type_into(panel.target, "2", finish=False)  # past the travel: said, nothing moved
+        pause(2 * drive.TYPING_PAUSE_MS)
+        self.assertEqual(raw_of(panel.target), 2.0)
+        self.assertIn("outside", panel.message.text())
+        self.assertFalse(panel.ok_button().isEnabled())
         self.assertAlmostEqual(operations.drive_value(slider), 0.254, places=6)
         shot("panel-drive-typed-past")
         panel.reject()

@@ -3,9 +3,12 @@ a Slider or PointOnLine (its travel, in mm), type where it goes, and the linkage
 
 Like the joint panel, it holds one transaction open from the moment it opens: every drive it
 previews is inside it, so OK is one undo step and Cancel aborts it, which puts every part back.
-The box's range is the joint's limits, so a value outside them cannot be typed (drive_to refuses
-one from a script, said in the panel, before anything moves);
-a drive that locks on the way stops there and says where.
+A step of the box (its arrows, the wheel, the arrow keys) stops at the joint's limits; a value
+typed past one is refused in words (the box keeps what was typed, nothing moves, OK disabled)
+rather than cut to a prefix: with the box's range the limits, the keystroke that took it past
+was dropped, so `40 deg` typed against a limit of 28.65 read `4 deg` and drove there without a
+word (the fourth audit). drive_to refuses a script's value outside them too; a drive that locks
+on the way stops there and says where.
 
 A value typed key by key is driven once typing pauses (or editing ends: Enter, Tab, OK), not at
 each prefix: `12` typed is not driven through 1 first, a prefix that could leave a linkage on
@@ -49,7 +52,8 @@ class DrivePanel(TransactionPanel):
         self.watch()
         self.busy = False  # a drive is running (its frames process the GUI's events)
         self.pending = False  # the value changed meanwhile: drive again once it ends
-        self.keyed = False  # the box's last change is being typed (not an arrow's step)
+        self.keyed = False  # the box's last change was typed (not an arrow's step): not clamped
+        self.ends = (-FULL_RANGE, FULL_RANGE)  # where a step stops: the limits, rounded inwards
         self.form = self._build()
         start = joint if joint in self.joints else self.joints[0]
         self.joint_box.setCurrentIndex(self.joints.index(start))
@@ -107,13 +111,26 @@ class DrivePanel(TransactionPanel):
             self.pause.start()
             return
         self.pause.stop()
+        if not self.keyed and not self.busy and self._clamped():
+            return  # (the box set to the limit comes back here as a change of its own)
         self._drive()
+
+    def _clamped(self):
+        """A step past a limit stops at it, as the box's end would: the box set to the limit
+        (its end rounded inwards, which value() reads as the limit); whether it was set."""
+        lo, hi = self.ends
+        value = raw(self.target)
+        end = lo if value < lo else hi if value > hi else None
+        if end is None:
+            return False
+        self.target.setProperty("rawValue", end)
+        return True
 
     _edited = _changed  # (a text readable again: as any change of the box)
 
     def _flush(self):
-        """Editing ended: what was typed and not yet driven is driven now."""
-        self.keyed = False
+        """Editing ended: what was typed and not yet driven is driven now (or refused: a typed
+        value stays typed until a step, never cut to the limit)."""
         if self.pause.isActive():
             self.pause.stop()
             self._drive()
@@ -142,14 +159,14 @@ class DrivePanel(TransactionPanel):
         self.limits.setText("%g%s .. %g%s" % (limits[0], unit, limits[1], unit) if limits else "none")
         self.busy = True  # the box's new unit, range and value are no drive
         set_unit(self.target, self.unit())
-        # The box's range is the joint's limits (the arrows and the keyboard stop there); a joint
-        # without limits keeps the full range. drive_to refuses a value outside them all the same.
-        # The box holds its decimals: a limit between two of its steps (66.736 in a box of two
-        # decimals) is its end rounded inwards (66.73), which value() reads as the limit.
+        # The box keeps its full range, so whatever is typed is read and a value past a limit
+        # is said (problem); its steps stop at the limits (_clamped). The box holds its
+        # decimals: a limit between two of its steps (66.736 in a box of two decimals) is the
+        # steps' end rounded inwards (66.73), which value() reads as the limit.
         lo, hi = limits if limits else (-FULL_RANGE, FULL_RANGE)
         scale = 1.0 / self.step()
-        self.target.setProperty("minimum", math.ceil(lo * scale - 1e-6) / scale)
-        self.target.setProperty("maximum", math.floor(hi * scale + 1e-6) / scale)
+        self.ends = (math.ceil(lo * scale - 1e-6) / scale, math.floor(hi * scale + 1e-6) / scale)
+        self.keyed = False
         self.target.setProperty("rawValue", round(now, 9))
         self.busy = False
         self._show_now()
@@ -182,8 +199,8 @@ class DrivePanel(TransactionPanel):
             return self.typing.bad
         limits = operations.drive_limits(j)
         if limits is not None and not limits[0] - 1e-9 <= value <= limits[1] + 1e-9:
-            return "%g%s is outside %s's limits, %g%s .. %g%s." % (value, unit, j.Label, limits[0], unit,
-                                                                  limits[1], unit)
+            return ("%g%s is outside %s's limits, %g%s .. %g%s: nothing moved. Type a value within them, "
+                    "or widen them in its joint panel." % (value, unit, j.Label, limits[0], unit, limits[1], unit))
         return None
 
     def _drive(self):
