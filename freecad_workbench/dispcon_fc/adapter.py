@@ -348,37 +348,56 @@ def local_mass(shape, placement):
     return volume, geometry.to_local(placement, point=com), local
 
 
-# The parts' centres in their own frames, by document and object name: (the shape they were
-# integrated from, the centre or None). OpenCascade's integration was most of the time a model of
-# a hundred parts took to build (Solve, Check, a drag's press, a joint added each build one);
-# a shape is integrated again only when it is no longer a partner of that one (the same
-# geometry, wherever it is placed): its part recomputed, the document read again.
-_CENTRES = {}
+class Centres:
+    """The parts' centres of mass in their own frames, each kept with the shape it was integrated
+    from: OpenCascade's integration was most of the time a model of a hundred parts took to build
+    (Solve, Check, a drag's press, a joint added each build one). One per assembly, held by its
+    proxy and never saved (centres_of): it goes with the assembly, and with its document when that
+    closes. A shape is integrated again when it is no longer a partner of the one kept (the same
+    geometry, wherever it is placed: a recomputed part, a document read again is integrated anew);
+    a part moved keeps its centre, which is in its own frame."""
 
+    def __init__(self):
+        self.known = {}  # (document name, object name) -> (shape, centre or None)
 
-def local_centre(owner, shape, placement):
-    """The centre of mass of `owner`'s `shape` (its solids) in the frame of `placement`, the
-    owner's; None when it has no solid or no volume."""
-    key = (owner.Document.Name, owner.Name)
-    # Only a shape placed where its owner is (a Part::Feature's, a link's: to rounding, FreeCAD
-    # places it through a matrix) is known by its geometry: the centre in the owner's frame is
-    # then the same wherever the owner stands, to rounding (a few units in the last place of
-    # the centre integrated anew).
-    rel = placement.inverse().multiply(shape.Placement)
-    q = rel.Rotation.Q
-    placed = rel.Base.Length <= 1e-12 * max(1.0, placement.Base.Length) and math.sqrt(
-        q[0] ** 2 + q[1] ** 2 + q[2] ** 2) <= 1e-12
-    known = _CENTRES.get(key) if placed else None
-    if known is not None and known[0].isPartner(shape):
-        return App.Vector(known[1]) if known[1] is not None else None
-    com = geometry.center_of_mass(shape)
-    centre = geometry.to_local(placement, point=com) if com is not None else None
-    if not placed:
+    def __len__(self):
+        return len(self.known)
+
+    def centre(self, owner, shape, placement):
+        """The centre of mass of `owner`'s `shape` (its solids) in the frame of `placement`, the
+        owner's; None when it has no solid or no volume."""
+        key = (owner.Document.Name, owner.Name)
+        # Only a shape placed where its owner is (a Part::Feature's, a link's: to rounding,
+        # FreeCAD places it through a matrix) is known by its geometry: the centre in the owner's
+        # frame is then the same wherever the owner stands, to rounding (a few units in the last
+        # place of the centre integrated anew).
+        rel = placement.inverse().multiply(shape.Placement)
+        q = rel.Rotation.Q
+        placed = rel.Base.Length <= 1e-12 * max(1.0, placement.Base.Length) and math.sqrt(
+            q[0] ** 2 + q[1] ** 2 + q[2] ** 2) <= 1e-12
+        known = self.known.get(key) if placed else None
+        if known is not None and known[0].isPartner(shape):
+            return App.Vector(known[1]) if known[1] is not None else None
+        com = geometry.center_of_mass(shape)
+        centre = geometry.to_local(placement, point=com) if com is not None else None
+        if placed:
+            self.known[key] = (shape, App.Vector(centre) if centre is not None else None)
         return centre
-    if len(_CENTRES) > 100000:  # parts of documents long closed
-        _CENTRES.clear()
-    _CENTRES[key] = (shape, App.Vector(centre) if centre is not None else None)
-    return centre
+
+
+def centres_of(asm):
+    """The Centres kept by `asm`'s proxy, made at the first model built of it (a proxy restored
+    from a file or copied is made without one: FreeCAD saves none of it); a fresh one, kept by
+    nobody, for an assembly whose proxy was lost (opened where the workbench was missing)."""
+    from .objects import AssemblyProxy
+
+    proxy = getattr(asm, "Proxy", None)
+    if not isinstance(proxy, AssemblyProxy):
+        return Centres()
+    centres = getattr(proxy, "centres", None)
+    if centres is None:
+        centres = proxy.centres = Centres()
+    return centres
 
 
 class Adapter:
@@ -391,6 +410,7 @@ class Adapter:
         self.made = made or {}
         self.dispcon = engine.load()
         self.asm = asm
+        self.centres = centres_of(asm)
         self.model = self.dispcon.Model()
         # names: the objects that are bodies (parts, rigid sub-assemblies, the parts of flexible
         # ones) -> body name; frames: every object a joint can hold -> (body name, its placement
@@ -476,7 +496,7 @@ class Adapter:
         if local is None and not physics:
             # The centre only: the integrations for the mass and inertia were most of the time
             # a drag's press took (it builds the model from every part).
-            centre = local_centre(owner, shape, pl)
+            centre = self.centres.centre(owner, shape, pl)
             props = (None, centre, None) if centre is not None else ()
         else:
             props = local if local is not None else local_mass(shape, pl)

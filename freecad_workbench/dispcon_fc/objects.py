@@ -1,6 +1,7 @@
 """The workbench's document objects: the assembly (a group of parts and joints), the joints, and
 the properties that make an object of the document a part. Every value lives in the objects'
-properties; the Python proxies hold nothing (FreeCAD saves a proxy's state, and ours is None)."""
+properties; the Python proxies hold nothing FreeCAD saves (a proxy's state is None; an assembly's
+keeps its parts' centres of mass while it lives, adapter.centres_of)."""
 import math
 
 import FreeCAD as App
