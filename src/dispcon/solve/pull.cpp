@@ -387,7 +387,7 @@ struct Rises {
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
                        PolishWork& work, std::vector<double>& band, const SolveOptions& o,
                        std::vector<double>& soft, PoseBuffer& before, PoseBuffer& spare,
-                       std::vector<double>& joint_r, bool follows, int most) {
+                       PoseBuffer& valid, std::vector<double>& joint_r, bool follows, int most) {
   PullOutcome out;
   const JointState& pulled = s.joints[static_cast<size_t>(joint)];
   double& damping = soft[static_cast<size_t>(joint)];
@@ -490,7 +490,6 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   // With `most` bounded: the last pose kept at which the hard joints hold (the start's at least),
   // where the pull ends if its last correction cannot make them hold within `most`.
   const bool bounded = most < std::numeric_limits<int>::max();
-  PoseBuffer valid;
   bool kept_valid = false;
   while (now.distance > o.tolerance && out.iterations < o.max_iterations) {
     const Measure kept = now;

@@ -19,7 +19,8 @@ struct PullOutcome {
 
 // Pulls from the group's current poses (they are left at the nearest poses found; where the hard
 // joints cannot be made to hold, at those given). `soft` has one entry per joint, all zero; it is
-// used as scratch for the pull joint's damping; `before` and `spare` hold poses aside.
+// used as scratch for the pull joint's damping; `before`, `spare` and `valid` hold poses aside
+// (the caller's, so that a warm pull allocates none: `valid` was one allocation a turn's pull).
 // `max_iterations` caps the Newton steps. `follows`: the last pull of this joint reached its
 // target (a drag in reach, frame after frame): the first step is then damped less. `most`
 // bounds every iteration, the corrections made past the cap included (the poses a pull leaves
@@ -29,7 +30,7 @@ struct PullOutcome {
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
                        PolishWork& work, std::vector<double>& band, const SolveOptions& o,
                        std::vector<double>& soft, PoseBuffer& before, PoseBuffer& spare,
-                       std::vector<double>& joint_r, bool follows = false,
+                       PoseBuffer& valid, std::vector<double>& joint_r, bool follows = false,
                        int most = std::numeric_limits<int>::max());
 
 }  // namespace dispcon

@@ -303,8 +303,9 @@ struct Session::Impl {
   std::deque<GroupRun> runs;  // not moved once built: each holds its factorisation
   std::vector<double> band;
   // A pull's poses before its step and its spare (the Newton and seed steps keep theirs in the
-  // work's own, of a group's bodies only), set at each pull from the poses given.
-  PoseBuffer spare, before;
+  // work's own, of a group's bodies only), set at each pull from the poses given; and the last
+  // valid poses a pull with its iterations bounded kept (a turn's: pull_group).
+  PoseBuffer spare, before, valid;
   const std::vector<Pose>* given = nullptr;  // the poses the solve started from
   std::vector<double> joint_r;               // each joint's residual at the current poses
   PolishWork work;
@@ -426,8 +427,8 @@ PullOutcome Session::Impl::run_pull(int joint, int most) {
     found = true;
     before.assign(given->begin(), given->end());
     spare.assign(given->begin(), given->end());
-    out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, spare, joint_r,
-                     reached == joint, most);
+    out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, spare, valid,
+                     joint_r, reached == joint, most);
     reached = out.holds && out.distance <= o.tolerance ? joint : -1;
     p.measured = false;  // the pull moved the poses since the first measure
     p.iterations = p.polish = out.iterations;
