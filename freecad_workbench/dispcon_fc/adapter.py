@@ -8,8 +8,8 @@ import re
 import FreeCAD as App
 
 from . import engine, geometry, subassembly
-from .objects import (COUPLINGS, HOLD_TWIST, JOINT_TYPES, LENGTH_PHASE, PICKED_FRAMES, frame_rotation, frame_shift,
-                      joints, parts, phase_value, offset_text, remake_phase, set_phase, shape_of, twist_from_picks)
+from .objects import (COUPLINGS, HOLD_TWIST, JOINT_TYPES, LENGTH_PHASE, PICKED_FRAMES, crossed_limits, frame_rotation,
+                      frame_shift, joints, parts, phase_value, offset_text, remake_phase, set_phase, shape_of, twist_from_picks)
 
 
 def _vec(v):
@@ -247,6 +247,9 @@ def joint_kwargs(dispcon, j, anchors=None, remake=False):
     point2 = moved_point(a["Point2"], axis2, across2, frame_shift(j))
     kw = dict(kind=row["name"], point1=_vec(a["Point1"] + a["Axis1"] * offset), point2=_vec(point2),
               axis1=_vec(a["Axis1"]), axis2=_vec(axis2), across1=_vec(a["Perp1"]), across2=_vec(across2))
+    crossed = crossed_limits(j)  # (set so in the property editor: said as the designer set it)
+    if crossed:
+        raise ValueError(crossed)
     limits = {"angle": (rad(j.AngleMin.Value), rad(j.AngleMax.Value))}
     if j.HasRotationLimits:
         limits["turn"] = (rad(j.RotationMin.Value), rad(j.RotationMax.Value))

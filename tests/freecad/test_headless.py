@@ -999,6 +999,24 @@ class RobustOperations(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "Elbow: one of its parts was deleted"):
             da.drive(asm, lost, [10])
 
+    def test_limits_crossed_in_the_property_editor_are_named_in_the_designers_words(self):
+        """The fourth audit: a turn's Min set above its Max in the property editor (which the
+        panel's check does not see) made Solve and Check say "constraint: twist: min 1.0472 is
+        above max 0.5"; now the joint's label, the limits in degrees, and what to do."""
+        asm, base, arm = arm_on_base(self.doc)
+        j = da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)), rotation=(-45, 28.6479))
+        j.Label = "Frame-Wheel"
+        j.RotationMin = App.Units.Quantity("60 deg")  # as the property editor sets it
+        said = "Frame-Wheel: its turn's Min 60° is above its Max 28.6479°: set Min below Max"
+        with self.assertRaisesRegex(ValueError, said):
+            da.solve(asm)
+        with self.assertRaisesRegex(ValueError, said):
+            da.check(asm)
+        with self.assertRaisesRegex(ValueError, said):
+            da.drag(asm, arm, arm.Placement)
+        j.RotationMin = App.Units.Quantity("-45 deg")
+        self.assertTrue(da.solve(asm).converged)
+
     def test_opening_a_saved_assembly_changes_nothing(self):
         # The samples are made so: opening one must not mark it touched (nothing to save).
         asm, g, crank, coupler, rocker = fourbar(self.doc, tempfile.mkdtemp())
