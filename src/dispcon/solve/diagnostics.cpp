@@ -47,6 +47,24 @@ std::vector<int> group_of_joints(const Model& model, const SolveOptions& options
   return out;
 }
 
+// The model with the limits of the joints in `at_limit` let go: a range (a guide's travel, a
+// cone, a turn's limits) opened, the equalities kept (a range whose min is its max is one). At a
+// limit a mechanism is held by the limit, not locked by its couplings.
+Model released(const Model& model, const std::vector<JointId>& at_limit) {
+  Model m;
+  for (int i = 1; i < model.body_count(); ++i) m.add_body(model.body(BodyId{i}));
+  for (int c = 0; c < model.joint_count(); ++c) {
+    Joint j = model.joint(JointId{c});
+    if (std::find(at_limit.begin(), at_limit.end(), JointId{c}) != at_limit.end()) {
+      if (j.guide && j.guide->min < j.guide->max) j.guide->min = -kInf, j.guide->max = kInf;
+      if (j.twist && j.twist->min < j.twist->max) j.twist.reset();
+      if (j.angle && !j.twist && j.angle->min < j.angle->max) j.angle.reset();
+    }
+    m.add_joint(j);
+  }
+  return m;
+}
+
 std::string joint_name(const Model& model, JointId id) {
   const Joint& j = model.joint(id);
   std::ostringstream out;
@@ -125,12 +143,19 @@ CheckResult check(const Model& input, const SolveOptions& options) {
   }
 
   // Locked by its couplings (two gear paths with different ratios): with no freedom left, the
-  // couplings whose removal frees the mechanism.
+  // couplings whose removal frees the mechanism. Its limits in contact let go first: a gear at
+  // its turn's limit has no freedom left either, which its mesh is not to blame for (the fourth
+  // audit's wheel at its limit named its two meshes as locking the train).
   if (out.dof == 0) {
-    for (int c = 0; c < model.joint_count(); ++c) {
-      if (!model.joint(JointId{c}).coupling) continue;
-      const Model freed = with_joints(model, [c](int k) { return k != c; });
-      if (rank_by_group(freed, options).dof > 0) out.locking.push_back(JointId{to_input(c)});
+    const bool held = removed < 0 && !out.limits_active.empty();
+    const Model unlimited = held ? released(model, out.limits_active) : Model{};
+    const Model& free = held ? unlimited : model;
+    if (!held || rank_by_group(free, options).dof == 0) {
+      for (int c = 0; c < free.joint_count(); ++c) {
+        if (!free.joint(JointId{c}).coupling) continue;
+        const Model freed = with_joints(free, [c](int k) { return k != c; });
+        if (rank_by_group(freed, options).dof > 0) out.locking.push_back(JointId{to_input(c)});
+      }
     }
     if (!out.locking.empty()) {
       std::ostringstream a;

@@ -383,5 +383,28 @@ constraint object1 g1; object2 g3; gear 0 0 0 0 0 1 0 0 0 0 0 1 ratio 1; end
   EXPECT_NE(d.message.find("gear"), std::string::npos) << d.message;
 }
 
+// A gear at its turn's limit, meshed with another: the limit in contact takes the last freedom
+// (check counts none), but the mesh does not lock the pair: away from the limit they turn. The
+// fourth audit's wheel at its limit was said to be locked by its two meshes ("removing one of
+// Wheel-Pinion, Pinion-Rack frees it"), which a designer would remove for nothing.
+TEST(Couplings, AGearAtItsLimitIsHeldByTheLimitNotLockedByItsMesh) {
+  const char* joints = R"(
+object g2; position 3 0 0; end
+constraint object2 g1; hinge 0 0 0 0 0 0; angle 0 0 1 0 0 1 max 0; twist 1 0 0 1 0 0 min -0.5 max 0.5; end
+constraint object2 g2; hinge 3 0 0 0 0 0; angle 0 0 1 0 0 1 max 0; end
+constraint object1 g1; object2 g2; gear 0 0 0 0 0 1 0 0 0 0 0 1 ratio 2; end
+)";
+  for (const char* g1 : {"object g1; end", "object g1; rotation 0 0 0.5; end"}) {
+    ParseResult r = parse_dcl(std::string(g1) + joints);
+    ASSERT_TRUE(r.ok()) << r.messages();
+    const CheckResult c = check(*r.model);
+    const bool at_limit = std::string(g1).find("rotation") != std::string::npos;
+    EXPECT_EQ(c.dof, at_limit ? 0 : 1) << c.message;
+    EXPECT_EQ(c.limits_active.size(), at_limit ? 1u : 0u) << c.message;
+    EXPECT_TRUE(c.locking.empty()) << c.message;
+    EXPECT_EQ(c.message.find("locked"), std::string::npos) << c.message;
+  }
+}
+
 }  // namespace
 }  // namespace dispcon
