@@ -824,11 +824,13 @@ def open_panel(joint=None, asm=None, joint_type=None, refs=()):
         asm = next(p for p in joint.InList if joint in getattr(p, "Group", []))
     panel = JointPanel(asm, joint_type=joint_type, refs=refs, joint=joint)
     panels.show(panel)
-    if panel.joint is not None:
+    if panel.joint is None:
+        panel._set_ok(False)
+    elif not panel.new:
         panel._changed()
         panel._highlight()
-    else:
-        panel._set_ok(False)
+    # (A joint the panel made on two references was previewed and highlighted as it was made:
+    # a second preview built the model and solved the 100-part chain again, to move nothing.)
     return panel
 
 
