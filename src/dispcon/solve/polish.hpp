@@ -45,6 +45,9 @@ struct PolishWork {
   std::vector<int> joint_rows_;  // the rows of the k-th joint with rows: joint_rows_[k] ...
   std::vector<int> block_of_, block_start_;  // the analysis's blocks (a joint's rows)
   std::vector<double> soft_;  // each row's own damping (a pull's rows), empty when none
+  // Each joint's geometry (the group's i-th joint's in geometry_[i]) as a small group's measure
+  // looked at it, for the chord step that may follow at the same poses (Caches::kGeometry).
+  std::vector<JointGeometry> geometry_;
   // The poses of the group's bodies before the step a thread is taking (solver.cpp's iterate).
   PoseBuffer before_;
   // ... and the best poses seen of the group it runs (solver.cpp's Session::Impl::run).
@@ -68,8 +71,11 @@ struct PolishWork {
       // made_listed() was given; any polisher whose rows join the same unknowns may take them
       // (the 400 four-bars list theirs once). Tagged by those unknowns, not by an owner.
       kListed = 8,
+      // geometry_, of the poses the owner's last measure() looked at.
+      kGeometry = 16,
     };
-    // Whether the cache (kChord, kRows or kLists: those tagged by an owner) was made by `owner`;
+    // Whether the cache (kChord, kRows, kLists or kGeometry: those tagged by an owner) was made
+    // by `owner`;
     // and the cache so tagged.
     bool of(Cache c, const void* owner) const { return owner_[index(c)] == owner; }
     void made(Cache c, const void* owner) { owner_[index(c)] = owner; }
@@ -95,15 +101,18 @@ struct PolishWork {
     // Lets go of the caches in `caches` (a sum of Cache); with `owner`, only of those it made
     // (kListed, made for any polisher of the same rows, goes only without).
     void drop(unsigned caches, const void* owner = nullptr) {
-      for (unsigned i = 0; i < kOwned; ++i) {
-        if ((caches >> i & 1u) && (!owner || owner_[i] == owner)) owner_[i] = nullptr;
+      for (const Cache c : {kChord, kRows, kLists, kGeometry}) {
+        const unsigned i = index(c);
+        if ((caches & c) && (!owner || owner_[i] == owner)) owner_[i] = nullptr;
       }
       if ((caches & kListed) && !owner) listed_nv_ = -1;
     }
 
    private:
-    static constexpr unsigned kOwned = 3;  // kChord, kRows, kLists: tagged with their owner
-    static unsigned index(Cache c) { return c == kChord ? 0 : c == kRows ? 1 : 2; }
+    static constexpr unsigned kOwned = 4;  // kChord, kRows, kLists, kGeometry: by their owner
+    static unsigned index(Cache c) {
+      return c == kChord ? 0 : c == kRows ? 1 : c == kLists ? 2 : 3;
+    }
     const void* owner_[kOwned] = {};
     // kListed's rows: the unknowns of each row's two bodies (v1, v2), and the unknowns' count
     // (-1: none listed).
@@ -253,7 +262,9 @@ class Polisher {
     if (small_free_ < 0) small_free_ = no_free_motion() ? 0 : 1;
     return small_free_ == 0;
   }
-  bool small_residuals(const SolverState& s, const std::vector<double>& band);
+  bool small_residuals(const SolverState& s, const std::vector<double>& band,
+                       const JointGeometry* kept);
+  double measure_keeping(const SolverState& s, std::vector<double>& joint_r);
   bool factor_sparse(const SolverState& s, double lambda);
   bool without_couplings(const SolverState& s);  // see without_couplings_
   bool same_pattern() const;

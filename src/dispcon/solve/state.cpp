@@ -282,10 +282,14 @@ void SolverState::rows(const JointState& js, const JointBounds& bounds, PartRows
   rows_at(js, geometry(js, bounds.part(0)), bounds, out, jacobian);
 }
 
+double SolverState::residual_keeping(const JointState& js, JointGeometry& g) const {
+  new (&g) JointGeometry(geometry(js));
+  return js.active ? residual_at(js, g) : 0.0;
+}
+
 double SolverState::rows_and_residual(const JointState& js, BoundTest bound,
                                       PartRows out[kPartSlots], bool jacobian) const {
-  const Guide* guide = js.joint->guide ? &*js.joint->guide : nullptr;
-  if (guide && guide->kind != GuideKind::Point && guide->kind != GuideKind::Circle) {
+  if (!geometry_without_bounds(js)) {
     rows(js, bound, out, jacobian);  // the nearest point of a guide with ends depends on the band
     return residual(js);
   }

@@ -127,6 +127,21 @@ class SolverState {
   // same (the nearest point of a guide without ends does not depend on the bound test).
   double rows_and_residual(const JointState& js, BoundTest bound, PartRows out[kPartSlots],
                            bool jacobian) const;
+  // residual(), its look at the joint's geometry kept in `g` (built there, not copied), for
+  // rows_from() at the same poses.
+  double residual_keeping(const JointState& js, JointGeometry& g) const;
+  // Whether a joint's geometry is the same whatever the bound test: every joint's but those on a
+  // guide with ends, whose nearest point depends on the band.
+  static bool geometry_without_bounds(const JointState& js) {
+    const Guide* guide = js.joint->guide ? &*js.joint->guide : nullptr;
+    return !guide || guide->kind == GuideKind::Point || guide->kind == GuideKind::Circle;
+  }
+  // rows() from the geometry residual_keeping() kept at the current poses: the same rows, without
+  // looking at the geometry again (only where geometry_without_bounds()).
+  void rows_from(const JointState& js, const JointGeometry& g, BoundTest bound,
+                 PartRows out[kPartSlots], bool jacobian) const {
+    rows_at(js, g, JointBounds{bound}, out, jacobian);
+  }
   // For each row rows() gives a joint (the same test), the component along it of the way out of
   // the bound its part rests on, the direction that passes that bound: +1 for an angle's or a
   // twist's upper bound, -1 for a lower one; a guide's rows' normals dotted with the way out of
