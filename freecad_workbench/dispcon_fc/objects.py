@@ -351,6 +351,10 @@ class PartProxy(_Proxy):
 
     def onDocumentRestored(self, obj):
         _view_restored(obj, "Part")
+        # It computes nothing (its shape is given): a touch saved with it, by a redo of its import
+        # with no recompute after, is no recompute waiting (the fourth audit's reopened document
+        # showed its four parts so). Cleared, as the assembly's is.
+        obj.purgeTouched()
 
 
 def joint_extras(obj):
