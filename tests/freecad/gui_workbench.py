@@ -1244,6 +1244,45 @@ class TestErrors(Documents):
         self.assertNotIn("Impossible", mw().statusBar().currentMessage())
 
 
+    def test_a_joint_whose_part_was_deleted_opens_to_be_picked_again_and_check_lists_it(self):
+        """The fourth audit: the rack deleted, a double-click on its Slider raised a traceback in
+        the Report view (its reference is None) and opened no panel, its transaction left open;
+        the Check panel said nothing of the two joints it left out."""
+        from dispcon_fc import operations, panels
+        from dispcon_fc.panels import joint as jp
+        from dispcon_fc.panels.check import CheckPanel
+        import parts
+
+        asm = operations.create_assembly(self.doc)
+        base, arm = base_and_arm(asm)
+        j = operations.add_joint(asm, "Revolute", (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0))),
+                                 (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))))
+        j.Label = "Base-Arm"
+        self.doc.removeObject(arm.Name)
+        settle()
+        said = len(report_view_text())
+        j.ViewObject.Proxy.doubleClicked(j.ViewObject)
+        settle()
+        panel = jp.current()
+        self.assertIsNotNone(panel, "no panel opened")
+        self.assertNotIn("Traceback", report_view_text()[said:])
+        self.assertTrue(panel.picking)
+        self.assertIn("Base-Arm lost a part (deleted): pick two circular edges", panel.message.text())
+        self.assertFalse(panel.ok_button().isEnabled())
+        shot("panel-joint-part-deleted")
+        panel.reject()
+        settle()
+        self.assertIsNotNone(self.doc.getObject(j.Name), "Cancel deleted the joint")
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        action("Dispcon_Check").trigger()
+        settle()
+        check = panels.current(CheckPanel)
+        self.assertIsNotNone(check)
+        self.assertIn("left out: Base-Arm: a part each holds was deleted",
+                      check.form.findChild(QtWidgets.QTextEdit).toPlainText().replace("\n", " "))
+        check.reject()
+
     def test_a_failed_solve_is_no_undo_step_and_saved_reopens_untouched(self):
         """The third audit: a failed Solve left "Solve assembly" in the undo list (the marks,
         Residual and LastSolve it wrote) so the first Ctrl+Z took those back, not the joint; and

@@ -192,6 +192,10 @@ class JointPanel(TransactionPanel):
             self._create()
         elif self.joint is None:
             self._start_picking(keep=self.refs)
+        elif len(self.refs) < 2:  # a part it held was deleted: made again on two new picks
+            self._start_picking()
+            self._say("%s lost a part (deleted): pick %s to make it again, or Cancel and delete it." % (
+                joint.Label, PICK[joint.JointType]), True)
         self._show_fields()
 
     # -- the form ----------------------------------------------------------------------------
@@ -398,8 +402,9 @@ class JointPanel(TransactionPanel):
         j = self.joint
         self.loading = True
         if j is not None:
-            self.refs = [(j.Reference1[0], j.Reference1[1][0] if j.Reference1[1] else ""),
-                         (j.Reference2[0], j.Reference2[1][0] if j.Reference2[1] else "")]
+            # (a reference whose part was deleted is None: the fourth audit's double-click on
+            # such a joint raised here, leaving its transaction open and no panel)
+            self.refs = [(r[0], r[1][0] if r[1] else "") for r in (j.Reference1, j.Reference2) if r and r[0]]
             self.reverse.setChecked(bool(getattr(j, "Reversed", False)))
             self.offset.setProperty("rawValue", float(getattr(j, "Offset", 0) and j.Offset.Value))
             self.has_rotation.setChecked(j.HasRotationLimits)
@@ -824,7 +829,7 @@ def open_panel(joint=None, asm=None, joint_type=None, refs=()):
         asm = next(p for p in joint.InList if joint in getattr(p, "Group", []))
     panel = JointPanel(asm, joint_type=joint_type, refs=refs, joint=joint)
     panels.show(panel)
-    if panel.joint is None:
+    if panel.joint is None or panel.picking:  # (an edited joint that lost a part: picked again)
         panel._set_ok(False)
     elif not panel.new:
         panel._changed()
