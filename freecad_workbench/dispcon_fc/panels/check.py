@@ -130,6 +130,10 @@ def report_html(c, overlaps):
                          ("limits in contact", c["limits_active"])):
         if joints:
             out.append("<p><b>%s:</b> %s</p>" % (what, e(", ".join(j.Label for j in joints))))
+    if c.get("skipped"):  # (the message says them; the panel showed nothing of them)
+        out.append("<p><b>left out:</b> %s: a part each holds was deleted, or an edge or face it was picked on "
+                   "is gone. Double-click each to pick its references again, or delete it.</p>"
+                   % e(", ".join(j.Label for j in c["skipped"])))
     out += ["<p>%s</p>" % e(line) for line in c["advice"]]
     if overlaps:
         rows = "".join('<tr><td style="%s">%s</td><td style="%s">%s</td><td align="right" style="%s">%.4g</td></tr>'
