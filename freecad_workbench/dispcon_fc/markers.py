@@ -536,15 +536,51 @@ def spread(anchors, gap, seeds=None, iterations=100, box=None):
 def _screen_scaled(child, pixels):
     """`child` (drawn at unit size) scaled at each redraw so that one unit is `pixels` pixels on
     the screen: FreeCAD's SoShapeScale node (a Coin node of FreeCAD's GUI, made by its type
-    name since pivy has no class for it)."""
+    name since pivy has no class for it), behind a callback that sets its scaleFactor for the
+    viewport drawn.
+
+    SoShapeScale (FreeCAD 0.20's src/Gui/SoAxisCrossKit.cpp) divides its scaleFactor by the
+    viewport's height in pixels and passes that to Coin's getWorldToScreenScale, which takes it
+    as a share of the view volume's width: one unit was drawn scaleFactor * width / height pixels
+    (measured on a ring of radius 1 seen face on: 19.0 px for 14 in a 1052 x 772 view, 10.5 in a
+    656 x 876 one, 7.1 in a 400 x 800 image; the same at every zoom). The callback, traversed just
+    before it at every redraw, sets scaleFactor to `pixels` * height / width of the viewport being
+    drawn (the view's, or the image's that saveImage renders), so a unit is `pixels` pixels in
+    each, as the layout (PIXELS) counts it."""
     coin = _coin()
     kind = coin.SoType.fromName("SoShapeScale")
     if kind.isBad():  # not FreeCAD's GUI: the glyph at unit size
         return child
     node = coin.cast(kind.createInstance(), "SoBaseKit")
-    coin.cast(node.getField("scaleFactor"), "SoSFFloat").setValue(pixels)
+    factor = coin.cast(node.getField("scaleFactor"), "SoSFFloat")
+    factor.setValue(pixels)
     node.setPart("shape", child)
-    return node
+    fit = coin.SoCallback()
+    fit.setCallback(_fit_to_viewport, (factor, float(pixels), coin.SoGLRenderAction.getClassTypeId(),
+                                       coin.SoViewportRegionElement.get))
+    group = coin.SoGroup()
+    group.addChild(fit)
+    group.addChild(node)
+    return group
+
+
+def _fit_to_viewport(data, action):
+    """An SoCallback's function: SoShapeScale's scaleFactor (`data`: the field, the pixels a unit
+    is drawn, the render action's type and SoViewportRegionElement.get, found once) made pixels *
+    height / width of the viewport a render draws. Set without notifying: two views of one
+    document of different shapes (or a view and an image saved at another size) draw the same
+    marker, each render setting its own value; a notification would have each render ask the
+    other view for a redraw, and so on forever. The field is read by the SoShapeScale right after,
+    in the same traversal. 5-7 us a marker and a redraw (docs/workbench.md, "Measured")."""
+    factor, pixels, render, region = data
+    if not action.isOfType(render):
+        return
+    width, height = region(action.getState()).getViewportSizePixels()
+    value = pixels * height / width if width > 0 else pixels
+    if abs(factor.getValue() - value) > 1e-6 * value:
+        factor.enableNotify(False)
+        factor.setValue(value)
+        factor.enableNotify(True)
 
 
 class Marker:

@@ -194,16 +194,47 @@ def coin_vec(v):
 
 def rendered(view, path):
     """The view rendered at its own size as an array of RGB pixels (rows, columns, 3)."""
-    import numpy
-
     region = view.getViewer().getSoRenderManager().getViewportRegion()
     w, h = region.getViewportSizePixels()
     view.saveImage(path, w, h, "White")
+    try:
+        return image_pixels(path)
+    finally:
+        os.remove(path)
+
+
+def image_pixels(path):
+    """The image at `path` as an array of RGB pixels (rows, columns, 3)."""
+    import numpy
+
     image = QtGui.QImage(path).convertToFormat(QtGui.QImage.Format_RGB888)
-    os.remove(path)
     data = bytes(image.constBits())[:image.bytesPerLine() * image.height()]
     rows = numpy.frombuffer(data, numpy.uint8).reshape(image.height(), image.bytesPerLine())
     return rows[:, :3 * image.width()].reshape(image.height(), image.width(), 3).astype(numpy.int16)
+
+
+def drawn_ring(image, around, reach):
+    """The circle through the markers' orange of `image` (an array of RGB pixels), within `reach`
+    pixels of `around` (column, row) when given: (its centre's column, its row, its radius), a
+    least-squares circle fitted to the pixels, then again to those within 3 px of the first (the
+    ring without its axis seen end on at the centre or a neighbour's edge)."""
+    import numpy
+
+    r, g, b = image[:, :, 0], image[:, :, 1], image[:, :, 2]
+    rows, cols = numpy.nonzero((r > 200) & (g > 60) & (g < 170) & (b < 60))
+    x, y = cols.astype(float), rows.astype(float)
+    if around is not None:
+        near = numpy.hypot(x - around[0], y - around[1]) < reach
+        x, y = x[near], y[near]
+    assert len(x) > 20, "no ring drawn (%d orange pixels)" % len(x)
+    for _ in range(2):
+        # x^2 + y^2 = 2 a x + 2 b y + c, c = radius^2 - a^2 - b^2 (Kasa's fit)
+        (a2, b2, c), *_ = numpy.linalg.lstsq(numpy.column_stack((x, y, numpy.ones_like(x))), x * x + y * y, rcond=None)
+        a, b = a2 / 2, b2 / 2
+        radius = math.sqrt(c + a * a + b * b)
+        keep = abs(numpy.hypot(x - a, y - b) - radius) < 3.0
+        x, y = x[keep], y[keep]
+    return a, b, radius
 
 
 def marker_overlaps(view, joints):
@@ -580,6 +611,100 @@ class TestMarkers(Documents):
                         "the marker changed size with the zoom: %d px, then %d px" % (marker_near, marker_far))
         for j in js[1:]:
             j.ViewObject.Visibility = True
+
+    def test_a_glyph_is_drawn_the_size_the_layout_counts_at_any_window_and_zoom(self):
+        """A ring's radius is markers.PIXELS (14 px) on the screen at two window sizes (the view
+        wider than tall, then taller than wide) and two zooms, and in images saved at other sizes,
+        and a stacked marker sits where the layout puts it (its joint's point and its shift,
+        PIXELS px a glyph unit). Before, FreeCAD's SoShapeScale drew a unit PIXELS * width /
+        height pixels: 19.0 px in the 1052 x 772 view, 10.5 in a 656 x 876 one, so a stacked
+        marker sat 1.4 times (at the third audit's 1052 x 505, 2.1 times) as far as laid out."""
+        from dispcon_fc import markers, objects, operations, viewproviders
+        import parts
+
+        asm, g, crank, coupler, rocker = self.fourbar()
+        self.assertTrue(operations.solve(asm).converged)
+        # A second revolute on the ground's first pin (the same as the first): the second of a
+        # stack at that place, set beside it.
+        first = objects.joints(asm)[0]
+        second = operations.add_joint(asm, "Revolute", (g, parts.circle_edge(g.Shape, App.Vector(0, 0, 0))),
+                                      (crank, parts.circle_edge(crank.Shape, App.Vector(0, 0, 0))))
+        self.assertTrue(operations.solve(asm).converged)
+        for j in objects.joints(asm):
+            j.ViewObject.Visibility = j in (first, second)
+        view = self.view()
+        view.viewTop()  # the pins' axes along z: the rings seen face on
+        Gui.SendMsgToActiveView("ViewFit")
+        laid_out()
+        window = mw().geometry()
+        seen = []
+        try:
+            for size in ((1280, 900), (800, 900)):
+                mw().setGeometry(0, 0, *size)
+                settle()
+                Gui.SendMsgToActiveView("ViewFit")
+                laid_out()
+                camera = view.getCameraNode()
+                fit, eye = camera.height.getValue(), App.Vector(*camera.position.getValue().getValue())
+                for zoom in (1.0, 2.5):
+                    # Zoomed in on the pin (the camera moved across its line of sight over it).
+                    pin, ahead = markers.joint_frame(first)[0], App.Vector(0, 0, -1)
+                    over = (pin - eye) - ahead * (pin - eye).dot(ahead) if zoom > 1 else App.Vector()
+                    camera.position.setValue(coin_vec(eye + over))
+                    camera.height.setValue(fit / zoom)
+                    laid_out()
+                    width, height = view.getSize()
+                    self.assertIsNotNone(viewproviders.joint_view(second).shift, "the stacked marker was not set apart")
+                    rot = camera.orientation.getValue()
+                    right, up = (App.Vector(*rot.multVec(coin_vec(App.Vector(*v))).getValue())
+                                 for v in ((1, 0, 0), (0, 1, 0)))
+                    at_eye = App.Vector(*camera.position.getValue().getValue())
+
+                    def drawn_at(point):
+                        """(column, row) of the image where the view draws `point`: Coin's
+                        orthographic camera spans its height over the viewport's shorter side
+                        (measured: 55.2 px for 10 units at height 100 in a 552 x 772 view, 77.2
+                        in 1052 x 772; FreeCAD 0.20's getPointOnScreen counts the height there)."""
+                        d, scale = point - at_eye, min(width, height) / camera.height.getValue()
+                        return ((width - 1) / 2 + d.dot(right) * scale, (height - 1) / 2 - d.dot(up) * scale)
+
+                    def laid(j):
+                        """Where the layout puts j's glyph centre: (column, row) of the image."""
+                        x, y = drawn_at(markers.joint_frame(j)[0])
+                        shift = viewproviders.joint_view(j).shift or App.Vector()
+                        return (x + shift.dot(right) * markers.PIXELS, y - shift.dot(up) * markers.PIXELS)
+
+                    # The layout counts the joints' points in pixels as the view draws them (the
+                    # ground's two pins, the first joint's and the fourth's, as far apart).
+                    pins = [markers.joint_frame(j)[0] for j in (first, objects.joints(asm)[3])]
+                    (xa, ya), (xb, yb) = (viewproviders._screen(self.doc).pixels(p) for p in pins)
+                    (va, wa), (vb, wb) = (drawn_at(p) for p in pins)
+                    self.assertAlmostEqual(math.hypot(xb - xa, yb - ya), math.hypot(vb - va, wb - wa), delta=1.0,
+                                           msg="the layout's pixels are not the view's (%d x %d)" % (width, height))
+                    name = "marker-size-%dx%d-zoom%g" % (width, height, zoom)
+                    image = rendered(view, os.path.join(OUT, "_%s.png" % name))
+                    shot(name, view)
+                    for j, at in ((first, laid(first)), (second, laid(second))):
+                        cx, cy, r = drawn_ring(image, at, 1.6 * markers.PIXELS)
+                        seen.append("%s %s: radius %.1f px, centre %.1f px from the layout's"
+                                    % (name, j.Label, r, math.hypot(cx - at[0], cy - at[1])))
+                        self.assertAlmostEqual(r, markers.PIXELS, delta=1.5, msg=seen[-1])
+                        self.assertLess(math.hypot(cx - at[0], cy - at[1]), 2.0, seen[-1])
+                # An image saved at other sizes draws a unit PIXELS pixels too (the first ring
+                # alone, found wherever the image's shape puts it).
+                second.ViewObject.Visibility = False
+                settle()
+                for w, h in ((640, 480), (400, 800)):
+                    path = os.path.join(OUT, "marker-size-image-%dx%d.png" % (w, h))
+                    view.saveImage(path, w, h, "White")
+                    cx, cy, r = drawn_ring(image_pixels(path), None, None)
+                    seen.append("image %d x %d: radius %.1f px" % (w, h, r))
+                    self.assertAlmostEqual(r, markers.PIXELS, delta=1.5, msg=seen[-1])
+                second.ViewObject.Visibility = True
+        finally:
+            mw().setGeometry(window)
+            settle()
+            print("marker size: " + "; ".join(seen))
 
     def test_every_planetary_marker_is_readable_at_fit_all_zoom(self):
         # The planetary set: the carrier, the sun and the ring turn on one axle (three revolutes
@@ -1411,6 +1536,10 @@ class TestErrors(Documents):
         # 47 px.)
         self.assertLess(math.hypot(rx - ox, ry - oy), 5.0, "the error look moved the marker")
         self.assertAlmostEqual(red_across / orange_across, 1.5, delta=0.15)
+        # And drawn as far from its joint as the layout put it (a glyph unit PIXELS pixels: the
+        # centre of its pixels a few pixels off the ring's, which is open): 45 px for 43, where a
+        # unit drawn 2.1 times PIXELS in this 1052 x 505 view put it 94 px away.
+        self.assertAlmostEqual(normal_away, shift, delta=5.0)
 
 
 class TestDrivePanel(Documents):
