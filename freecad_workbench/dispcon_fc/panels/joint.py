@@ -831,11 +831,9 @@ def open_panel(joint=None, asm=None, joint_type=None, refs=()):
     panels.show(panel)
     if panel.joint is None or panel.picking:  # (an edited joint that lost a part: picked again)
         panel._set_ok(False)
-    elif not panel.new:
+    else:
         panel._changed()
         panel._highlight()
-    # (A joint the panel made on two references was previewed and highlighted as it was made:
-    # a second preview built the model and solved the 100-part chain again, to move nothing.)
     return panel
 
 
