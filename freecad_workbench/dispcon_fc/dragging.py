@@ -355,6 +355,30 @@ class Lighter:
         self.switches, self.markers, self.modes, self.cube = [], [], [], False
 
 
+def at_limits(asm):
+    """Each of the assembly's joints standing at one of its limits, in words ("Frame-Wheel is at
+    its limit, 28.6479°"): what held a drag that went no further. Only joints with limits are
+    measured (from their parts' placements; nothing is solved)."""
+    from . import operations
+    from .objects import joints
+
+    out = []
+    for j in joints(asm):
+        limits = operations.drive_limits(j) if operations.drivable(j) else None
+        if not limits:
+            continue
+        try:
+            value = operations.drive_value(j)
+        except ValueError:  # a part deleted: no value to say
+            continue
+        unit = "°" if operations.drivable(j) == "angle" else " mm"
+        for limit in limits:
+            if abs(value - limit) <= 1e-6 * max(1.0, abs(limit)):
+                out.append("%s is at its limit, %g%s" % (j.Label, limit, unit))
+                break
+    return out
+
+
 class DragMode:
     def __init__(self, asm):
         from pivy import coin
@@ -439,6 +463,11 @@ class DragMode:
             shown.end()
             self._full_view()
         self.release_seconds += time.perf_counter() - t0
+        held = at_limits(self.asm)
+        if held:  # (the fourth audit's wheel, pulled round past its limit, stopped without a word)
+            from .feedback import status
+
+            status("%s: it holds the drag there" % "; ".join(held))
 
     def cancel(self):
         """The drag is given up: the document was never written; what is drawn goes back."""

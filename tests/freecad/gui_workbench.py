@@ -2015,6 +2015,44 @@ class TestDragMode(Documents):
         self.assertNotIn("Drag mode", mw().statusBar().currentMessage())
 
 
+class TestDragAtALimit(Documents):
+    def test_a_drag_held_by_a_limit_says_which(self):
+        """The fourth audit: the wheel pulled round past its limit stopped there, the status bar
+        saying only "Drag mode: ..."; now which joint's limit holds the drag."""
+        from dispcon_fc import dragging, operations
+        import parts
+
+        asm = operations.create_assembly(self.doc)
+        base, arm = base_and_arm(asm)
+        j = operations.add_joint(asm, "Revolute", (base, parts.circle_edge(base.Shape, App.Vector(0, 0, 0))),
+                                 (arm, parts.circle_edge(arm.Shape, App.Vector(0, 0, 0))), rotation=(-10, 30))
+        j.Label = "Base-Arm"
+        self.assertTrue(operations.solve(asm).converged)
+        view = self.view()
+        view.viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        settle()
+        Gui.Selection.addSelection(asm)
+        action("Dispcon_Drag").trigger()
+        settle()
+        centre = view.getPointOnScreen(arm.Placement.multVec(App.Vector(0, 0, 0.1)))
+        x, y = view.getPointOnScreen(arm.Placement.multVec(App.Vector(1.2, 0, 0.1)))
+        r = math.hypot(x - centre[0], y - centre[1])
+        a0 = math.atan2(y - centre[1], x - centre[0])
+        mouse(view, "press", x, y)
+        for k in range(1, 31):  # 120 degrees asked, counterclockwise
+            a = a0 + math.radians(4 * k)
+            x, y = int(centre[0] + r * math.cos(a)), int(centre[1] + r * math.sin(a))
+            mouse(view, "move", x, y)
+            settle()
+        mouse(view, "release", x, y)
+        settle()
+        self.assertAlmostEqual(operations.drive_value(j), 30.0, places=5)
+        self.assertIn("Base-Arm is at its limit, 30°: it holds the drag there", mw().statusBar().currentMessage())
+        shot("drag-held-by-a-limit")
+        dragging.stop(view)
+
+
 def engine_couples():
     from dispcon_fc import adapter, engine, objects
 
@@ -2774,7 +2812,7 @@ def run_in_gui(classes, status_name):
 
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestCouplings,
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestDragAtALimit, TestCouplings,
                                     TestPanelFixes, TestTypedAndPicked, TestPanelsGone)
                 if not only or only in cls.__name__], "status-workbench")
 
