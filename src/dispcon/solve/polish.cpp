@@ -13,6 +13,9 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
   w_ = &work;
   s_ = &s;
   reused_ = false;
+  const bool first = first_step_;
+  first_step_ = false;
+  first_chord_done_ = false;
   has_multipliers_ = false;
   kept_ = false;  // the poses move below
   w_->dq_.resize(static_cast<size_t>(nv_));
@@ -53,7 +56,13 @@ bool Polisher::step(SolverState& s, PolishWork& work, const std::vector<double>&
     w_->chol_.solve(w_->dense_.data(), y.data());
     if (!y.allFinite()) return false;
   } else if (reused_) {
-    if (!solve_blocks(big_->chord_.residual)) return false;
+    // A solve's first chord step (a drag's frame) leaves what the Jacobian's drift since the
+    // factorisation and the curvature make of its step: much the same from one frame to the
+    // next. Extrapolated from the last two frames' and added to the right-hand side, the step
+    // meets most of it too (see predict()).
+    first_chord_done_ = first;
+    const std::vector<double>& rhs = first ? predict() : big_->chord_.residual;
+    if (!solve_blocks(rhs)) return false;
   } else if (!factor(s, lambda)) {
     return false;
   }
@@ -237,6 +246,11 @@ double Polisher::measure(const SolverState& s, const std::vector<double>& band,
   // Rows this polisher's last measure gathered are of the poses then: a solve's first measure
   // comes after the poses were given anew (a drag's next frame).
   if (w_) w_->caches_.drop(Caches::kRows | Caches::kGeometry, this);
+  // A solve's first measure comes before its first step; the measure after a first chord step
+  // keeps what that step left (keep_first_left()).
+  first_step_ = since_kept;
+  const bool after_first = first_chord_done_ && !since_kept;
+  first_chord_done_ = false;
   const bool kept = since_kept && kept_;
   kept_ = false;
   if (since_kept) small_factored_ = false;  // a small group's chord steps stay within a solve
@@ -261,7 +275,46 @@ double Polisher::measure(const SolverState& s, const std::vector<double>& band,
     return max_residual(s, group_->joints, joint_r);
   }
   if (kept) return measure_moved(s, band, joint_r);
-  return gather_residuals(s, band, &joint_r);
+  const double largest = gather_residuals(s, band, &joint_r);
+  if (after_first) keep_first_left();
+  return largest;
+}
+
+// The right-hand side of a solve's first chord step: the rows' residuals, plus what the step
+// will leave as the last two solves' first steps on this factorisation left it, extrapolated
+// (2 a - b: the drift grows frame by frame, the step's size changes slowly along a drag).
+// Without both, the residuals alone. What is added is kept in predicted_, to tell afterwards
+// what the step would have left without it.
+const std::vector<double>& Polisher::predict() {
+  Large& g = *big_;
+  const auto m = static_cast<size_t>(g.chord_.rows);
+  g.predicted_.clear();
+  if (g.firsts_ < 2 || g.after_first_[0].size() != m || g.after_first_[1].size() != m) {
+    return g.chord_.residual;
+  }
+  g.predicted_.resize(m);
+  g.rhs_.resize(m);
+  for (size_t a = 0; a < m; ++a) {
+    const double p = 2 * g.after_first_[1][a] - g.after_first_[0][a];
+    g.predicted_[a] = p;
+    g.rhs_[a] = g.chord_.residual[a] + p;
+  }
+  return g.rhs_;
+}
+
+// After a solve's first chord step, measured (chord_): what it left, with what predict() added
+// put back (to first order the step met it), as the next solves' predictions read it.
+void Polisher::keep_first_left() {
+  Large& g = *big_;
+  const auto m = static_cast<size_t>(g.chord_.rows);
+  if (2 * m != g.analyzed_pattern_.size()) return;  // other rows: nothing to compare
+  std::swap(g.after_first_[0], g.after_first_[1]);
+  std::vector<double>& left = g.after_first_[1];
+  left.assign(g.chord_.residual.begin(), g.chord_.residual.begin() + static_cast<long>(m));
+  if (g.predicted_.size() == m) {
+    for (size_t a = 0; a < m; ++a) left[a] += g.predicted_[a];
+  }
+  g.firsts_ = std::min(2, g.firsts_ + 1);
 }
 
 // max_residual() of the group's joints, each joint's geometry kept in the work (kGeometry).

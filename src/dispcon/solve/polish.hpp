@@ -273,6 +273,8 @@ class Polisher {
   void analyze_blocks();
   bool factor_blocks(const SolverState& s, double mu);
   bool solve_blocks(const std::vector<double>& residual);
+  const std::vector<double>& predict();
+  void keep_first_left();
   bool blocks_multipliers();
   void analyze_rows();
 
@@ -346,9 +348,19 @@ class Polisher {
     std::vector<BlockLdlt::Slot> body_slots_;
     std::vector<int> analyzed_pattern_;
     HugeVector<int> slots_;  // where each value of the rows form is added (factor_sparse)
+    // What a solve's first chord step left (rows in chord_'s order), without what predict()
+    // added to its right-hand side, in the last two solves whose first step was one on the
+    // factorisation in hand (after_first_[1] the last), and how many of those are kept (0 to 2;
+    // none since a new factorisation).
+    std::vector<double> after_first_[2];
+    int firsts_ = 0;
+    std::vector<double> predicted_;  // what the solve's first chord step added, or empty
+    std::vector<double> rhs_;        // that step's right-hand side, when predicted
   };
-  std::unique_ptr<Large> big_;  // null until the group's first sparse step
-  bool kept_ = false;           // keep_measure() kept a measure in big_ (see there)
+  std::unique_ptr<Large> big_;     // null until the group's first sparse step
+  bool kept_ = false;              // keep_measure() kept a measure in big_ (see there)
+  bool first_step_ = false;        // the next step is a solve's first (measure() since_kept)
+  bool first_chord_done_ = false;  // the next measure() follows a solve's first chord step
   bool analyzed_ = false;
   // The work's row lists (var_start_, var_rows_) are of this group's analysed pattern, and the
   // rows have kept it since: a large group's step need not list them again (set by

@@ -57,6 +57,7 @@ bool Polisher::factor_sparse(const SolverState& s, double lambda) {
     }
     if (!(scale > 0)) return false;
     for (double& d : w_->soft_) d *= scale;
+    big_->firsts_ = 0;  // the first steps' residuals were of the last factorisation
     if (!factor_blocks(s, lambda * scale)) return false;
     factored_ = true;
     return solve_blocks(w_->residual_);
