@@ -302,6 +302,45 @@ def shared_glyph(joint_type):
     return node
 
 
+# The nodes every marker draws alike, made once like the glyphs: its pick style, its two looks'
+# overrides and the error look's growth (a marker's own switches choose among them). Made for each
+# marker, they were a third of what a hundred markers cost to open (docs/performance.md).
+_SHARED = {}
+
+
+def _shared_node(name, make):
+    node = _SHARED.get(name)
+    if node is None:
+        node = _SHARED[name] = make(name)
+    return node
+
+
+def _unpickable(_):
+    style = _coin().SoPickStyle()
+    style.style.setValue(_coin().SoPickStyle.UNPICKABLE)
+    return style
+
+
+def _look_override(look):
+    """The selected or error look: its colour and a wide line over the pieces' own."""
+    coin = _coin()
+    g = coin.SoGroup()
+    m = _material(SELECTED if look == "selected" else ERROR)
+    m.setOverride(True)
+    g.addChild(m)
+    style = coin.SoDrawStyle()
+    style.lineWidth.setValue(6.0)
+    style.setOverride(True)
+    g.addChild(style)
+    return g
+
+
+def _half_again(_):
+    grow = _coin().SoScale()
+    grow.scaleFactor.setValue(1.5, 1.5, 1.5)
+    return grow
+
+
 # A glyph's size on the screen, in pixels (its ring's radius): markers keep it whatever the zoom,
 # as FreeCAD's own draggers and axis crosses do, so they neither swamp a small part nor vanish
 # beside a large one.
@@ -594,9 +633,7 @@ class Marker:
         self.root.setName(name)
         # Never picked: a click on the edge under a marker (the marker to come of the edge under
         # the cursor, a joint's marker on the pin to pick next) reaches that edge.
-        self.pick_style = coin.SoPickStyle()
-        self.pick_style.style.setValue(coin.SoPickStyle.UNPICKABLE)
-        self.root.addChild(self.pick_style)
+        self.root.addChild(_shared_node("unpickable", _unpickable))
         self.transform = coin.SoTransform()
         self.root.addChild(self.transform)
         # The fields, found once: pivy looks a field up by name at every access (tens of
@@ -605,32 +642,24 @@ class Marker:
         self._rotation = self.transform.rotation
         self._vec = coin.SbVec3f
         # The look: an override material and line width (ignoring the pieces' own colours)
-        # when selected or in error; nothing overridden when normal.
+        # when selected or in error; nothing overridden when normal (a switch shows no child
+        # until told).
         self.look_switch = coin.SoSwitch()
-        self.look_switch.whichChild.setValue(coin.SO_SWITCH_NONE)
-        for colour in (SELECTED, ERROR):
-            g = coin.SoGroup()
-            m = _material(colour)
-            m.setOverride(True)
-            g.addChild(m)
-            style = coin.SoDrawStyle()
-            style.lineWidth.setValue(6.0)
-            style.setOverride(True)
-            g.addChild(style)
-            self.look_switch.addChild(g)
+        self._look = self.look_switch.whichChild
+        for look in LOOKS[1:]:
+            self.look_switch.addChild(_shared_node(look, _look_override))
         # The error look's glyph half as large again, about its own centre: in the holder after
         # the layout's shift (offset), so the shift stays the layout's. Before the screen scale, it
         # grew the shift too and more than half again (the third audit: a stacked marker in error
         # 142 px from its joint where the layout put it 43 px away, its ring 3.3 times as large).
         self.grow = coin.SoSwitch()
-        grow = coin.SoScale()
-        grow.scaleFactor.setValue(1.5, 1.5, 1.5)
-        self.grow.addChild(grow)
-        self.grow.whichChild.setValue(coin.SO_SWITCH_NONE)
+        self._grown = self.grow.whichChild
+        self.grow.addChild(_shared_node("grow", _half_again))
         # Drawn or not, as a view's own state (a drag hides the markers: docs/performance.md);
         # above the annotation, so a hidden marker costs no delayed-render path.
         self.visible = coin.SoSwitch()
-        self.visible.whichChild.setValue(coin.SO_SWITCH_ALL)
+        self._shown = self.visible.whichChild
+        self._shown.setValue(coin.SO_SWITCH_ALL)
         self.root.addChild(self.visible)
         self.annotation = coin.SoAnnotation()
         self.visible.addChild(self.annotation)
@@ -640,6 +669,7 @@ class Marker:
         self.holder.setName("dispcon_glyph_holder")
         # The glyph's shift off its point in glyph units (a stacked marker's), before the glyph.
         self.offset = coin.SoTranslation()
+        self._offset = self.offset.translation
         self.scaled = _screen_scaled(self.holder, pixels)
         self.annotation.addChild(self.scaled)
         self.joint_type = None
@@ -669,24 +699,24 @@ class Marker:
     def set_offset(self, local):
         """Shifts the glyph off its point by `local`, a vector in the marker's own frame in glyph
         units (PIXELS pixels each on the screen): a marker set apart from others at one place."""
-        self.offset.translation.setValue(local.x, local.y, local.z)
+        self._offset.setValue(local.x, local.y, local.z)
 
     def offset_units(self):
-        return App.Vector(*self.offset.translation.getValue().getValue())
+        return App.Vector(*self._offset.getValue().getValue())
 
     def set_visible(self, on):
         """Draws the marker or not (nothing else changes: it still follows its placement)."""
-        self.visible.whichChild.setValue(_coin().SO_SWITCH_ALL if on else _coin().SO_SWITCH_NONE)
+        self._shown.setValue(_coin().SO_SWITCH_ALL if on else _coin().SO_SWITCH_NONE)
 
     def is_visible(self):
-        return self.visible.whichChild.getValue() != _coin().SO_SWITCH_NONE
+        return self._shown.getValue() != _coin().SO_SWITCH_NONE
 
     def set_look(self, look):
         if look not in LOOKS:
             raise ValueError("unknown marker look %r (expected one of %s)" % (look, ", ".join(LOOKS)))
         self.look = look
-        self.look_switch.whichChild.setValue(LOOKS.index(look) - 1 if look != "normal" else -1)
-        self.grow.whichChild.setValue(_coin().SO_SWITCH_ALL if look == "error" else _coin().SO_SWITCH_NONE)
+        self._look.setValue(LOOKS.index(look) - 1 if look != "normal" else _coin().SO_SWITCH_NONE)
+        self._grown.setValue(_coin().SO_SWITCH_ALL if look == "error" else _coin().SO_SWITCH_NONE)
 
 
 def joint_frame(joint):

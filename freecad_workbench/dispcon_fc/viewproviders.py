@@ -28,9 +28,24 @@ class _ViewProxy(Stateless):
 
 class ViewProviderAssembly(_ViewProxy):
     CAMERA_REST_MS = 150  # the markers are laid out again this long after the camera stopped
+
     def attach(self, vobj):
         self.Object = vobj.Object
         self.restack_pending = False
+        # Joints' markers wait for the layout after a restore (place_later); a group is restored
+        # after the objects it holds, so its joints may be waiting already.
+        self.placing = vobj.Object.Document.Restoring
+        if self.placing:
+            self.restack_later()
+
+    def place_later(self):
+        """Has the next layout place the markers of this assembly's joints that wait for it:
+        FreeCAD restoring a document calls a joint's updateData for each of its properties, seven
+        of which moved its marker (1,226 placements for a 100-part chain's 147 joints, each
+        asking for a layout, run while the restore went on), where one layout once the restore is
+        over places each marker once."""
+        self.placing = True
+        self.restack_later()
 
     def restack_later(self):
         """Sets apart the markers of this assembly's joints drawn at one place, once the GUI is
@@ -54,8 +69,27 @@ class ViewProviderAssembly(_ViewProxy):
             group = list(self.Object.Group)
             doc = self.Object.Document
             names = tuple(o.Name for o in group)
+            restoring = doc.Restoring
         except Exception:  # the assembly (or its document) is gone meanwhile
             return
+        if restoring:  # the restore runs the event loop (its progress bar): laid out once it ends
+            from .qt import QtCore
+
+            self.restack_pending = True
+            QtCore.QTimer.singleShot(0, self.restack)
+            return
+        try:
+            self._lay_out(group, doc, names)
+        finally:
+            if getattr(self, "placing", False):
+                # The markers of a restored document the layout did not move, placed now.
+                self.placing = False
+                for o in group:
+                    view = _joint_view(o) if o.TypeId == "App::FeaturePython" else None
+                    if view is not None and view.waiting:
+                        view.follow(o, restack=False)
+
+    def _lay_out(self, group, doc, names):
         # The joints' frames and their stacks hold until a part or a joint moves (restack_later
         # says so) or the group changes: a camera coming to rest lays the markers out on the
         # screen again from them, without reading hundreds of joints from FreeCAD.
@@ -177,6 +211,7 @@ class ViewProviderJoint(_ViewProxy):
         obj = vobj.Object
         self.marker = markers.Marker(obj.JointType, "dispcon_marker_" + obj.Name)
         self.shift = None  # set off its point, apart from markers near it (the assembly's restack)
+        self.waiting = False  # for the layout after a restore to place it (follow)
         vobj.addDisplayMode(self.marker.root, "Marker")
         self.follow(obj)
 
@@ -206,7 +241,14 @@ class ViewProviderJoint(_ViewProxy):
 
     def follow(self, obj, restack=True):
         """Puts the marker at the joint's point and axis as the parts now stand (set apart from
-        the others near it by its shift; the assembly lays them out again once idle)."""
+        the others near it by its shift; the assembly lays them out again once idle). While
+        FreeCAD restores the document, the marker waits, hidden, for the assembly's layout after
+        the restore (ViewProviderAssembly.place_later)."""
+        if obj.Document.Restoring and self._wait(obj):
+            return
+        if getattr(self, "waiting", False):
+            self.waiting = False
+            self.marker.set_visible(True)
         placement = markers.joint_placement(obj)
         if placement is not None:
             self.marker.set_placement(placement)
@@ -216,6 +258,22 @@ class ViewProviderJoint(_ViewProxy):
             view = _assembly_view(obj)
             if view is not None:
                 view.restack_later()
+
+    def _wait(self, obj):
+        """Leaves the marker, hidden (not drawn at the origin, where it is not), to its assembly's
+        layout after the restore; False when the joint is in no assembly (placed at once)."""
+        if self.waiting:
+            return True
+        assembly = next((p for p in obj.InList if obj in getattr(p, "Group", ())), None)
+        if assembly is None:
+            return False
+        self.waiting = True
+        self.marker.set_visible(False)
+        view = getattr(getattr(assembly, "ViewObject", None), "Proxy", None)
+        if isinstance(view, ViewProviderAssembly):
+            view.place_later()
+        # (else its view, given later in the restore, lays out and places its joints then)
+        return True
 
     def set_shift(self, shift):
         """Sets the marker off its joint's point by `shift`, a world vector in glyph units (None:

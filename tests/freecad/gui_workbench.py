@@ -864,6 +864,14 @@ doc.saveAs(%r)
 """
 
 
+def fourbar_in(doc):
+    """test_headless's four-bar made in `doc` (its parts' STEP files in a folder of their own):
+    the assembly."""
+    from test_headless import fourbar
+
+    return fourbar(doc, tempfile.mkdtemp())[0]
+
+
 def headless_fourbar(path):
     """A four-bar built and saved by freecadcmd (no view state in the file, as the samples)."""
     import subprocess
@@ -985,6 +993,59 @@ class TestRestored(unittest.TestCase):
             gui_doc.ActiveView.fitAll()
             shot("headless-opened")
             self.assertFalse(gui_doc.Modified)
+
+    def test_a_restored_document_places_each_marker_once(self):
+        """FreeCAD restoring a document calls each joint's updateData for every property, seven
+        of which placed its marker (1,226 placements and a layout during the restore for the
+        100-part chain's 147 joints: docs/performance.md); now the layout once the restore is
+        over places each marker once, where its joint is, drawn (hidden until then). Both ways of
+        opening: a document saved with the GUI (view providers restored with it) and one saved by
+        freecadcmd (given theirs while it restores)."""
+        from dispcon_fc import markers, objects, operations, viewproviders
+
+        saved = os.path.join(tempfile.mkdtemp(), "gui-fourbar.FCStd")
+        doc = App.newDocument("guifourbar")
+        asm = fourbar_in(doc)
+        self.assertTrue(operations.solve(asm).converged)
+        doc.saveAs(saved)
+        App.closeDocument(doc.Name)
+        settle()
+        for path in (saved, headless_fourbar(os.path.join(tempfile.mkdtemp(), "headless.FCStd"))):
+            placed, laid = [], []
+            place, lay_out = markers.Marker.set_placement, viewproviders.ViewProviderAssembly._lay_out
+
+            def counting_place(marker, placement):
+                placed.append(marker.root.getName().getString())
+                return place(marker, placement)
+
+            def counting_lay_out(view, *args):
+                laid.append(view.Object.Document.Restoring)
+                return lay_out(view, *args)
+
+            markers.Marker.set_placement = counting_place
+            viewproviders.ViewProviderAssembly._lay_out = counting_lay_out
+            try:
+                doc = App.openDocument(path)
+                settle()
+            finally:
+                markers.Marker.set_placement = place
+                viewproviders.ViewProviderAssembly._lay_out = lay_out
+            try:
+                asm = next(o for o in doc.Objects if objects.is_assembly(o))
+                joints = objects.joints(asm)
+                self.assertEqual(sorted(placed), sorted("dispcon_marker_" + j.Name for j in joints),
+                                 "%s: not each marker placed once" % os.path.basename(path))
+                # Laid out once the restore ended (again when the view's camera then moves).
+                self.assertTrue(laid and True not in laid, "%s: laid out during the restore (%s)"
+                                % (os.path.basename(path), laid))
+                for j in joints:
+                    marker = viewproviders.joint_view(j).marker
+                    self.assertTrue(marker.is_visible(), "%s's marker is hidden" % j.Label)
+                    at = App.Vector(*marker.transform.translation.getValue().getValue())
+                    self.assertLess((at - markers.joint_placement(j).Base).Length, 1e-5, j.Label)  # (floats in Coin)
+            finally:
+                App.closeDocument(doc.Name)
+                settle()
 
     def test_solve_on_a_solved_document_leaves_it_unmodified(self):
         from dispcon_fc.adapter import ALREADY_HELD
