@@ -19,11 +19,14 @@ COUPLINGS = ("Gears", "Belt", "RackPinion", "Screw")
 # orientation by its axis and the twist reference across it (a coupling measures its turns from
 # its axes as picked, a ball or a point holds no orientation).
 FRAME_ROTATED = ("Fixed", "Revolute", "Slider", "Cylindrical", "Planar")
-# The joint types that hold part 2's turn about the joint's axis, and where that turn is measured
-# from (TwistFrom): the frames of the picked elements, as FreeCAD 1.x's Assembly aligns a joint's
-# two coordinate systems (what the joint means whatever pose the parts were in when it was made),
-# or the turn part 2 had when the joint was made (every joint saved before TwistFrom existed).
+# The joint types that hold part 2's turn about the joint's axis (HOLD_TWIST), and those that
+# measure it, to hold it or to bound it by their turn limits (TWIST_TYPES: a Revolute's or a
+# Cylindrical's Min 0 deg is where that turn is 0); where that turn is measured from (TwistFrom):
+# the frames of the picked elements, as FreeCAD 1.x's Assembly aligns a joint's two coordinate
+# systems (what the joint means whatever pose the parts were in when it was made), or the turn
+# part 2 had when the joint was made (every joint saved before TwistFrom existed).
 HOLD_TWIST = ("Fixed", "Slider")
+TWIST_TYPES = ("Fixed", "Revolute", "Slider", "Cylindrical")
 PICKED_FRAMES, POSE_WHEN_MADE = TWIST_FROM = ("Picked frames", "Pose when made")
 
 
@@ -398,8 +401,10 @@ def twist_property(obj):
 
 def twist_from_picks(joint):
     """Whether the joint's twist reference is read from its picked elements' frames (a Fixed or
-    a Slider whose TwistFrom says so), not kept as recorded when it was made."""
-    return getattr(joint, "JointType", "") in HOLD_TWIST and getattr(joint, "TwistFrom", POSE_WHEN_MADE) == PICKED_FRAMES
+    a Slider, a Revolute or a Cylindrical whose TwistFrom says so), not kept as recorded when it was
+    made."""
+    return (getattr(joint, "JointType", "") in TWIST_TYPES
+            and getattr(joint, "TwistFrom", POSE_WHEN_MADE) == PICKED_FRAMES)
 
 
 # What the workbench derives and a person reads but never types: the picked geometry in each
@@ -420,7 +425,7 @@ def read_only_derived(obj):
 _USED_BY = {"Ratio": ("Gears", "Belt"), "Radius": ("RackPinion",), "Pitch": ("Screw",), "LeftHanded": ("Screw",),
             "MeshOffset": COUPLINGS, "Phase": COUPLINGS, "PhaseTurns": ("Gears", "Belt"),
             "Distance": ("Distance",), "FrameYaw": FRAME_ROTATED, "FramePitch": FRAME_ROTATED,
-            "FrameRoll": FRAME_ROTATED, "FrameX": FRAME_ROTATED, "FrameY": FRAME_ROTATED, "TwistFrom": HOLD_TWIST}
+            "FrameRoll": FRAME_ROTATED, "FrameX": FRAME_ROTATED, "FrameY": FRAME_ROTATED, "TwistFrom": TWIST_TYPES}
 _READ_ONLY = ("Phase", "PhaseTurns")  # the engine's: the mesh offset sets them
 
 
@@ -780,8 +785,10 @@ DOCS = {
         "Axis2": "joint axis, part 2's frame (made from Reference2 at every solve)",
         "Perp2": "reference across the axis, part 2's frame (made from Reference2 at every solve)",
         "HasRotationLimits": "bound the turn about the axis (between RotationMin and RotationMax)",
-        "RotationMin": "lowest turn from the creation pose",
-        "RotationMax": "highest turn from the creation pose",
+        "RotationMin": "lowest turn about the axis: from the picked frames lined up, or from the pose when made "
+                       "(TwistFrom)",
+        "RotationMax": "highest turn about the axis: from the picked frames lined up, or from the pose when made "
+                       "(TwistFrom)",
         "HasTravelLimits": "bound the travel along the axis (between TravelMin and TravelMax)",
         "TravelMin": "lowest travel",
         "TravelMax": "highest travel",
@@ -793,10 +800,10 @@ DOCS = {
         "Violated": "not satisfied after the last solve",
         "Reversed": "part 2's axis flipped",
         "Offset": "part 2's point this far from part 1's, along part 1's axis",
-        "TwistFrom": "Fixed, Slider: where part 2's turn about the axis is held from. Picked frames: the picked "
-                     "elements' own frames lined up (a circle's or a face's x, else the part's z, x or y most "
-                     "across the axis): the same whatever pose the parts were in when the joint was made. Pose "
-                     "when made: the turn recorded when the joint was made, or when this was last chosen in the "
+        "TwistFrom": "Fixed, Slider: where part 2's turn about the axis is held from; Revolute, Cylindrical: "
+                     "where their turn limits count from. Picked frames: the picked elements' own frames lined "
+                     "up (a circle's or a face's x, else the part's z, x or y most across the axis): the same "
+                     "whatever pose the parts were in when the joint was made. Pose when made: the turn recorded when the joint was made, or when this was last chosen in the "
                      "joint's panel or by edit_joint; joints saved before this existed",
         "FrameYaw": "part 2 turned this far about the joint's axis from the picked frame",
         "FramePitch": "part 2's axis tilted this far about the frame's y (after the yaw)",

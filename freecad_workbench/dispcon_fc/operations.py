@@ -305,7 +305,9 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, named_by_parts=False,
     that part 2 stands that far off part 1's point in the joint's frame. Fixed and Slider:
     twist_from="Picked frames" (the default) holds part 2's turn about the axis where the picked
     elements' own frames line up, whatever the pose now; "Pose when made" holds the turn it has
-    now (objects.TWIST_FROM; every joint saved before the choice existed). The joint's label is its
+    now (objects.TWIST_FROM; every joint saved before the choice existed). Revolute and
+    Cylindrical: the same choice says where their turn limits count from (Min 0 deg: the picked
+    frames' x's lined up, or part 2 turned as it stands now). The joint's label is its
     type's, numbered (Revolute001) as FreeCAD 1.x names joints and as scripts and `--joint` name
     them; named_by_parts=True (the joint panel) labels it from its parts (parts_label)."""
     _assembly(asm)
@@ -399,10 +401,11 @@ def _place(j, joint_type, a, b):
 def twist_reference(j, side1, side2, picked=None, axis1=None):
     """The joint's twist references (Perp1, Perp2), each in its part's frame, from its parts and
     picked features ((part, geometry.Feature) each) and its axes as stored: from the picked
-    elements' own frames (adapter.picked_across) for a Fixed or Slider whose TwistFrom says so
-    (`picked`: that choice instead of the joint's), else a vector across axis 1 and the same world
-    vector in part 2's frame at the pose the parts have now, so the turn is measured from where
-    the parts are (every other type: a Revolute's turn limits count from there); `axis1`: axis 1
+    elements' own frames (adapter.picked_across) for a Fixed, Slider, Revolute or Cylindrical
+    whose TwistFrom says so (`picked`: that choice instead of the joint's), else a vector across
+    axis 1 and the same world vector in part 2's frame at the pose the parts have now, so the turn
+    is measured from where the parts are (a Revolute's turn limits "Pose when made" count from
+    there, and every type's without TwistFrom); `axis1`: axis 1
     in world coordinates when known (the picked feature's), else from the stored one."""
     (o1, f1), (o2, f2) = side1, side2
     if picked is None:
@@ -435,9 +438,9 @@ def _check_twist_type(label, kind, twist_from):
     if twist_from not in objects.TWIST_FROM:
         raise ValueError("%s: twist from %r is not one of %s" % (label, twist_from,
                                                                  ", ".join(repr(t) for t in objects.TWIST_FROM)))
-    if kind not in objects.HOLD_TWIST:
-        raise ValueError("%s: a %s joint holds no turn about its axis to take from anywhere (only %s)"
-                         % (label, kind, ", ".join(objects.HOLD_TWIST)))
+    if kind not in objects.TWIST_TYPES:
+        raise ValueError("%s: a %s joint measures no turn about its axis to take from anywhere (only %s)"
+                         % (label, kind, ", ".join(objects.TWIST_TYPES)))
 
 
 def _check_twist(joint, kind, twist_from):

@@ -355,8 +355,9 @@ def joint_kind(j):
 
 
 def joint_value(j, pl1, pl2):
-    """The turn of part 2 relative to part 1 about the joint's axis since the joint was made
-    (counter-clockwise about axis 1), or part 2's travel along axis 1."""
+    """The turn of part 2 relative to part 1 about the joint's axis (counter-clockwise about axis
+    1), counted as the joint's turn limits are: from the picked frames' x's lined up, or from the
+    pose when made (TwistFrom); or part 2's travel along axis 1."""
     kind = joint_kind(j)
     a1 = _world(pl1, j.Axis1)
     if kind == "angle":

@@ -1173,7 +1173,7 @@ class TestJointPanel(Documents):
         self.assertIn("twist", self.visible_groups(panel))
         self.assertEqual(panel.twist.currentText(), objects.PICKED_FRAMES)
         self.assertEqual([panel.twist.itemText(k) for k in range(panel.twist.count())], list(objects.TWIST_FROM))
-        for words in ("Picked frames", "Pose when made", "whatever pose"):
+        for words in ("Picked frames", "Pose when made", "whatever pose", "turn limits"):
             self.assertIn(words, panel.twist.toolTip())
         self.assertEqual(j.TwistFrom, objects.PICKED_FRAMES)
         self.assertNotIn("cc0000", panel.message.styleSheet(), panel.message.text())
@@ -1187,7 +1187,14 @@ class TestJointPanel(Documents):
         turn = arm.Placement.Rotation
         self.assertLess(abs(abs(math.degrees(turn.Angle)) - 20.0), 1e-6, arm.Placement)
         self.assertLess(abs(abs(turn.Axis.z) - 1.0), 1e-9, arm.Placement)
+        # A Revolute counts its turn limits from it (shown, the choice kept; the limits' tooltips
+        # say so); a Planar measures no turn: hidden.
         panel.type_box.setCurrentText("Revolute")
+        settle()
+        self.assertIn("twist", self.visible_groups(panel))
+        self.assertEqual((j.JointType, panel.twist.currentText()), ("Revolute", objects.POSE_WHEN_MADE))
+        self.assertIn("Twist from", panel.rot_min.toolTip())
+        panel.type_box.setCurrentText("Planar")
         settle()
         self.assertNotIn("twist", self.visible_groups(panel))
         panel.type_box.setCurrentText("Fixed")

@@ -24,7 +24,7 @@ os.environ["DISPCON_IMPORT_ONLY"] = "1"  # test_headless's helpers, not its test
 import FreeCAD as App  # noqa: E402
 
 import dispcon_fc.assembly as da  # noqa: E402
-from dispcon_fc import adapter, objects, operations  # noqa: E402
+from dispcon_fc import adapter, objects, operations, studies  # noqa: E402
 import parts  # noqa: E402
 import test_headless as th  # noqa: E402
 
@@ -131,13 +131,75 @@ class FixedMadeAskew(unittest.TestCase):
                                                 r"'Pose when made'$" % j.Label):
             operations.edit_joint(j, twist_from="sideways")
         self.assertEqual((j.TwistFrom, App.Vector(j.Perp1), App.Vector(j.Perp2)), (objects.PICKED_FRAMES,) + perps)
-        with self.assertRaisesRegex(ValueError, r"^Revolute: a Revolute joint holds no turn about its axis to "
-                                                r"take from anywhere \(only Fixed, Slider\)$"):
-            da.add_joint(asm, "Revolute", pin(base, 0, 0.1), pin(arm, 2), twist_from=objects.PICKED_FRAMES)
-        # The property editor shows it on a Fixed or a Slider only.
+        with self.assertRaisesRegex(ValueError, r"^Ball: a Ball joint measures no turn about its axis to take "
+                                                r"from anywhere \(only Fixed, Revolute, Slider, Cylindrical\)$"):
+            da.add_joint(asm, "Ball", pin(base, 0, 0.1), pin(arm, 2), twist_from=objects.PICKED_FRAMES)
+        # The property editor shows it on a Fixed, a Revolute, a Slider or a Cylindrical only.
         self.assertEqual(j.getEditorMode("TwistFrom"), [])
         operations.edit_joint(j, joint_type="Revolute")
+        self.assertEqual(j.getEditorMode("TwistFrom"), [])
+        operations.edit_joint(j, joint_type="Ball")
         self.assertEqual(j.getEditorMode("TwistFrom"), ["Hidden"])
+
+
+def turned_about_z(o):
+    """The part's turn about z in degrees, checked to be about z alone."""
+    axis = o.Placement.Rotation.multVec(Z)
+    assert (axis - Z).Length < 1e-9, o.Placement
+    return math.degrees(th.angle_of(o))
+
+
+class RevoluteLimitsMadeTurned(unittest.TestCase):
+    """A Revolute's (and a Cylindrical's) turn limits count from the picked frames (TwistFrom
+    "Picked frames", a new joint's): limits 0..90 deg stop part 2 where the picked circles' x's
+    (the parts' own x) are 0 and 90 degrees apart, whatever the pose it was made in."""
+
+    def tearDown(self):
+        close_all()
+
+    def made_at(self, kind, made, tipped=None):
+        doc = App.newDocument("limits_made")
+        asm, base, arm = base_and_arm(doc)
+        rot = App.Rotation(Z, made)
+        if tipped is not None:
+            rot = rot.multiply(App.Rotation(App.Vector(1, 0, 0), tipped))
+        arm.Placement = App.Placement(App.Vector(1.0, 0.05, 0.1), rot)
+        j = da.add_joint(asm, kind, pin(base, 1, 0.1), pin(arm, 0), rotation=(0, 90))
+        self.assertEqual(j.TwistFrom, objects.PICKED_FRAMES)
+        return asm, arm, j
+
+    def stops(self, asm, arm, j, start):
+        """Solved from the arm turned `start` degrees about z: its turn then, and the joint's."""
+        arm.Placement = App.Placement(App.Vector(1, 0, 0.1), App.Rotation(Z, start))
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        base = j.Reference1[0]
+        return turned_about_z(arm), math.degrees(studies.joint_value(j, base.Placement, arm.Placement))
+
+    def test_stops_at_the_picked_frames_0_and_90_whatever_the_pose_made_in(self):
+        for kind, made, tipped in (("Revolute", 40, None), ("Revolute", -70, 25), ("Revolute", 0, None),
+                                   ("Cylindrical", 130, 15)):
+            asm, arm, j = self.made_at(kind, made, tipped)
+            for start, want in ((-30, 0.0), (45, 45.0), (120, 90.0)):
+                turn, value = self.stops(asm, arm, j, start)
+                self.assertAlmostEqual(turn, want, delta=1e-6, msg=(kind, made, start))
+                self.assertAlmostEqual(value, want, delta=1e-6, msg=(kind, made, start))
+            close_all()
+
+    def test_pose_when_made_counts_from_the_turn_made_in(self):
+        """twist_from="Pose when made": 0..90 counts from the 40 degrees it was made at; set to
+        the picked frames (edit_joint, the engine's door first), from the circles' x's."""
+        doc = App.newDocument("limits_pose")
+        asm, base, arm = base_and_arm(doc)
+        arm.Placement = App.Placement(App.Vector(1.0, 0.05, 0.1), App.Rotation(Z, 40))
+        j = da.add_joint(asm, "Revolute", pin(base, 1, 0.1), pin(arm, 0), rotation=(0, 90),
+                         twist_from=objects.POSE_WHEN_MADE)
+        self.assertEqual(j.TwistFrom, objects.POSE_WHEN_MADE)
+        self.assertAlmostEqual(self.stops(asm, arm, j, 10)[0], 40.0, delta=1e-6)
+        self.assertAlmostEqual(self.stops(asm, arm, j, 150)[0], 130.0, delta=1e-6)
+        operations.edit_joint(j, twist_from=objects.PICKED_FRAMES)
+        self.assertAlmostEqual(self.stops(asm, arm, j, 150)[0], 90.0, delta=1e-6)
+        self.assertAlmostEqual(self.stops(asm, arm, j, -20)[0], 0.0, delta=1e-6)
 
 
 class SavedBefore(unittest.TestCase):
@@ -203,6 +265,45 @@ class SavedBefore(unittest.TestCase):
         th.is_slider_crank(self.doc.getObject("Crank"), self.doc.getObject("Piston"))
 
 
+class LimitsSavedBefore(unittest.TestCase):
+    """data/limits-before.FCStd, saved by the workbench of main e05b94a (make_limits_fixture.py):
+    Revolutes limited to 0..90 deg, made with their links turned 40 degrees, their limits then
+    counting from there."""
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp()
+        path = os.path.join(self.tmp, "limits-before.FCStd")
+        shutil.copy(os.path.join(DATA, "limits-before.FCStd"), path)  # the file itself is never written
+        with open(os.path.join(DATA, "limits-before.json")) as f:
+            self.facts = json.load(f)["Limited"]
+        self.doc = App.openDocument(path)
+        self.asm = da.top_assemblies(self.doc)[0]
+
+    def tearDown(self):
+        close_all()
+        shutil.rmtree(self.tmp)
+
+    def test_its_revolutes_keep_their_limits_meaning(self):
+        revolutes = [j for j in da.joints(self.asm) if j.JointType == "Revolute"]
+        self.assertEqual([j.TwistFrom for j in revolutes], [objects.POSE_WHEN_MADE] * 2)
+        r = da.solve(self.asm)
+        self.assertTrue(r.converged, r.message)
+        self.assertTrue(self.facts["converged"])
+        for name, turn in (("Below", 40.0), ("Above", 130.0)):
+            o = self.doc.getObject(name)
+            want = stored(self.facts[name])
+            self.assertTrue(th.same(o.Placement, want, 1e-9), (name, o.Placement, want))
+            self.assertAlmostEqual(turned_about_z(o), turn, delta=1e-6)  # 0 and 90 from the 40 made at
+        # Set to the picked frames (the property editor's way): 0..90 from the circles' x's.
+        for j in revolutes:
+            j.TwistFrom = objects.PICKED_FRAMES
+        self.doc.getObject("Below").Placement = App.Placement(App.Vector(0, 0, -0.1), App.Rotation(Z, -20))
+        r = da.solve(self.asm)
+        self.assertTrue(r.converged, r.message)
+        self.assertAlmostEqual(turned_about_z(self.doc.getObject("Below")), 0.0, delta=1e-6)
+        self.assertAlmostEqual(turned_about_z(self.doc.getObject("Above")), 90.0, delta=1e-6)
+
+
 class PickedAcross(unittest.TestCase):
     """The rule for an element with no frame of its own across its axis: the part's z, x or y
     most across it (z first on a tie), made square to it; the same either way along the axis."""
@@ -227,7 +328,8 @@ class PickedAcross(unittest.TestCase):
 
 if not os.environ.get("DISPCON_TWIST_IMPORT_ONLY"):  # run by freecadcmd as a script
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
-                               for c in (FixedMadeAskew, SavedBefore, PickedAcross))
+                               for c in (FixedMadeAskew, RevoluteLimitsMadeTurned, SavedBefore,
+                                                                         LimitsSavedBefore, PickedAcross))
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
     failed = len(result.failures) + len(result.errors)
     print("%d passed, %d failed" % (result.testsRun - failed, failed))

@@ -22,9 +22,9 @@ from .base import TransactionPanel
 # Which groups of fields each type shows.
 FIELDS = {
     "Fixed": ("reverse", "offset", "frame", "twist"),
-    "Revolute": ("reverse", "offset", "frame", "rotation"),
+    "Revolute": ("reverse", "offset", "frame", "rotation", "twist"),
     "Slider": ("reverse", "frame", "travel", "twist"),
-    "Cylindrical": ("reverse", "frame", "rotation", "travel"),
+    "Cylindrical": ("reverse", "frame", "rotation", "travel", "twist"),
     "Ball": ("offset", "cone"),
     "Planar": ("reverse", "offset", "frame"),
     "PointOnLine": ("travel",),
@@ -51,7 +51,8 @@ TYPING_PAUSE_MS = 400
 STEP_KEYS = (QtCore.Qt.Key_Up, QtCore.Qt.Key_Down, QtCore.Qt.Key_PageUp, QtCore.Qt.Key_PageDown)
 
 # The Twist from field's tooltip (the property's, TwistFrom, in the panel's words).
-TWIST_TIP = ("Where part 2's turn about the joint's axis is held from. Picked frames: the picked edges' or "
+TWIST_TIP = ("Where part 2's turn about the joint's axis is held from (a Fixed, a Slider), or where the turn "
+             "limits count from (a Revolute, a Cylindrical: their Min and Max). Picked frames: the picked edges' or "
              "faces' own frames lined up (a circle's or a face's x; a line's: the part's z, x or y most across "
              "it), the same whatever pose the parts are in now. Pose when made: the turn part 2 had when the joint "
              "was made here (a joint opened again: the turn it has when this is chosen); joints saved before "
@@ -236,7 +237,8 @@ class JointPanel(TransactionPanel):
         self.reverse = QtWidgets.QCheckBox("Reverse (flip part 2's axis)")
         self.reverse.setToolTip("Part 2 faces the other way along the joint's axis (its picked axis flipped)")
         g.layout().addWidget(self.reverse)
-        # Where a Fixed's or a Slider's hold on part 2's turn about the axis comes from.
+        # Where a Fixed's or a Slider's hold on part 2's turn about the axis comes from, and
+        # where a Revolute's or a Cylindrical's turn limits count from.
         g = self._group(top, "twist", None)
         gl = QtWidgets.QFormLayout()
         g.layout().addLayout(gl)
@@ -390,7 +392,9 @@ class JointPanel(TransactionPanel):
         a, b = quantity_box(unit, lo, hi), quantity_box(unit, lo, hi)
         a.setObjectName(name + "Min")
         b.setObjectName(name + "Max")
-        since = "" if name == "angle" else ", measured from where the joint was made"
+        since = {"angle": "", "travel": ", measured from where the joint was made",
+                 "rotation": ", counted as Twist from says (Picked frames: 0 where the picked frames' x's "
+                             "line up; Pose when made: 0 as part 2 stood)"}[name]
         a.setToolTip("The lowest %s%s" % (what, since))
         b.setToolTip("The highest %s%s" % (what, since))
         gl.addRow("Min", a)
