@@ -1135,7 +1135,7 @@ class TestJointPanel(Documents):
 
     def test_fields_per_type_and_units(self):
         panel, asm, base, arm = self.open("Revolute")
-        self.assertEqual(self.visible_groups(panel), {"reverse", "offset", "frame", "rotation"})
+        self.assertEqual(self.visible_groups(panel), {"reverse", "offset", "frame", "rotation", "twist"})
         self.assertIn("°", panel.rot_min.text())
         self.assertIn("mm", panel.offset.text())
         self.assertEqual(panel.ref_list.count(), 2)
@@ -1143,6 +1143,7 @@ class TestJointPanel(Documents):
         self.assertIn("Arm", panel.ref_list.item(1).text())
         shot("panel-revolute")
         for kind, groups in (("Slider", {"reverse", "frame", "travel", "twist"}), ("Fixed", {"reverse", "offset", "frame", "twist"}),
+                             ("Cylindrical", {"reverse", "frame", "rotation", "travel", "twist"}),
                              ("Ball", {"offset", "cone"}),
                              ("PointOnCurve", set()), ("Angle", {"reverse", "angle"})):
             panel.type_box.setCurrentText(kind)
