@@ -32,7 +32,8 @@ def pin(obj, x, top=False):
 def layered_fourbar(doc, a, b, c, d, crank_deg):
     """Ground pins at (0, 0) and (d, 0); crank a on the first, coupler b on the crank, rocker c
     under the coupler's end and on the second pin: every part in its own layer. The crank is
-    placed at `crank_deg` (where its joint's value is 0), the rest roughly."""
+    placed at `crank_deg` (its joint's value then, counted from the pins' circles' x's), the rest
+    roughly."""
     asm = da.create_assembly(doc, "Linkage")
     g = doc.addObject("Part::Feature", "Ground")
     g.Shape = parts.ground([(0, 0), (d, 0)])

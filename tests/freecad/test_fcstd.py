@@ -120,15 +120,17 @@ class Sweep(unittest.TestCase):
         code, r, err = run_json("sweep", doc("double-rocker"), "--joint", "CrankPivot")
         self.assertEqual(code, 3, err)
         self.assertTrue(r["locked"])
-        # The joint's value is the crank's turn since it was placed at crank_deg.
-        crank = r["lock_value"] + math.radians(f["crank_deg"])
+        # The joint's value is the crank's turn from the picked frames (the pins' circles' x's, the
+        # parts' x), its angle about z, whatever crank_deg it was placed at.
+        crank = r["lock_value"]
         self.assertLess(near_angle(crank, f["stretched"]), 1e-6, (crank, f["stretched"]))
         self.assertIn("locks at", r["message"])
         # And the other way, down to the folded pose.
         code, r, err = run_json("sweep", doc("double-rocker"), "--joint", "CrankPivot",
-                                "--from", 0, "--to", -math.pi, "--steps", 90)
+                                "--from", math.radians(f["crank_deg"]),
+                                "--to", math.radians(f["crank_deg"]) - math.pi, "--steps", 90)
         self.assertEqual(code, 3, err)
-        crank = r["lock_value"] + math.radians(f["crank_deg"])
+        crank = r["lock_value"]
         self.assertLess(near_angle(crank, f["folded"]), 1e-6, (crank, f["folded"]))
 
     def test_collision_at_a_known_angle_within_one_step(self):
@@ -141,8 +143,8 @@ class Sweep(unittest.TestCase):
         self.assertEqual(list(hits), [("Crank", "Pole")], r["interference"])
         h = hits[("Crank", "Pole")]
         step = 2 * math.pi / steps
-        first = math.degrees(h["first"]) + f["crank_deg"]
-        last = math.degrees(h["last"]) + f["crank_deg"]
+        first = math.degrees(h["first"])  # the crank's angle about z: its turn from the picked frames
+        last = math.degrees(h["last"])
         self.assertLessEqual(abs(math.remainder(math.radians(first - f["first"]), 2 * math.pi)), step, (first, f))
         self.assertLessEqual(abs(math.remainder(math.radians(last - f["last"]), 2 * math.pi)), step, (last, f))
         self.assertGreater(h["worst_volume"], 0)
