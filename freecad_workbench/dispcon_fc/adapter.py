@@ -141,19 +141,20 @@ def _across(v):
     return v.cross(other).normalize()
 
 
-def kind_of(dispcon, joint_type):
-    """The row of the engine's joint table (dispcon.joint_kinds()) for a workbench joint type:
+def kind_of(dispcon, joint_type, rows=None):
+    """The row of the engine's joint table (dispcon.joint_kinds(), or `rows` read from it once
+    by the caller: the table is built anew at each call, 1.3 ms) for a workbench joint type:
     "PointOnLine" is the kind "point_on_line", "Gears" the kind "gear", "RackPinion" the kind
     "rack" (FreeCAD's names are the engine's, in words run together, or plural, or cut short)."""
     want = joint_type.lower()
-    rows = dispcon.joint_kinds()
+    rows = rows if rows is not None else dispcon.joint_kinds()
     for same in (lambda name: name == want, lambda name: name + "s" == want,
                  lambda name: len(name) >= 4 and want.startswith(name)):
         for row in rows:
             if same(row["name"].replace("_", "")):
                 return row
     raise ValueError("joint type %r is not a kind of joint the engine knows (%s)"
-                     % (joint_type, ", ".join(r["name"] for r in dispcon.joint_kinds())))
+                     % (joint_type, ", ".join(r["name"] for r in rows)))
 
 
 def offered_types(dispcon):
@@ -227,10 +228,11 @@ def phase_from_engine(j, value):
     return value if j.JointType in LENGTH_PHASE else math.degrees(value)
 
 
-def joint_kwargs(dispcon, j, anchors=None, remake=False):
+def joint_kwargs(dispcon, j, anchors=None, remake=False, kinds=None):
     """The joint as add_joint's arguments: its kind, its anchors in each part's frame (`anchors`,
     from live_anchors, or those stored), and those of its limits the kind takes (a revolute keeps
-    no travel set while it was a slider); a coupling's phase left to the engine when `remake`."""
+    no travel set while it was a slider); a coupling's phase left to the engine when `remake`.
+    `kinds`: the engine's joint table when the caller read it once (kind_of)."""
     a = anchors or {name: getattr(j, name) for name in ANCHORS}
     # Offset: part 2's point sits that far along part 1's axis; Reversed: part 2's axis flipped
     # (part 2 turned over about the twist reference, which stays put).
@@ -241,7 +243,7 @@ def joint_kwargs(dispcon, j, anchors=None, remake=False):
         if j.Move >= 0:
             kw["move"] = j.Move
         return kw
-    row = kind_of(dispcon, j.JointType)
+    row = kind_of(dispcon, j.JointType, kinds)
     rad = math.radians
     axis2, across2 = turned_frame(a["Axis2"] * flip, a["Perp2"], frame_rotation(j))
     point2 = moved_point(a["Point2"], axis2, across2, frame_shift(j))
@@ -412,6 +414,7 @@ class Adapter:
         # with an offset typed since (pending_offsets): the model is built again with them.
         self.made = made or {}
         self.dispcon = engine.load()
+        self.kinds = self.dispcon.joint_kinds()  # read once a model, not once a joint (kind_of)
         self.asm = asm
         self.centres = centres_of(asm)
         self.model = self.dispcon.Model()
@@ -479,7 +482,8 @@ class Adapter:
         what an edit would give the engine, which checks them); returns its index."""
         (b1, l1), (b2, l2) = self.frames[j.Reference1[0].Name], self.frames[j.Reference2[0].Name]
         made = {"phase": self.made[j.Name]} if j.Name in self.made and j.Document == self.asm.Document else {}
-        kw = dict(joint_kwargs(self.dispcon, j, self.anchors[j.Name, j.Document.Name], j in self.remade), **made)
+        kw = dict(joint_kwargs(self.dispcon, j, self.anchors[j.Name, j.Document.Name], j in self.remade, self.kinds),
+                  **made)
         kw.update(changed)
         kw = _in_body(_in_body(kw, "1", l1), "2", l2)
         return self.model.add_joint(b2, object1=b1, label=j.Label, **kw)

@@ -455,7 +455,7 @@ def _check_twist(joint, kind, twist_from):
 
     a = adapter.anchors[joint.Name, joint.Document.Name]
     perp1, perp2 = twist_reference(joint, *_referenced_features(joint), picked=twist_from == objects.PICKED_FRAMES)
-    kw = joint_kwargs(adapter.dispcon, joint, dict(a, Perp1=perp1, Perp2=perp2))
+    kw = joint_kwargs(adapter.dispcon, joint, dict(a, Perp1=perp1, Perp2=perp2), kinds=adapter.kinds)
     try:
         with adapter.engine_errors():
             adapter.add_joint(joint, **kw)

@@ -2763,13 +2763,16 @@ class TestPanelsGone(unittest.TestCase):
             self.assertEqual([j.Label for j in asm.Group if hasattr(j, "JointType")], [label])
             return said
         if how == "deleted":
+            # Its label read before: a deleted object's attributes may raise ReferenceError
+            # (seen under load, in the assertion's message).
+            label = target.Label
             Gui.Selection.clearSelection()
             Gui.Selection.addSelection(target)
             with answering_questions():
                 Gui.runCommand("Std_Delete")
                 pause(300)
-            self.assertFalse(target in doc.Objects, "%s not deleted" % target.Label)
-            reason = "%s was deleted" % target.Label
+            self.assertFalse(target in doc.Objects, "%s not deleted" % label)
+            reason = "%s was deleted" % label
         elif how == "closed":
             App.closeDocument(doc.Name)
             reason = "its document was closed"
