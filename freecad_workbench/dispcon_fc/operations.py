@@ -418,16 +418,18 @@ def twist_reference(j, side1, side2, picked=None, axis1=None):
     return geometry.to_local(o1.Placement, axis=perp_world), geometry.to_local(o2.Placement, axis=perp_world)
 
 
+def _references(joint):
+    """((part, sub), (part, sub)) of the joint's two references (sub "" for a whole part); refused,
+    naming the joint, when one of its parts was deleted."""
+    refs = (joint.Reference1, joint.Reference2)
+    if not all(ref and ref[0] is not None for ref in refs):
+        raise ValueError("%s: one of its parts was deleted" % joint.Label)
+    return tuple((ref[0], ref[1][0] if ref[1] else "") for ref in refs)
+
+
 def _referenced_features(joint):
     """((part, feature), (part, feature)) of the joint's two references as the parts stand now."""
-    out = []
-    for ref in (joint.Reference1, joint.Reference2):
-        if not ref or ref[0] is None:
-            raise ValueError("%s: one of its parts was deleted" % joint.Label)
-        sub = ref[1][0] if ref[1] else ""
-        f = geometry.feature(ref[0], sub) if sub else None
-        out.append((ref[0], f))
-    return tuple(out)
+    return tuple((part, geometry.feature(part, sub) if sub else None) for part, sub in _references(joint))
 
 
 def _check_twist_type(label, kind, twist_from):
@@ -663,10 +665,7 @@ def edit_joint(joint, joint_type=None, undo_step=True, **limits):
     # again: the features, which one carries the guide, a rack's direction of travel.
     replace = None
     if joint_type is not None and joint_type != joint.JointType and (joint_type in _NEEDS or joint.JointType in _NEEDS):
-        if not (ref and ref[0] and joint.Reference2 and joint.Reference2[0]):
-            raise ValueError("%s: one of its parts was deleted" % joint.Label)
-        refs = [(r[0], r[1][0] if r[1] else "") for r in (joint.Reference1, joint.Reference2)]
-        a, b = _guide_first(joint_type, *[(o, sub, geometry.feature(o, sub)) for o, sub in refs])
+        a, b = _guide_first(joint_type, *[(o, sub, geometry.feature(o, sub)) for o, sub in _references(joint)])
         _check_features(joint_type, a, b)
         replace = (a, b)
     f1 = replace[0][2] if replace else geometry.Feature((0, 0, 0), (0, 0, 1), getattr(joint, "Feature1", ""))
