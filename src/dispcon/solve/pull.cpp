@@ -313,10 +313,10 @@ template <typename Correct>
 RimRun rim_steps(RimModel& rim, SolverState& s, const Group& group, int joint,
                  const std::vector<double>& band, const LetGo& let_go, double band_soft,
                  const SolveOptions& o, PoseBuffer& before, std::vector<double>& joint_r,
-                 Measure& now, double& h, SoftRows& rows, int& iterations, Correct&& correct) {
+                 Measure& now, double& h, SoftRows& rows, int& iterations, std::vector<Vec6>& dq,
+                 Correct&& correct) {
   RimRun out;
   const JointState& pulled = s.joints[static_cast<size_t>(joint)];
-  std::vector<Vec6> dq;
   double predicted = 0;
   while (iterations < o.max_iterations && now.distance > o.tolerance) {
     if (rim.validated() &&
@@ -387,7 +387,8 @@ struct Rises {
 PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& polisher,
                        PolishWork& work, std::vector<double>& band, const SolveOptions& o,
                        std::vector<double>& soft, PoseBuffer& before, PoseBuffer& spare,
-                       PoseBuffer& valid, std::vector<double>& joint_r, bool follows, int most) {
+                       PoseBuffer& valid, PullWork& pw, std::vector<double>& joint_r, bool follows,
+                       int most) {
   PullOutcome out;
   const JointState& pulled = s.joints[static_cast<size_t>(joint)];
   double& damping = soft[static_cast<size_t>(joint)];
@@ -431,7 +432,7 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   SoftRows rows;
   const double band_soft = band[static_cast<size_t>(joint)];
   double h = rows.read(s, pulled, band_soft, true);
-  std::vector<Vec6> dq;
+  std::vector<Vec6>& dq = pw.dq;
   // A pose on the way is corrected only as far as its step's gain asks; before the pull is judged
   // stationary at one, it is corrected to well within the tolerance (the distances compared
   // there are then of valid poses) and the pull goes on from it: true when it was; false when
@@ -451,7 +452,12 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
   double mu = follows ? kFollowDamping : kFirstDamping;
   // A turn's model of its objective on the free directions (rim.hpp).
   const bool turn = soft_joint.same_rotation;
-  RimModel rim;
+  RimModel* rim = nullptr;
+  if (turn) {
+    if (!pw.rim) pw.rim = std::make_unique<RimModel>();
+    rim = pw.rim.get();
+    rim->reset();
+  }
   // Where the valid poses bend toward the target (the tension negative: a target inside a
   // crank's circle), no damping gives the step the curvature found, which is less than the
   // Gauss-Newton model's: the step is stretched instead, to the least point of the parabola the
@@ -723,10 +729,10 @@ PullOutcome pull_group(SolverState& s, const Group& group, int joint, Polisher& 
       holding = holding || (c != joint && band[static_cast<size_t>(c)] > 0);
     // (Observed after steps cut short too, for the pairs: only after whole steps, 14 of the 36
     // turns of the robot arm's hand took 1-7 iterations more.)
-    if (turn && holding && rim.observe(s, group, joint, band, band_soft, holds.let_go) &&
+    if (turn && holding && rim->observe(s, group, joint, band, band_soft, holds.let_go) &&
         longest >= 1) {
-      const RimRun run = rim_steps(rim, s, group, joint, band, holds.let_go, band_soft, o, before,
-                                   joint_r, now, h, rows, out.iterations, correct);
+      const RimRun run = rim_steps(*rim, s, group, joint, band, holds.let_go, band_soft, o, before,
+                                   joint_r, now, h, rows, out.iterations, pw.rim_dq, correct);
       if (run.stationary) {
         if (release_probe()) continue;
         if (tighten()) continue;

@@ -14,6 +14,21 @@
 
 namespace dispcon {
 
+// Q times the identity's last n - rank columns, as Eigen's HouseholderSequence product computes
+// it for a matrix of fewer than 48 reflectors (one reflector at a time, the last first; with 48 or
+// more it applies them by blocks, in a workspace of its own on the heap), into Zn_.
+template <typename QR>
+void RimModel::null_space(const QR& qr, Eigen::Index n, Eigen::Index rank) {
+  const auto q = qr.householderQ();
+  Zn_.setZero(n, n - rank);
+  Zn_.bottomRows(n - rank).setIdentity();
+  reflect_.resize(n - rank);
+  for (Eigen::Index k = q.length() - 1; k >= 0; --k) {
+    Zn_.bottomRightCorner(n - k, n - rank)
+        .applyHouseholderOnTheLeft(q.essentialVector(k), qr.hCoeffs().coeff(k), reflect_.data());
+  }
+}
+
 bool RimModel::observe(const SolverState& s, const Group& group, int joint,
                        const std::vector<double>& band, double soft_band, const LetGo& let_go) {
   const size_t nv = group.bodies.size();
@@ -64,17 +79,19 @@ bool RimModel::observe(const SolverState& s, const Group& group, int joint,
     }
   }
   // The free directions: the null space of the hard rows.
-  Eigen::MatrixXd Z;
   if (rows == 0) {
-    Z = Eigen::MatrixXd::Identity(n, n);
-  } else {
+    Zn_.setIdentity(n, n);
+  } else if (rows <= kMostHardRows) {
     // A rank-revealing QR of the rows' transpose: its Q's last columns span what they leave.
     qr_.compute(hard.topRows(rows).transpose());
     qr_.setThreshold(1e-9);
-    const Eigen::Index rank = qr_.rank();
-    Z = qr_.householderQ() * Eigen::MatrixXd::Identity(n, n).rightCols(n - rank);
+    null_space(qr_, n, qr_.rank());
+  } else {
+    qr_wide_.compute(hard.topRows(rows).transpose());
+    qr_wide_.setThreshold(1e-9);
+    null_space(qr_wide_, n, qr_wide_.rank());
   }
-  const Eigen::Index d = Z.cols();
+  const Eigen::Index d = Zn_.cols();
   if (d > kMostFree) {
     reset();
     return false;
@@ -84,50 +101,49 @@ bool RimModel::observe(const SolverState& s, const Group& group, int joint,
   // go) the model starts again.
   bool pair = observed_ && Z_.rows() == n && Z_.cols() == d && d > 0;
   if (pair) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> w(Z.transpose() * Z_,
-                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
-    if (w.singularValues().minCoeff() > 0.9) {
-      Z = Z * (w.matrixU() * w.matrixV().transpose());
+    svd_.compute(Zn_.transpose() * Z_, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    if (svd_.singularValues().minCoeff() > 0.9) {
+      Zn_ = Zn_ * (svd_.matrixU() * svd_.matrixV().transpose());
     } else {
       pair = false;
     }
   }
-  const Eigen::VectorXd gz = Z.transpose() * g;
-  const Eigen::MatrixXd js = soft_j.topRows(soft_rows) * Z;
-  const Eigen::MatrixXd gauss_newton = js.transpose() * js;
+  gzn_.noalias() = Zn_.transpose() * g;
+  js_.noalias() = soft_j.topRows(soft_rows) * Zn_;
+  gauss_newton_.noalias() = js_.transpose() * js_;
   if (pair) {
     // The displacement from the last pose, as Polisher::step moves a body (turned about its
     // centre, then its centre moved), in the reduced coordinates.
-    Eigen::VectorXd step(n);
+    step_.resize(n);
     for (size_t v = 0; v < nv; ++v) {
       const BodyState& b = s.bodies[static_cast<size_t>(group.bodies[v])];
       const Eigen::AngleAxisd turn(Mat3(b.R * R_[v].transpose()));
-      step.segment<3>(static_cast<Eigen::Index>(6 * v)) = turn.angle() * turn.axis();
-      step.segment<3>(static_cast<Eigen::Index>(6 * v + 3)) = b.G - G_[v];
+      step_.segment<3>(static_cast<Eigen::Index>(6 * v)) = turn.angle() * turn.axis();
+      step_.segment<3>(static_cast<Eigen::Index>(6 * v + 3)) = b.G - G_[v];
     }
-    const Eigen::VectorXd sz = Z.transpose() * step;
-    const Eigen::VectorXd y = gz - gz_;
-    const double sy = sz.dot(y);
-    if (sz.norm() > 0 && sy > 1e-12 * sz.norm() * y.norm() && y.allFinite()) {
+    sz_.noalias() = Zn_.transpose() * step_;
+    y_ = gzn_ - gz_;
+    const double sy = sz_.dot(y_);
+    if (sz_.norm() > 0 && sy > 1e-12 * sz_.norm() * y_.norm() && y_.allFinite()) {
       if (B_.rows() != d) {
         // The first pair: the Gauss-Newton term, plus along the step what it leaves out, spread
         // evenly (the bounds' curvature, not yet told apart by direction).
-        const double missing = (sy - sz.dot(gauss_newton * sz)) / sz.squaredNorm();
-        const double floor = 1e-6 * std::max(gauss_newton.trace() / static_cast<double>(d), 1e-12);
-        B_ = gauss_newton;
+        const double missing = (sy - sz_.dot(gauss_newton_ * sz_)) / sz_.squaredNorm();
+        const double floor = 1e-6 * std::max(gauss_newton_.trace() / static_cast<double>(d), 1e-12);
+        B_ = gauss_newton_;
         B_.diagonal().array() += std::max(missing, floor);
       }
-      const Eigen::VectorXd bs = B_ * sz;
-      const double sbs = sz.dot(bs);
-      if (sbs > 0) B_ += y * y.transpose() / sy - bs * bs.transpose() / sbs;
+      bs_.noalias() = B_ * sz_;
+      const double sbs = sz_.dot(bs_);
+      if (sbs > 0) B_ += y_ * y_.transpose() / sy - bs_ * bs_.transpose() / sbs;
     }
   } else {
     B_.resize(0, 0);
     radius_ = 0;
     validated_ = false;
   }
-  Z_ = std::move(Z);
-  gz_ = gz;
+  Z_ = Zn_;
+  gz_ = gzn_;
   R_.resize(nv);
   G_.resize(nv);
   for (size_t v = 0; v < nv; ++v) {
@@ -142,13 +158,15 @@ bool RimModel::observe(const SolverState& s, const Group& group, int joint,
 bool RimModel::propose(double max_rotation, std::vector<Vec6>& dq, double& predicted) const {
   const Eigen::Index d = Z_.cols();
   if (!observed_ || d == 0 || B_.rows() != d || !B_.allFinite()) return false;
-  const Eigen::LLT<Eigen::MatrixXd> llt(B_);
-  if (llt.info() != Eigen::Success) return false;
-  Eigen::VectorXd p = -llt.solve(gz_);
+  llt_.compute(B_);
+  if (llt_.info() != Eigen::Success) return false;
+  Vector& p = p_;
+  p = -llt_.solve(gz_);
   const double radius = radius_ > 0 ? radius_ : HUGE_VAL;
   if (!p.allFinite()) return false;
   if (p.norm() > radius) p *= radius / p.norm();
-  const Eigen::VectorXd full = Z_ * p;
+  Vector& full = full_;
+  full.noalias() = Z_ * p;
   const size_t nv = static_cast<size_t>(full.size() / 6);
   double turn = 0;
   for (size_t v = 0; v < nv; ++v) {
@@ -169,9 +187,9 @@ bool RimModel::propose(double max_rotation, std::vector<Vec6>& dq, double& predi
 double RimModel::whole_gain() const {
   const Eigen::Index d = Z_.cols();
   if (!observed_ || d == 0 || B_.rows() != d) return HUGE_VAL;
-  const Eigen::LLT<Eigen::MatrixXd> llt(B_);
-  if (llt.info() != Eigen::Success) return HUGE_VAL;
-  const double g = 0.5 * gz_.dot(llt.solve(gz_));
+  llt_.compute(B_);
+  if (llt_.info() != Eigen::Success) return HUGE_VAL;
+  const double g = 0.5 * gz_.dot(llt_.solve(gz_));
   return g >= 0 ? g : HUGE_VAL;
 }
 

@@ -57,9 +57,28 @@ class RimModel {
   void reset();
 
  private:
-  Eigen::MatrixXd Z_;          // basis of the free directions at the pose last observed (columns)
-  Eigen::MatrixXd B_;          // the reduced Hessian's model (empty: no pair yet)
-  Eigen::VectorXd gz_;         // Z^T grad h there
+  // Every matrix here has a fixed capacity (Eigen's maximum sizes: no heap behind them), so that
+  // a turn's steps allocate nothing once the model is made (they made 261-311 allocations a drag
+  // step in dynamic matrices until issue 14's fifteenth round). The capacity's largest
+  // dimension, 72, keeps Eigen's products on the paths they took with dynamic sizes (below 8
+  // it picks others, with other rounding).
+  static constexpr int kMostUnknowns = 6 * static_cast<int>(kMostBodies);
+  // The hard rows a fixed-capacity QR takes (twice the unknowns); more go to qr_wide_, which
+  // allocates (no sample nor test comes near).
+  static constexpr int kMostHardRows = 2 * kMostUnknowns;
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor,
+                               kMostUnknowns, kMostUnknowns>;
+  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMostUnknowns, 1>;
+  using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMostUnknowns,
+                             kMostHardRows>;
+  // Q's last columns (the null space of the rows a QR was given), Q applied reflector by
+  // reflector as Eigen's unblocked product does.
+  template <typename QR>
+  void null_space(const QR& qr, Eigen::Index n, Eigen::Index rank);
+
+  Matrix Z_;                   // basis of the free directions at the pose last observed (columns)
+  Matrix B_;                   // the reduced Hessian's model (empty: no pair yet)
+  Vector gz_;                  // Z^T grad h there
   std::vector<Mat3> R_;        // each body's rotation there
   std::vector<Vec3> G_;        // and centre
   double radius_ = 0;          // the trust radius of |Z^T dq| (0: none)
@@ -67,10 +86,18 @@ class RimModel {
   mutable bool cut_short_ = false;
   bool validated_ = false;
   bool observed_ = false;
-  // observe()'s scratch: the hard rows, the soft ones, the gradient, the QR.
-  Eigen::MatrixXd hard_, soft_j_;
+  // observe()'s scratch: the hard rows, the soft ones, the gradient, the QR, the new basis, ...
+  Eigen::MatrixXd hard_, soft_j_;  // sized by the group's joints: the same from step to step
   Eigen::VectorXd g_;
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
+  Eigen::ColPivHouseholderQR<Rows> qr_;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_wide_;
+  Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kMostUnknowns> reflect_;
+  Matrix Zn_, js_, gauss_newton_;
+  Vector gzn_, step_, sz_, y_, bs_;
+  Eigen::JacobiSVD<Matrix> svd_;
+  // ... and propose()'s and whole_gain()'s.
+  mutable Eigen::LLT<Matrix> llt_;
+  mutable Vector p_, full_;
 };
 
 }  // namespace dispcon

@@ -306,6 +306,7 @@ struct Session::Impl {
   // work's own, of a group's bodies only), set at each pull from the poses given; and the last
   // valid poses a pull with its iterations bounded kept (a turn's: pull_group).
   PoseBuffer spare, before, valid;
+  PullWork pull_work;                        // the rest of a pull's scratch
   const std::vector<Pose>* given = nullptr;  // the poses the solve started from
   std::vector<double> joint_r;               // each joint's residual at the current poses
   PolishWork work;
@@ -428,7 +429,7 @@ PullOutcome Session::Impl::run_pull(int joint, int most) {
     before.assign(given->begin(), given->end());
     spare.assign(given->begin(), given->end());
     out = pull_group(s, *p.group, joint, p.polisher, work, band, o, soft, before, spare, valid,
-                     joint_r, reached == joint, most);
+                     pull_work, joint_r, reached == joint, most);
     reached = out.holds && out.distance <= o.tolerance ? joint : -1;
     p.measured = false;  // the pull moved the poses since the first measure
     p.iterations = p.polish = out.iterations;

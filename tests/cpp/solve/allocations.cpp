@@ -84,6 +84,40 @@ TEST(Allocations, DragStepsAllocateTheSameWhateverTheirIterations) {
   }
 }
 
+// A drag step's turn out of reach along a cone's rim runs its reduced quasi-Newton steps
+// (rim.cpp): once warm they allocate nothing, so the robot arm's hand turned further and further
+// about z against its wrist's cone (0.5 rad) and twist allocates as much a step whatever its
+// iterations (24 to 30 here; 89 allocations each, the result's and the pull's own; 261, 286 and
+// 311 before issue 14's fifteenth round: Eigen's dynamic matrices made and freed in each rim
+// step, and the model made again at each pull).
+TEST(Allocations, TurnsAlongARimAllocateTheSameWhateverTheirIterations) {
+  ParseResult parsed = load_dcl(std::string(DISPCON_SOURCE_DIR) + "/samples/robot-arm.dcl");
+  ASSERT_TRUE(parsed.ok()) << parsed.messages();
+  Model m = std::move(*parsed.model);
+  ASSERT_TRUE(assemble(m).converged);
+  const BodyId hand = *m.find("hand");
+  const Pose start = m.body(hand).pose;
+  Dragger drag(m, hand);
+  std::map<int, long> by_iterations;  // iterations of a step -> allocations it made
+  for (int k = 0; k <= 16; ++k) {
+    const double angle = 2.0 + 0.05 * k;
+    const Pose target{(Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ())) * start.q).normalized(),
+                      start.x};
+    allocations = 0;
+    counting = true;
+    const SolveResult r = drag.move_to(target);
+    counting = false;
+    ASSERT_EQ(r.status, SolveStatus::OutOfReach) << "turned " << angle << ": " << r.message;
+    if (k > 2) by_iterations.emplace(r.iterations, allocations.load());  // warm by then
+  }
+  ASSERT_GE(by_iterations.size(), 2u) << "every step took the same number of iterations";
+  for (const auto& [iterations, count] : by_iterations) {
+    EXPECT_EQ(count, by_iterations.begin()->second)
+        << iterations << " iterations made " << count << " allocations, "
+        << by_iterations.begin()->first << " made " << by_iterations.begin()->second;
+  }
+}
+
 // A pull whose iterations are bounded (a drag step's turn: Session::pull's all_iterations) keeps
 // the last valid poses it met, in a buffer of the session's: once warm it allocates what the
 // same pull unbounded allocates (it kept them in a buffer of its own, one allocation a turn's
