@@ -24,28 +24,72 @@ def _rotvec(rotation):
 def live_curve(j, count=64):
     """The curve of a PointOnCurve joint, sampled now from part 1's picked edge, in part 1's
     frame: the geometry as it is, whenever the joint was made or its type changed."""
-    part, subs = j.Reference1[0], j.Reference1[1]
-    sub = subs[0] if subs else ""
+    (part, sub, _), _ = references(j)
     if not sub.startswith("Edge"):
         raise ValueError("%s: a PointOnCurve joint needs an edge of %s as its first reference, not %s"
                          % (j.Label, part.Label, sub or "the whole part"))
-    try:
-        edge = shape_of(part).getElement(sub)
-    except Exception:
-        raise ValueError("%s: %s has no %s any more (its shape changed): pick the curve again"
-                         % (j.Label, part.Label, sub)) from None
+    edge = shape_of(part).getElement(sub)  # (references read it: it is there)
     return [geometry.to_local(part.Placement, point=p) for p in edge.discretize(count)]
 
 
-def missing_part(j, parts_by_name):
-    """Why the joint cannot be solved for want of a part ("" when both are there); the parts are
-    those of the assembly and of its sub-assemblies."""
-    for ref in (j.Reference1, j.Reference2):
-        if ref is None or ref[0] is None:
-            return "one of its parts was deleted"
-        if ref[0].Name not in parts_by_name:
-            return "%s is not a part of the assembly" % ref[0].Label
-    return ""
+class LostReference(ValueError):
+    """A joint's reference that cannot be read as the document stands: its part deleted, its part
+    not in the assembly, or its picked element gone. str() is the one sentence every path says
+    (Solve's and Check's skipped joints, the Drive, an edit of the joint's type or TwistFrom):
+    the joint's label, what happened, what to do; `why` is that sentence after the label."""
+
+    def __init__(self, joint, why):
+        super().__init__("%s: %s" % (joint.Label, why))
+        self.joint, self.why = joint, why
+
+
+# What to do about a lost reference, the same in every sentence: the joint panel (opened by a
+# double-click) picks references again.
+_PICK_AGAIN = "pick that reference again (double-click the joint)"
+
+
+class Reference:
+    """One of a joint's references as read now: the part, the picked element's name ("" for the
+    whole part) and its geometry.Feature in world coordinates (None when not read, or the whole
+    part)."""
+
+    __slots__ = ("part", "sub", "feature")
+
+    def __init__(self, part, sub, feature):
+        self.part, self.sub, self.feature = part, sub, feature
+
+    def __iter__(self):
+        return iter((self.part, self.sub, self.feature))
+
+
+def references(j, parts=None, features=True):
+    """The joint's two references, (Reference, Reference), read by the one reader every caller
+    uses; LostReference (one sentence per case, naming the joint) when one of its parts was
+    deleted, when a part is not among `parts` (the names of the assembly's parts, with those of
+    its sub-assemblies; None: not checked), or, with `features`, when a picked element is gone
+    (FreeCAD renumbers the edges and faces of a changed shape, and its errors for a name it no
+    longer has vary: no such element, an edge with no curve)."""
+    refs = (j.Reference1, j.Reference2)
+    if not all(ref and ref[0] is not None for ref in refs):
+        raise LostReference(j, "one of its parts was deleted: pick its two references again (double-click "
+                               "the joint) or delete the joint")
+    if parts is not None:
+        for ref in refs:
+            if ref[0].Name not in parts:
+                raise LostReference(j, "%s is not a part of the assembly: add it to the assembly, or %s"
+                                       % (ref[0].Label, _PICK_AGAIN))
+    out = []
+    for part, subs in refs:
+        sub = subs[0] if subs else ""
+        f = None
+        if features and sub:
+            try:
+                f = geometry.feature(part, sub)
+            except Exception:
+                raise LostReference(j, "%s has no %s any more, its shape changed: %s"
+                                       % (part.Label, sub, _PICK_AGAIN)) from None
+        out.append(Reference(part, sub, f))
+    return tuple(out)
 
 
 # Features whose axis belongs to the geometry (a circle's, a line's, a plane's normal ...): a
@@ -56,29 +100,22 @@ LIVE_TYPES = ("Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "P
               "PointOnCurve", "Angle") + COUPLINGS
 
 
-def live_anchors(j):
+def live_anchors(j, refs=None):
     """The joint's points and axes in each part's frame, read again from the referenced edges and
     faces as the parts' shapes are now (a Pad made longer, a hole moved): {"Point1": ..., ...}.
     What did not change keeps its stored value exactly; an axis keeps the sense it was given
     (part 2's flipped when the picked axes pointed apart) and the twist reference stays across
     it; a Fixed or Slider whose twist comes from the picked frames (TwistFrom) reads that too
-    (picked_across). A joint on the whole part keeps what it has. ValueError, naming the joint,
-    when a referenced element is gone (FreeCAD renumbers the edges and faces of a changed shape)."""
+    (picked_across). A joint on the whole part keeps what it has. `refs`: references(j) when the
+    caller read them. LostReference, naming the joint, when a reference is lost."""
     out = {name: App.Vector(getattr(j, name)) for name in ANCHORS}
     if j.JointType not in LIVE_TYPES:  # a Distance keeps what it was made with
         return out
     picked = twist_from_picks(j)
     axis1 = None
-    for k, ref in (("1", j.Reference1), ("2", j.Reference2)):
-        part, subs = ref[0], ref[1]
-        sub = subs[0] if subs else ""
+    for k, (part, sub, f) in zip("12", refs or references(j)):
         if not sub:
             continue
-        try:
-            f = geometry.feature(part, sub)
-        except Exception:  # FreeCAD's errors vary (no such element, an edge with no curve)
-            raise ValueError("%s: %s has no %s any more, its shape changed: pick that reference again"
-                             % (j.Label, part.Label, sub)) from None
         if k == "1":
             axis1 = f.axis
         elif j.JointType == "RackPinion" and f.kind == "plane" and axis1 is not None:
@@ -433,16 +470,13 @@ class Adapter:
         self.anchors = {}
         active = []
         for j in joints(asm) + instance_joints:
-            why = missing_part(j, self.frames)
-            if not why:
-                try:
-                    self.anchors[j.Name, j.Document.Name] = live_anchors(j)
-                except ValueError as e:
-                    why = str(e).split(": ", 1)[1]
-            if why:
-                self.skipped.append((j, why))
-            else:
-                active.append(j)
+            try:
+                refs = references(j, self.frames, features=j.JointType in LIVE_TYPES)
+                self.anchors[j.Name, j.Document.Name] = live_anchors(j, refs)
+            except LostReference as e:
+                self.skipped.append((j, str(e)))
+                continue
+            active.append(j)
         self.joints = active
         # Couplings whose parts' geometry moved an axis or a centre since their phase was taken
         # (a hole moved, a gear made larger): the phase, measured about the old axes, would hold
@@ -562,7 +596,7 @@ class Adapter:
             raise ValueError(self.labelled(str(e))) from None
 
     def skipped_message(self):
-        return "; ".join("skipped %s (%s)" % (j.Label, why) for j, why in self.skipped)
+        return "; ".join("skipped %s" % said for _, said in self.skipped)
 
     def part_of(self, name):
         for p in self.parts:

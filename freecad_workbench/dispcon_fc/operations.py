@@ -11,7 +11,7 @@ import re
 import FreeCAD as App
 
 from . import engine, exploded, geometry, objects, subassembly
-from .adapter import ALREADY_HELD, Adapter, Result, _vec
+from .adapter import ALREADY_HELD, Adapter, Result, _vec, references
 from .objects import joints, placed_parts, shape_of
 
 
@@ -418,18 +418,16 @@ def twist_reference(j, side1, side2, picked=None, axis1=None):
     return geometry.to_local(o1.Placement, axis=perp_world), geometry.to_local(o2.Placement, axis=perp_world)
 
 
-def _references(joint):
-    """((part, sub), (part, sub)) of the joint's two references (sub "" for a whole part); refused,
-    naming the joint, when one of its parts was deleted."""
-    refs = (joint.Reference1, joint.Reference2)
-    if not all(ref and ref[0] is not None for ref in refs):
-        raise ValueError("%s: one of its parts was deleted" % joint.Label)
-    return tuple((ref[0], ref[1][0] if ref[1] else "") for ref in refs)
+def _read_references(joint, features=True):
+    """adapter.references of the joint, its parts checked against those of its assembly (when it
+    is in one): a lost reference refused in the words Solve and Check skip the joint with."""
+    asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
+    return references(joint, {p.Name for p in placed_parts(asm)} if asm is not None else None, features)
 
 
 def _referenced_features(joint):
     """((part, feature), (part, feature)) of the joint's two references as the parts stand now."""
-    return tuple((part, geometry.feature(part, sub) if sub else None) for part, sub in _references(joint))
+    return tuple((part, f) for part, _, f in _read_references(joint))
 
 
 def _check_twist_type(label, kind, twist_from):
@@ -450,13 +448,14 @@ def _check_twist(joint, kind, twist_from):
     references it gives, by the engine (the model's door): the joint added again with them to a
     model of its assembly as it stands."""
     _check_twist_type(joint.Label, kind, twist_from)
+    features = _referenced_features(joint)  # a lost reference refused before the engine skips the joint
     adapter = _door(joint, kind)
     if adapter is None:
         return
     from .adapter import joint_kwargs
 
     a = adapter.anchors[joint.Name, joint.Document.Name]
-    perp1, perp2 = twist_reference(joint, *_referenced_features(joint), picked=twist_from == objects.PICKED_FRAMES)
+    perp1, perp2 = twist_reference(joint, *features, picked=twist_from == objects.PICKED_FRAMES)
     kw = joint_kwargs(adapter.dispcon, joint, dict(a, Perp1=perp1, Perp2=perp2), kinds=adapter.kinds)
     try:
         with adapter.engine_errors():
@@ -549,14 +548,17 @@ _PHASE_MEASURE = ("Reversed", "Ratio", "Radius", "Pitch", "LeftHanded")
 
 def _door(joint, kind):
     """The adapter of the joint's assembly as it stands, to check a new value of the joint at the
-    engine (the model's door) before anything changes; None when there is nothing to check yet: a
-    joint changing its type to `kind` meets the door at its first solve, and one the adapter
-    skipped (a part deleted) is told so by its solve."""
+    engine (the model's door) before anything changes; None when there is nothing to check yet (a
+    joint changing its type to `kind` meets the door at its first solve). A joint the adapter
+    leaves out (a reference lost) is refused in the words its Solve says."""
     asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
     if asm is None or joint.JointType != kind:
         return None
     adapter = Adapter(asm)
-    return adapter if joint in adapter.joints else None
+    said = next((said for j, said in adapter.skipped if j == joint), None)
+    if said is not None:
+        raise ValueError(said)
+    return adapter
 
 
 def _check_phase(joint, kind, phase):
@@ -656,16 +658,24 @@ def edit_joint(joint, joint_type=None, undo_step=True, **limits):
         raise ValueError("%s: unknown joint type %r (expected one of %s)"
                          % (joint.Label, joint_type, ", ".join(objects.JOINT_TYPES)))
     kind = joint_type or joint.JointType
-    ref = joint.Reference1
-    if kind == "PointOnCurve" and ref and not (ref[1] and ref[1][0].startswith("Edge")):
+    retype = joint_type is not None and joint_type != joint.JointType
+    # A new type reads the picked geometry (its anchors at the next solve, a Distance's or a
+    # coupling's features now): its references read first, a lost one refused in their words.
+    refs = _read_references(joint) if retype else None
+    if kind == "PointOnCurve" and refs and not refs[0].sub.startswith("Edge"):
         raise ValueError("%s: a PointOnCurve joint needs an edge of %s as its first reference"
-                         % (joint.Label, ref[0].Label))
+                         % (joint.Label, refs[0].part.Label))
     _check_limits(joint.Label, **limits)
     # A type that reads the picked geometry (a Distance, a coupling) takes it from the references
     # again: the features, which one carries the guide, a rack's direction of travel.
     replace = None
-    if joint_type is not None and joint_type != joint.JointType and (joint_type in _NEEDS or joint.JointType in _NEEDS):
-        a, b = _guide_first(joint_type, *[(o, sub, geometry.feature(o, sub)) for o, sub in _references(joint)])
+    if retype and (joint_type in _NEEDS or joint.JointType in _NEEDS):
+        whole = next((r.part for r in refs if r.feature is None), None)
+        if whole is not None:
+            raise ValueError("%s: it holds %s whole, with no vertex, edge or face picked, which a %s joint "
+                             "reads: pick its references again (double-click the joint)"
+                             % (joint.Label, whole.Label, joint_type))
+        a, b = _guide_first(joint_type, *[tuple(r) for r in refs])
         _check_features(joint_type, a, b)
         replace = (a, b)
     f1 = replace[0][2] if replace else geometry.Feature((0, 0, 0), (0, 0, 1), getattr(joint, "Feature1", ""))
@@ -937,14 +947,11 @@ def drag(asm, part, placement, steps=None):
 def driven_side(joint):
     """The part a joint turns, with the joint's point and axis in that part's frame: the second
     part, or the first when the second is grounded (whichever order the references were picked)."""
-    if not (joint.Reference1 and joint.Reference1[0] and joint.Reference2 and joint.Reference2[0]):
-        raise ValueError("%s: one of its parts was deleted" % joint.Label)
-    for ref, point, axis in ((joint.Reference2, joint.Point2, joint.Axis2),
-                             (joint.Reference1, joint.Point1, joint.Axis1)):
-        if not getattr(ref[0], "Grounded", False):
-            return ref[0], point, axis
-    raise ValueError("%s joins two grounded parts (%s, %s): nothing to turn"
-                     % (joint.Label, joint.Reference1[0].Label, joint.Reference2[0].Label))
+    (part1, _, _), (part2, _, _) = _read_references(joint)  # its axis is its picked element's: lost, refused
+    for part, point, axis in ((part2, joint.Point2, joint.Axis2), (part1, joint.Point1, joint.Axis1)):
+        if not getattr(part, "Grounded", False):
+            return part, point, axis
+    raise ValueError("%s joins two grounded parts (%s, %s): nothing to turn" % (joint.Label, part1.Label, part2.Label))
 
 
 def _turned(start, pivot, axis_world, degrees):

@@ -19,7 +19,7 @@ import zipfile
 import FreeCAD as App
 
 from . import assembly as da
-from .adapter import plural
+from .adapter import LostReference, plural, references
 
 
 class StudyError(ValueError):
@@ -90,10 +90,10 @@ def _check_references(path, asm):
             raise StudyError("%s: error: part '%s' has no solid shape%s" % (path, p.Label, what))
     parts = set(p.Name for p in da.placed_parts(asm))
     for j in da.joints(asm):
-        for ref in (j.Reference1, j.Reference2):
-            if ref is None or ref[0] is None or ref[0].Name not in parts:
-                raise StudyError("%s: error: joint '%s' refers to a part that is not in '%s'"
-                                 % (path, j.Label, asm.Label))
+        try:
+            references(j, parts, features=False)  # the workbench's reader, in its words
+        except LostReference as e:
+            raise StudyError("%s: error: %s" % (path, e)) from None
 
 
 def _link_target(p):
