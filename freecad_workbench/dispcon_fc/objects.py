@@ -2,6 +2,7 @@
 the properties that make an object of the document a part. Every value lives in the objects'
 properties; the Python proxies hold nothing FreeCAD saves (a proxy's state is None; an assembly's
 keeps its parts' centres of mass while it lives, adapter.centres_of)."""
+import contextlib
 import math
 
 import FreeCAD as App
@@ -194,11 +195,29 @@ class JointProxy(_Proxy):
         _add(obj, "Joint", "App::PropertyBool", "Violated", "Solve")
         joint_extras(obj)
 
+    def onBeforeChange(self, obj, prop):
+        # What TwistFrom was before it is set (onChanged: a person's choice takes the twist anew).
+        if prop == "TwistFrom" and "TwistFrom" in obj.PropertiesList:
+            self.twist_before = obj.TwistFrom
+
     def onChanged(self, obj, prop):
         # Its type changed in the property editor: that type's properties shown (a document
         # being read gets them from attach, once its objects are restored).
         if prop == "JointType" and "Ratio" in obj.PropertiesList and "Restoring" not in obj.State:
             show_properties(obj)
+        # TwistFrom set in the property editor (or by a script) means what the joint panel and
+        # edit_joint make it mean: the twist taken again, from the picked frames or from the pose
+        # now (operations.twist_from_set); not when the workbench sets it itself (a new joint,
+        # an old one given the property), nor by a document being read, nor by an undo or redo,
+        # which put the twist references back with it.
+        if prop == "TwistFrom":
+            before, self.twist_before = getattr(self, "twist_before", None), None
+            if (before in TWIST_FROM and before != obj.TwistFrom and not getattr(self, "quiet", False)
+                    and not App.isRestoring() and "Restoring" not in obj.State
+                    and not obj.Document.Restoring and not obj.Document.Transacting):
+                from .operations import twist_from_set
+
+                twist_from_set(obj, before)
 
     def execute(self, obj):
         """A coupling whose part's geometry moved its axis or centre (the part recomputed: a hole
@@ -393,10 +412,26 @@ def twist_property(obj):
     the picked frames."""
     if "TwistFrom" not in obj.PropertiesList:
         obj.addProperty("App::PropertyEnumeration", "TwistFrom", "Joint", DOCS["Joint"]["TwistFrom"])
-        obj.TwistFrom = list(TWIST_FROM)
-        obj.TwistFrom = POSE_WHEN_MADE
+        with quiet(obj):  # what the joint always held: nothing to take anew
+            obj.TwistFrom = list(TWIST_FROM)
+            obj.TwistFrom = POSE_WHEN_MADE
     else:
         _document(obj, "TwistFrom", DOCS["Joint"]["TwistFrom"])
+
+
+@contextlib.contextmanager
+def quiet(obj):
+    """Values the workbench sets on a joint itself, which its proxy does not take as a person's
+    choice (JointProxy.onChanged)."""
+    proxy = getattr(obj, "Proxy", None)
+    if proxy is None or isinstance(proxy, str):
+        yield
+        return
+    proxy.quiet = True
+    try:
+        yield
+    finally:
+        proxy.quiet = False
 
 
 def twist_from_picks(joint):
@@ -751,7 +786,8 @@ def new_part(obj):
 def new_joint(doc, name):
     obj = doc.addObject("App::FeaturePython", name)
     JointProxy(obj)
-    obj.TwistFrom = PICKED_FRAMES  # a new joint means the same whatever pose its parts are in
+    with quiet(obj):
+        obj.TwistFrom = PICKED_FRAMES  # a new joint means the same whatever pose its parts are in
     _view(obj, "Joint")
     return obj
 

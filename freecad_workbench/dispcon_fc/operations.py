@@ -335,7 +335,8 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, named_by_parts=False,
         j = objects.new_joint(asm.Document, joint_type)
         j.JointType = joint_type
         if limits.get("twist_from") is not None:
-            j.TwistFrom = limits["twist_from"]  # before _place, which takes the twist reference by it
+            with objects.quiet(j):  # before _place, which takes the twist reference by it
+                j.TwistFrom = limits["twist_from"]
         _place(j, joint_type, a, b)
         _set_limits(j, **limits)
         if named_by_parts:
@@ -464,10 +465,38 @@ def _check_twist(joint, kind, twist_from):
         raise ValueError("%s: its twist taken from the %s: %s" % (joint.Label, twist_from.lower(), e)) from None
 
 
-def _retwist(joint):
-    """The joint's twist references made again by its TwistFrom (just changed): from the picked
-    frames, or from the pose the parts have now."""
-    joint.Perp1, joint.Perp2 = twist_reference(joint, *_referenced_features(joint))
+def _retwist(joint, twist_from):
+    """The joint's twist references made again for a new TwistFrom, then TwistFrom set: from the
+    picked frames, or from the pose the parts have now (in that order, so that the proxy, which
+    takes a TwistFrom set in the property editor as this, finds the twist already taken)."""
+    picked = twist_from == objects.PICKED_FRAMES
+    joint.Perp1, joint.Perp2 = twist_reference(joint, *_referenced_features(joint), picked=picked)
+    joint.TwistFrom = twist_from
+
+
+def twist_from_set(joint, before):
+    """TwistFrom just set in the property editor (or by a script), from `before`: taken as the
+    joint panel and edit_joint take it, the twist references made again from the picked frames
+    or from the pose the parts have now (a Revolute's limits then count from that turn), checked
+    at the engine's door first. Refused (a lost reference, a twist the joints cannot hold),
+    TwistFrom goes back to `before`, nothing else changed, and the Report view and the status bar
+    say why in the words edit_joint raises."""
+    now = joint.TwistFrom
+    try:
+        perps = twist_reference(joint, *_referenced_features(joint))
+        if all((p - getattr(joint, name)).Length < 1e-12 for p, name in zip(perps, ("Perp1", "Perp2"))):
+            return  # taken already (edit_joint, the panel), or the same either way
+        _check_twist(joint, joint.JointType, now)
+    except ValueError as e:
+        with objects.quiet(joint):
+            joint.TwistFrom = before
+        text = "%s (Twist from back to %r)" % (e, before)
+        from . import feedback
+
+        feedback.report(text, error=True)
+        feedback.status(text)
+        return
+    joint.Perp1, joint.Perp2 = perps
 
 
 def _check_distance(label, joint_type, f1, distance):
@@ -521,8 +550,7 @@ def _set_limits(j, rotation=None, travel=None, cone=None, angle=None, move=None,
     if shift is not None:
         j.FrameX, j.FrameY = (float(d) for d in shift)
     if twist_from is not None and twist_from != j.TwistFrom:
-        j.TwistFrom = twist_from
-        _retwist(j)
+        _retwist(j, twist_from)
     # What the coupling's phase is measured with changed: the engine makes it again at the
     # poses the parts have (record_phases keeps it), so the parts stay where they are.
     remade = False

@@ -1,9 +1,10 @@
 """A joint whose reference is lost (freecadcmd): its part deleted, its part taken out of the
 assembly, or its picked edge gone from a PartDesign Pad made shorter. The joint's references are
 read by one reader (adapter.references), so the user reads the same sentence, naming the joint
-and saying what to do, from every path: Solve's and Check's message, an edit of its TwistFrom, of
-its type, of its frame, the Drive; and each refusal leaves the document as it was, every property
-of every object. Each test opens and closes its own document."""
+and saying what to do, from every path: Solve's and Check's message, an edit of its TwistFrom (by
+edit_joint or in the property editor), of its type, of its frame, the Drive; and each refusal
+leaves the document as it was, every property of every object. Each test opens and closes its own
+document."""
 import math
 import os
 import sys
@@ -123,6 +124,11 @@ class Lost(unittest.TestCase):
         self.refused(doc, said, lambda: da.edit_joint(j, joint_type="Gears"))  # one that reads the features now
         self.refused(doc, said, lambda: da.edit_joint(j, frame=(10, 0, 0)))
         self.refused(doc, said, lambda: da.drive_to(asm, j, 45))
+        # The property editor cannot refuse before the value changes: the joint puts it back.
+        before = state(doc)
+        j.TwistFrom = objects.POSE_WHEN_MADE
+        self.assertEqual(j.TwistFrom, objects.PICKED_FRAMES)
+        self.assertEqual(state(doc), before)
 
     def test_an_edge_gone_from_a_pad_made_shorter(self):
         doc = App.newDocument("edge_gone")
@@ -165,8 +171,64 @@ class Lost(unittest.TestCase):
         self.assertIsNone(adapter.references(j, features=False)[0].feature)
 
 
+class TwistFromInThePropertyEditor(unittest.TestCase):
+    """TwistFrom set in the property editor means what the joint panel and edit_joint make it
+    mean: "Pose when made" takes the turn part 2 has now (a Revolute's limits then count from
+    it), "Picked frames" the picked elements' frames, at once, not at some later solve."""
+
+    def tearDown(self):
+        close_all()
+
+    def crank_at(self, doc, degrees):
+        asm, body, pin_pad, top, crank, j = crank_on_pin(doc)
+        crank.Placement = App.Placement(App.Vector(3, 0, 2), App.Rotation(Z, degrees))
+        return asm, crank, j
+
+    def stop(self, asm, crank, start):
+        """The crank's turn about z after a solve from `start` degrees."""
+        crank.Placement = App.Placement(App.Vector(3, 0, 2), App.Rotation(Z, start))
+        r = da.solve(asm)
+        self.assertTrue(r.converged, r.message)
+        q = crank.Placement.Rotation
+        return math.degrees(math.atan2(q.multVec(App.Vector(1, 0, 0)).y, q.multVec(App.Vector(1, 0, 0)).x))
+
+    def test_pose_when_made_set_in_the_editor_is_edit_joints(self):
+        by_editor, by_edit = App.newDocument("by_editor"), App.newDocument("by_edit")
+        (asm1, crank1, j1), (asm2, crank2, j2) = self.crank_at(by_editor, 40), self.crank_at(by_edit, 40)
+        self.assertAlmostEqual(self.stop(asm1, crank1, 120), 90.0, delta=1e-6)  # from the picked frames
+        crank1.Placement = crank2.Placement = App.Placement(App.Vector(3, 0, 2), App.Rotation(Z, 40))
+        j1.TwistFrom = objects.POSE_WHEN_MADE  # as the property editor sets it
+        da.edit_joint(j2, twist_from=objects.POSE_WHEN_MADE)
+        for name in ("Perp1", "Perp2"):
+            self.assertLess((getattr(j1, name) - getattr(j2, name)).Length, 1e-12, name)
+        # The limits now count from the crank's 40 degrees: 0..90 stops it at 40 and 130.
+        self.assertAlmostEqual(self.stop(asm1, crank1, 10), 40.0, delta=1e-6)
+        self.assertAlmostEqual(self.stop(asm1, crank1, 150), 130.0, delta=1e-6)
+        # And back to the picked frames in the editor: 0 and 90 again.
+        j1.TwistFrom = objects.PICKED_FRAMES
+        self.assertAlmostEqual(self.stop(asm1, crank1, 150), 90.0, delta=1e-6)
+        self.assertAlmostEqual(self.stop(asm1, crank1, -20), 0.0, delta=1e-6)
+
+    def test_an_undo_puts_back_what_the_change_took(self):
+        """The property editor's change is one undo step with the twist it took: undone, the
+        joint's twist references are those of before, whatever the parts' pose."""
+        doc = App.newDocument("undo_twist")
+        doc.UndoMode = 1
+        asm, crank, j = self.crank_at(doc, 40)
+        perps = (App.Vector(j.Perp1), App.Vector(j.Perp2))
+        doc.openTransaction("Edit TwistFrom")
+        j.TwistFrom = objects.POSE_WHEN_MADE
+        doc.commitTransaction()
+        self.assertGreater((j.Perp2 - perps[1]).Length, 1e-3)  # the crank's 40 degrees taken
+        crank.Placement = App.Placement(App.Vector(3, 0, 2), App.Rotation(Z, 70))
+        doc.undo()
+        self.assertEqual(j.TwistFrom, objects.PICKED_FRAMES)
+        for got, want in zip((j.Perp1, j.Perp2), perps):
+            self.assertLess((got - want).Length, 1e-12)
+
+
 suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
-                           for c in (Lost,))
+                           for c in (Lost, TwistFromInThePropertyEditor))
 result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
 failed = len(result.failures) + len(result.errors)
 print("%d passed, %d failed" % (result.testsRun - failed, failed))
