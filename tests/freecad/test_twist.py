@@ -3,8 +3,9 @@ about the axis from the picked elements' frames (TwistFrom "Picked frames", as F
 Assembly lines up a joint's two coordinate systems), so it means the same whatever pose the parts
 were in when it was made, and snaps them square; a joint of a document saved before TwistFrom
 existed keeps the turn it was made with (data/twist-before.FCStd, made by make_twist_fixture.py
-with the workbench of then, and what that workbench's solves gave: twist-before.json). Each test
-opens and closes its own documents."""
+with the workbench of then, and what that workbench's solves gave: twist-before.json), and so does
+a Cylindrical saved by the fifteenth round's starting workbench (data/cylindrical-before.FCStd,
+make_cylindrical_fixture.py). Each test opens and closes its own documents."""
 import json
 import math
 import os
@@ -304,6 +305,38 @@ class LimitsSavedBefore(unittest.TestCase):
         self.assertAlmostEqual(turned_about_z(self.doc.getObject("Above")), 90.0, delta=1e-6)
 
 
+class CylindricalSavedBefore(unittest.TestCase):
+    """data/cylindrical-before.FCStd, saved by the workbench of the fifteenth round's start (main
+    3d84d20, make_cylindrical_fixture.py): two Cylindricals limited to a turn of 0..90 deg and a
+    travel of 0..0.5, made with their links turned 40 degrees, one counting its turn from the
+    picked frames, the other from the pose when made; reopened, each keeps its meaning."""
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp()
+        path = os.path.join(self.tmp, "cylindrical-before.FCStd")
+        shutil.copy(os.path.join(DATA, "cylindrical-before.FCStd"), path)  # the file itself is never written
+        with open(os.path.join(DATA, "cylindrical-before.json")) as f:
+            self.facts = json.load(f)["Sleeves"]
+        self.doc = App.openDocument(path)
+        self.asm = da.top_assemblies(self.doc)[0]
+
+    def tearDown(self):
+        close_all()
+        shutil.rmtree(self.tmp)
+
+    def test_its_cylindricals_keep_their_meaning(self):
+        self.assertEqual({j.Label: j.TwistFrom for j in da.joints(self.asm)}, self.facts["TwistFrom"])
+        r = da.solve(self.asm)
+        self.assertTrue(r.converged, r.message)
+        self.assertTrue(self.facts["converged"])
+        for name, turn, z in (("Picked", 90.0, 0.6), ("Posed", 40.0, -0.1)):
+            o = self.doc.getObject(name)
+            want = stored(self.facts[name])
+            self.assertTrue(th.same(o.Placement, want, 1e-9), (name, o.Placement, want))
+            self.assertAlmostEqual(turned_about_z(o), turn, delta=1e-6)  # at a limit of its turn
+            self.assertAlmostEqual(o.Placement.Base.z, z, delta=1e-9)  # and of its travel
+
+
 class PickedAcross(unittest.TestCase):
     """The rule for an element with no frame of its own across its axis: the part's z, x or y
     most across it (z first on a tie), made square to it; the same either way along the axis."""
@@ -328,8 +361,8 @@ class PickedAcross(unittest.TestCase):
 
 if not os.environ.get("DISPCON_TWIST_IMPORT_ONLY"):  # run by freecadcmd as a script
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
-                               for c in (FixedMadeAskew, RevoluteLimitsMadeTurned, SavedBefore,
-                                                                         LimitsSavedBefore, PickedAcross))
+                               for c in (FixedMadeAskew, RevoluteLimitsMadeTurned, SavedBefore, LimitsSavedBefore,
+                                         CylindricalSavedBefore, PickedAcross))
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
     failed = len(result.failures) + len(result.errors)
     print("%d passed, %d failed" % (result.testsRun - failed, failed))
