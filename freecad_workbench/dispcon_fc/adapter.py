@@ -92,8 +92,10 @@ def references(j, parts=None, features=True):
     return tuple(out)
 
 
-# Features whose axis belongs to the geometry (a circle's, a line's, a plane's normal ...): a
-# vertex, a sphere or another face gives the world's z, which says nothing of the part.
+# Features whose axis belongs to the geometry (a circle's, a line's, a plane's normal ...), read
+# again at every solve. A vertex's (the part's own z) and a sphere's (its own axis) are kept as
+# stored: a joint made before the fifteenth round took the world's z at the pose it was made in
+# there, and keeps that meaning; another face gives the world's z, which says nothing of the part.
 OWN_AXIS = ("circle", "line", "curve", "cylinder", "plane")
 ANCHORS = ("Point1", "Axis1", "Perp1", "Point2", "Axis2", "Perp2")
 LIVE_TYPES = ("Fixed", "Revolute", "Slider", "Cylindrical", "Ball", "Planar", "PointOnLine", "PointOnPlane",

@@ -6,8 +6,8 @@ class Feature:
     """A point and a unit axis in world coordinates, where they came from, and the radius of a
     circular edge or a cylindrical face (None for others): a gear's pitch circle. `across`: the x
     direction of the element's own frame, in world coordinates, where it has one (a circle's, a
-    planar or cylindrical face's surface frame; FreeCAD's Assembly takes a joint's frame from
-    it), else None: a line, a vertex, a sphere define no direction across their axis."""
+    planar, cylindrical or spherical face's surface frame; FreeCAD's Assembly takes a joint's
+    frame from it), else None: a line and a vertex define no direction across their axis."""
 
     def __init__(self, point, axis, kind, radius=None, across=None):
         self.point = App.Vector(point)
@@ -29,7 +29,9 @@ def feature(obj, sub):
     """The joint feature of `obj`'s sub-element `sub` ("Edge3", "Face2", "Vertex1"), in world
     coordinates: a circular edge gives its centre and axis, a straight edge its midpoint and
     direction, a cylindrical face its axis (the point nearest to its centre of mass), a planar face
-    its centre and normal, a spherical face its centre, a vertex its point (axis z)."""
+    its centre and normal, a spherical face its centre and its own axis, a vertex its point and
+    the part's own z (FreeCAD 1.x's Assembly gives a vertex the part's own axes: a function of the
+    part, never of the pose it stands in); another face its centre of mass and the world's z."""
     if hasattr(obj, "Shape"):
         shape = obj.Shape
     else:  # an App::Link: the linked shape, placed
@@ -43,7 +45,7 @@ def feature(obj, sub):
     curve = getattr(element, "Curve", None)
     surface = getattr(element, "Surface", None)
     if sub.startswith("Vertex"):
-        return Feature(element.Point, App.Vector(0, 0, 1), "vertex")
+        return Feature(element.Point, shape.Placement.Rotation.multVec(App.Vector(0, 0, 1)), "vertex")
     if sub.startswith("Edge"):
         if hasattr(curve, "Radius") and hasattr(curve, "Center"):
             return Feature(curve.Center, curve.Axis, "circle", curve.Radius, getattr(curve, "XAxis", None))
@@ -64,13 +66,14 @@ def feature(obj, sub):
             return Feature(element.CenterOfMass, element.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1)), "plane",
                            across=_surface_x(surface))
         if kind == "Part::GeomSphere":
-            return Feature(surface.Center, App.Vector(0, 0, 1), "sphere")
+            return Feature(surface.Center, surface.Axis, "sphere", across=_surface_x(surface))
         return Feature(element.CenterOfMass, App.Vector(0, 0, 1), "face")
     raise ValueError("%s.%s: expected a VertexN, EdgeN or FaceN" % (obj.Label, sub))
 
 
 def _surface_x(surface):
-    """The x direction of a surface's own frame (a plane's, a cylinder's), world coordinates."""
+    """The x direction of a surface's own frame (a plane's, a cylinder's, a sphere's), world
+    coordinates."""
     rotation = getattr(surface, "Rotation", None)
     return rotation.multVec(App.Vector(1, 0, 0)) if rotation is not None else None
 

@@ -337,6 +337,55 @@ class CylindricalSavedBefore(unittest.TestCase):
             self.assertAlmostEqual(o.Placement.Base.z, z, delta=1e-9)  # and of its travel
 
 
+def vertex_at(o, local):
+    """The name of the vertex of `o` at `local` (a point of its own frame)."""
+    back = o.Placement.inverse()
+    return next("Vertex%d" % (k + 1) for k, v in enumerate(o.Shape.Vertexes) if (back.multVec(v.Point) - local).Length < 1e-9)
+
+
+class VertexAndSphereFrames(unittest.TestCase):
+    """A vertex's frame is the part's own axes, a sphere's its own, as FreeCAD 1.x's Assembly takes
+    them: not the world's z at the pose the joint was made in (main 3d84d20's rule)."""
+
+    def tearDown(self):
+        close_all()
+
+    def test_a_fixed_on_two_vertices_lines_up_the_parts_own_axes(self):
+        """Made with the arm turned 40 degrees and tipped 20, or turned -70 and tipped 35 about
+        y, the Fixed on a corner of each stands the arm square on the base, its corner on the
+        base's (main's held it tipped as it was made)."""
+        for made in (TURNED, App.Rotation(Z, -70).multiply(App.Rotation(App.Vector(0, 1, 0), 35))):
+            doc = App.newDocument("vertex_fixed")
+            asm = da.create_assembly(doc)
+            base, arm = doc.addObject("Part::Feature", "Base"), doc.addObject("Part::Feature", "Arm")
+            base.Shape, arm.Shape = parts.Part.makeBox(1, 1, 0.2), parts.Part.makeBox(0.5, 0.2, 0.1)
+            da.add_part(asm, base, grounded=True)
+            da.add_part(asm, arm)
+            arm.Placement = App.Placement(App.Vector(1.2, 0.9, 0.4), made)
+            j = da.add_joint(asm, "Fixed", (base, vertex_at(base, App.Vector(1, 1, 0.2))),
+                             (arm, vertex_at(arm, App.Vector(0, 0, 0))))
+            self.assertLess((j.Axis2 - Z).Length, 1e-12, j.Axis2)  # the arm's own z
+            r = da.solve(asm)
+            self.assertTrue(r.converged, r.message)
+            self.assertLess(arm.Placement.Rotation.Angle, 1e-9, arm.Placement)
+            self.assertLess((arm.Placement.Base - App.Vector(1, 1, 0.2)).Length, 1e-9, arm.Placement)
+            close_all()
+
+    def test_a_spheres_frame_is_its_own_whatever_the_pose(self):
+        doc = App.newDocument("sphere_frame")
+        ball = doc.addObject("Part::Feature", "Ball")
+        ball.Shape = parts.Part.makeSphere(0.3, App.Vector(0.5, 0, 0), App.Vector(1, 0, 0))  # its axis the part's x
+        for pose in (App.Placement(), App.Placement(App.Vector(3, 2, 1), TURNED)):
+            ball.Placement = pose
+            f = adapter.geometry.feature(ball, "Face1")
+            self.assertEqual(f.kind, "sphere")
+            self.assertLess((adapter.geometry.to_local(pose, point=f.point) - App.Vector(0.5, 0, 0)).Length, 1e-9)
+            self.assertLess((adapter.geometry.to_local(pose, axis=f.axis) - App.Vector(1, 0, 0)).Length, 1e-12)
+            across = adapter.geometry.to_local(pose, axis=f.across)
+            self.assertLess(abs(across.dot(App.Vector(1, 0, 0))), 1e-12)
+            self.assertLess((across - Z).Length, 1e-12, across)  # the sphere's own x: the part's z here
+
+
 class PickedAcross(unittest.TestCase):
     """The rule for an element with no frame of its own across its axis: the part's z, x or y
     most across it (z first on a tie), made square to it; the same either way along the axis."""
@@ -362,7 +411,7 @@ class PickedAcross(unittest.TestCase):
 if not os.environ.get("DISPCON_TWIST_IMPORT_ONLY"):  # run by freecadcmd as a script
     suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
                                for c in (FixedMadeAskew, RevoluteLimitsMadeTurned, SavedBefore, LimitsSavedBefore,
-                                         CylindricalSavedBefore, PickedAcross))
+                                         CylindricalSavedBefore, VertexAndSphereFrames, PickedAcross))
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
     failed = len(result.failures) + len(result.errors)
     print("%d passed, %d failed" % (result.testsRun - failed, failed))
