@@ -225,6 +225,21 @@ class TwistFromInThePropertyEditor(unittest.TestCase):
         self.assertEqual(j.TwistFrom, objects.PICKED_FRAMES)
         for got, want in zip((j.Perp1, j.Perp2), perps):
             self.assertLess((got - want).Length, 1e-12)
+        # The other way: an undo back to "Pose when made" keeps the turn taken at 40 degrees, not
+        # the 70 the crank stands at when undone.
+        crank.Placement = App.Placement(App.Vector(3, 0, 2), App.Rotation(Z, 40))
+        doc.openTransaction("Edit joint")
+        da.edit_joint(j, twist_from=objects.POSE_WHEN_MADE, undo_step=False)
+        doc.commitTransaction()
+        perps = (App.Vector(j.Perp1), App.Vector(j.Perp2))
+        doc.openTransaction("Edit TwistFrom")
+        j.TwistFrom = objects.PICKED_FRAMES
+        doc.commitTransaction()
+        crank.Placement = App.Placement(App.Vector(3, 0, 2), App.Rotation(Z, 70))
+        doc.undo()
+        self.assertEqual(j.TwistFrom, objects.POSE_WHEN_MADE)
+        for got, want in zip((j.Perp1, j.Perp2), perps):
+            self.assertLess((got - want).Length, 1e-12)
 
 
 suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromTestCase(c)
