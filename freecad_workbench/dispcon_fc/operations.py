@@ -586,7 +586,7 @@ def _door(joint, kind):
     said = next((said for j, said in adapter.skipped if j == joint), None)
     if said is not None:
         raise ValueError(said)
-    return adapter
+    return adapter if joint in adapter.joints else None
 
 
 def _check_phase(joint, kind, phase):
