@@ -421,8 +421,11 @@ def twist_reference(j, side1, side2, picked=None, axis1=None):
 
 def _read_references(joint, features=True):
     """adapter.references of the joint, its parts checked against those of its assembly (when it
-    is in one): a lost reference refused in the words Solve and Check skip the joint with."""
-    asm = next((p for p in joint.InList if objects.is_assembly(p)), None)
+    is in one): a lost reference refused in the words Solve and Check skip the joint with. A
+    joint as it holds in a flexible instance (the Drive's Walk2.Leg3.Revolute) holds the
+    instance's links, which its placed assembly's parts are not: read without that check."""
+    own = not isinstance(joint, subassembly.InstanceJoint)
+    asm = next((p for p in joint.InList if objects.is_assembly(p)), None) if own else None
     return references(joint, {p.Name for p in placed_parts(asm)} if asm is not None else None, features)
 
 
