@@ -124,7 +124,8 @@ class ViewProviderAssembly(_ViewProxy):
             if j.TypeId != "App::FeaturePython":  # a part: no marker (read at once, not its view's proxy)
                 continue
             view = _joint_view(j)
-            frame = markers.joint_frame(j) if view is not None else None
+            # (a joint whose part was deleted is not drawn: it takes no room)
+            frame = markers.joint_frame(j) if view is not None and not getattr(view, "broken", False) else None
             if frame is not None:
                 frames.append((j.Name, frame[0], frame[1]))
                 views[j.Name] = view
@@ -212,6 +213,7 @@ class ViewProviderJoint(_ViewProxy):
         self.marker = markers.Marker(obj.JointType, "dispcon_marker_" + obj.Name)
         self.shift = None  # set off its point, apart from markers near it (the assembly's restack)
         self.waiting = False  # for the layout after a restore to place it (follow)
+        self.broken = False  # one of its parts deleted: not drawn (follow)
         vobj.addDisplayMode(self.marker.root, "Marker")
         self.follow(obj)
 
@@ -246,10 +248,16 @@ class ViewProviderJoint(_ViewProxy):
         the restore (ViewProviderAssembly.place_later)."""
         if obj.Document.Restoring and self._wait(obj):
             return
-        if getattr(self, "waiting", False):
-            self.waiting = False
-            self.marker.set_visible(True)
-        placement = markers.joint_placement(obj)
+        # Either part gone (deleted): the joint joins nothing and is skipped by Solve and Check.
+        broken = not all(ref and ref[0] is not None for ref in (obj.Reference1, obj.Reference2))
+        placement = None if broken else markers.joint_placement(obj)
+        if getattr(self, "waiting", False) or broken != getattr(self, "broken", False):
+            # A joint one of whose parts was deleted is drawn nowhere, as FreeCAD 1.x's Assembly
+            # hides a joint's frame whose reference is gone (it was left where the part had
+            # been, in the air, the joint skipped by Solve and Check, which name it); an undo of
+            # the delete gives the part back and the marker is drawn at its place again.
+            self.waiting, self.broken = False, broken
+            self.marker.set_visible(not broken)
         if placement is not None:
             self.marker.set_placement(placement)
             shift = getattr(self, "shift", None)

@@ -864,6 +864,92 @@ doc.saveAs(%r)
 """
 
 
+def shifts_of(asm):
+    """Each joint's marker's shift off its point (the layout's), rounded to 1e-9 glyph units."""
+    from dispcon_fc import objects, viewproviders
+
+    out = []
+    for j in objects.joints(asm):
+        v = viewproviders.joint_view(j).shift
+        out.append(None if v is None else tuple(round(c, 9) + 0.0 for c in v))
+    return out
+
+
+def orange_count(view, name):
+    """The markers' orange pixels in an image of the view saved at 640 x 480 (every pixel)."""
+    import numpy
+
+    path = os.path.join(OUT, name + ".png")
+    view.saveImage(path, 640, 480, "White")
+    image = image_pixels(path)
+    r, g, b = image[:, :, 0], image[:, :, 1], image[:, :, 2]
+    return int(numpy.count_nonzero((r > 200) & (g > 60) & (g < 170) & (b < 60)))
+
+
+class TestMarkerFixes(Documents):
+    """The fifteenth round: a deleted part's joints are not drawn, and are again after an undo."""
+
+    def crowded_fourbar(self):
+        """The four-bar solved, seen from the top and zoomed out until its markers crowd (the
+        layout pushes them apart): (asm, its parts, the view)."""
+        from dispcon_fc import operations
+
+        made = self.fourbar()
+        self.assertTrue(operations.solve(made[0]).converged)
+        view = self.view()
+        view.viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        camera = view.getCameraNode()
+        camera.height.setValue(camera.height.getValue() * 6)
+        laid_out()
+        return made, view
+
+    def test_a_deleted_parts_joints_are_not_drawn_and_come_back_with_its_undo(self):
+        """The fourth audit: the rack deleted, its joints' markers stayed where it had been, in
+        the air. The coupler deleted (part 2 of Crank-Coupler, part 1 of Coupler-Rocker): both
+        markers hidden, the other two drawn as before; an undo of the delete draws them again at
+        their joints."""
+        from dispcon_fc import markers, objects, viewproviders
+
+        (asm, g, crank, coupler, rocker), view = self.crowded_fourbar()
+        Gui.SendMsgToActiveView("ViewFit")
+        laid_out()
+        js = objects.joints(asm)
+        gone = [j for j in js if coupler in (j.Reference1[0], j.Reference2[0])]
+        self.assertEqual(len(gone), 2)
+        marks = {j.Name: viewproviders.joint_view(j).marker for j in js}
+        every = orange_count(view, "_all")
+        for j in gone:
+            marks[j.Name].set_visible(False)
+        settle()
+        without = orange_count(view, "_without")
+        for j in gone:
+            marks[j.Name].set_visible(True)
+        settle()
+        self.assertLess(without, 0.75 * every, "the two markers are not half the orange (%d of %d)" % (without, every))
+        self.doc.openTransaction("Delete")
+        self.doc.removeObject(coupler.Name)
+        self.doc.commitTransaction()
+        settle()
+        laid_out()
+        for j in js:
+            self.assertEqual(marks[j.Name].is_visible(), j not in gone, j.Label)
+        deleted = orange_count(view, "marker-part-deleted")
+        shot("markers-part-deleted", view)
+        self.assertLess(abs(deleted - without), 0.1 * every,
+                        "drawn after the delete: %d orange pixels, %d without the two markers" % (deleted, without))
+        self.doc.undo()
+        settle()
+        laid_out()
+        self.assertIsNotNone(self.doc.getObject(coupler.Name), "the undo did not bring the coupler back")
+        for j in js:
+            self.assertTrue(marks[j.Name].is_visible(), "%s not drawn after the undo" % j.Label)
+            at = App.Vector(*marks[j.Name].transform.translation.getValue().getValue())
+            self.assertLess((at - markers.joint_frame(j)[0]).Length, 1e-6, j.Label)  # (Coin keeps floats)
+        again = orange_count(view, "marker-part-undeleted")
+        self.assertLess(abs(again - every), 0.1 * every, "after the undo: %d orange pixels, %d before" % (again, every))
+
+
 def fourbar_in(doc):
     """test_headless's four-bar made in `doc` (its parts' STEP files in a folder of their own):
     the assembly."""
@@ -2884,7 +2970,7 @@ def run_in_gui(classes, status_name):
 
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestDragAtALimit, TestCouplings,
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestMarkerFixes, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestDragAtALimit, TestCouplings,
                                     TestPanelFixes, TestTypedAndPicked, TestPanelsGone)
                 if not only or only in cls.__name__], "status-workbench")
 
