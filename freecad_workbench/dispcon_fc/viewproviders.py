@@ -104,7 +104,7 @@ class ViewProviderAssembly(_ViewProxy):
         shifts = {name: across * (k * markers.STACK_SPACING) for name, (k, across) in stacked.items()}
         screen = _screen(doc)
         if screen is not None:
-            self._watch(screen.camera)
+            self._watch(screen)
             gap = markers.SCREEN_GAP * markers.PIXELS
             anchors = screen.pixels_of(points)
             seeds = [screen.across(shifts[name]) if name in shifts else (0.0, 0.0) for name, _, _ in frames]
@@ -137,15 +137,14 @@ class ViewProviderAssembly(_ViewProxy):
         spread = max(float((points.max(axis=0) - points.min(axis=0)).max()), 1e-9)
         return frames, views, markers.stacks(frames, 1e-6 * spread), points
 
-    def _watch(self, camera):
-        """Lays the markers out again whenever `camera` (the 3D view's) moves."""
+    def _watch(self, screen):
+        """Lays the markers out again whenever the camera of `screen` (the 3D view's) moves, and
+        when the view is drawn at another size or through another kind of camera than the layout
+        counted with (a resize, a switch between orthographic and perspective), which move no
+        camera: a probe at the top of the view's scene graph compares at each redraw."""
         from pivy import coin
 
-        sensor = getattr(self, "camera_sensor", None)
-        if sensor is not None and getattr(self, "camera", None) is camera:
-            return
-        if sensor is not None:
-            sensor.detach()
+        self.laid_for = screen.drawn
         if getattr(self, "camera_timer", None) is None:
             from .qt import QtCore
 
@@ -155,9 +154,32 @@ class ViewProviderAssembly(_ViewProxy):
             self.camera_timer.setSingleShot(True)
             self.camera_timer.setInterval(self.CAMERA_REST_MS)
             self.camera_timer.timeout.connect(self.restack)
-        self.camera = camera
+        probe = getattr(self, "probe", None)
+        if probe is None or probe.graph != int(screen.view.getSceneGraph().this):
+            if probe is not None:
+                probe.remove()
+            self.probe = _Probe(screen.view, self)
+        sensor = getattr(self, "camera_sensor", None)
+        if sensor is not None and getattr(self, "camera", None) is screen.camera:
+            return
+        if sensor is not None:
+            sensor.detach()
+        self.camera = screen.camera
         self.camera_sensor = coin.SoNodeSensor(lambda *_: self.camera_timer.start(), None)
-        self.camera_sensor.attach(camera)
+        self.camera_sensor.attach(screen.camera)
+
+    def seen_otherwise(self, drawn):
+        """The probe's word: the view was drawn as `drawn` ((width, height, orthographic) of its
+        viewport and camera), not as the layout counted: laid out again once that rests (a
+        resize sends a redraw at every step)."""
+        if drawn != getattr(self, "laid_for", None) and getattr(self, "camera_timer", None) is not None:
+            self.camera_timer.start()
+
+    def onDelete(self, vobj, subelements):
+        probe, self.probe = getattr(self, "probe", None), None
+        if probe is not None:
+            probe.remove()
+        return True
 
     def getIcon(self):
         return icon("Assembly")
@@ -458,15 +480,61 @@ def highlighted(doc):
     return (list(h.instances), set(h.parts)) if h is not None else ([], set())
 
 
+class _Probe:
+    """An SoCallback at the top of a 3D view's scene graph (FreeCAD's selection node, which holds
+    every view provider's nodes): traversed at each redraw of the view before anything it draws,
+    it tells its assembly's view provider the viewport's size and whether the camera is
+    orthographic, so that a resize or a change of projection (neither moves the camera the
+    layout watches) lays the markers out again. One Python call a redraw, whatever the number of
+    markers; a traversal that is not a redraw (a pick, a bounding box) returns at once."""
+
+    def __init__(self, view, owner):
+        from pivy import coin
+
+        graph = view.getSceneGraph()
+        # The view, not its scene graph, is held: a closed view raises when asked for its graph,
+        # where a graph held past its view would be read after it is freed.
+        self.view, self.graph = view, int(graph.this)
+        self.node = coin.SoCallback()
+        self.node.setName("dispcon_layout_probe")
+        self.node.setCallback(_probe, (owner, coin.SoGLRenderAction.getClassTypeId(), coin.SoViewportRegionElement.get,
+                                       coin.SoViewVolumeElement.get, coin.SbViewVolume.ORTHOGRAPHIC))
+        graph.insertChild(self.node, 0)
+
+    def remove(self):
+        view, self.view = self.view, None
+        try:
+            graph = view.getSceneGraph() if view is not None else None
+        except Exception:  # the view is closed: the probe went with its scene graph
+            return
+        if graph is not None and int(graph.this) == self.graph:
+            k = graph.findChild(self.node)
+            if k >= 0:
+                graph.removeChild(k)
+
+
+def _probe(data, action):
+    """_Probe's callback (`data`: the assembly's view provider, the render action's type and the
+    elements' getters, found once)."""
+    owner, render, region, volume, orthographic = data
+    if not action.isOfType(render):
+        return
+    state = action.getState()
+    width, height = region(state).getViewportSizePixels()
+    owner.seen_otherwise((width, height, volume(state).getProjectionType() == orthographic))
+
+
 class _Screen:
     """How the camera of a 3D view shows the world: pixels(point) the point's place on the screen
     (pixels from the camera's axis, x right, y up), world((dx, dy)) a shift of so many pixels as
     a world vector in glyph units (markers.PIXELS pixels each), across(shift) the other way."""
 
-    def __init__(self, camera, height_pixels, width_pixels=None):
+    def __init__(self, camera, height_pixels, width_pixels=None, view=None):
         from pivy import coin
 
-        self.camera = camera
+        self.camera, self.view = camera, view  # (the 3D view, for _Probe)
+        # How the view is drawn, as the layout counts it (compared by _Probe at each redraw).
+        self.drawn = (width_pixels, height_pixels, camera.isOfType(coin.SoOrthographicCamera.getClassTypeId()))
         # The screen in pixels() (None: unknown, every marker laid out), its longer side both
         # ways: a window taller than wide has its camera's height across its width.
         side = 0.5 * max(width_pixels, height_pixels) if width_pixels else None
@@ -529,7 +597,7 @@ def _screen(doc):
         if view is None or not hasattr(view, "getCameraNode"):
             return None
         width, height = view.getViewer().getSoRenderManager().getViewportRegion().getViewportSizePixels()
-        return _Screen(view.getCameraNode(), height, width)
+        return _Screen(view.getCameraNode(), height, width, view)
     except Exception:  # a view closing meanwhile: the world's stacks only
         return None
 

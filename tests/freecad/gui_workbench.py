@@ -887,7 +887,8 @@ def orange_count(view, name):
 
 
 class TestMarkerFixes(Documents):
-    """The fifteenth round: a deleted part's joints are not drawn, and are again after an undo."""
+    """The fifteenth round: a resize or a change of projection lays the markers out again; a
+    deleted part's joints are not drawn, and are again after an undo."""
 
     def crowded_fourbar(self):
         """The four-bar solved, seen from the top and zoomed out until its markers crowd (the
@@ -903,6 +904,70 @@ class TestMarkerFixes(Documents):
         camera.height.setValue(camera.height.getValue() * 6)
         laid_out()
         return made, view
+
+    def test_a_resize_lays_the_markers_out_again(self):
+        """Resizing the window moves no camera; the layout counted the old size (stale offsets,
+        markers pushed apart as the old size had them) until the camera moved. Now the markers
+        are laid out for the new size once the resize rests, as a layout run then lays them."""
+        from pivy import coin
+
+        (asm, *_), view = self.crowded_fourbar()
+        proxy = asm.ViewObject.Proxy
+        # One probe in the view, at the top of its scene graph.
+        search = coin.SoSearchAction()
+        search.setName("dispcon_layout_probe")
+        search.setInterest(coin.SoSearchAction.ALL)
+        search.apply(view.getSceneGraph())
+        self.assertEqual(search.getPaths().getLength(), 1)
+        self.assertEqual(view.getSceneGraph().getChild(0).getName().getString(), "dispcon_layout_probe")
+        window = mw().geometry()
+        try:
+            before = shifts_of(asm)
+            self.assertTrue(any(before), "nothing set apart: the test's zoom crowds nothing")
+            mw().setGeometry(0, 0, 640, 900)
+            settle()
+            laid_out()
+            after = shifts_of(asm)
+            self.assertNotEqual(after, before, "the layout did not follow the resize")
+            proxy.restack()  # what a layout for the new size gives
+            self.assertEqual(shifts_of(asm), after)
+            self.assertEqual(proxy.laid_for[:2], tuple(view.getViewer().getSoRenderManager()
+                                                       .getViewportRegion().getViewportSizePixels()))
+            shot("markers-after-resize", view)
+        finally:
+            mw().setGeometry(window)
+            settle()
+            laid_out()
+        self.assertEqual(shifts_of(asm), before, "back at the first size, not laid out as first")
+
+    def test_a_change_of_projection_lays_the_markers_out_and_watches_the_new_camera(self):
+        """FreeCAD makes a new camera for perspective: the layout watched the old one, so no zoom
+        of the new one laid the markers out. Now the switch lays them out, and so does a zoom."""
+        (asm, *_), view = self.crowded_fourbar()
+        proxy = asm.ViewObject.Proxy
+        try:
+            view.setCameraType("Perspective")
+            settle()
+            laid_out()
+            camera = view.getCameraNode()
+            self.assertFalse(proxy.laid_for[2], "the layout still counts an orthographic camera")
+            self.assertEqual(proxy.camera.getTypeId().getName(), camera.getTypeId().getName())
+            # Closer along the line of sight (a zoom of the new camera, nothing else told).
+            rot = camera.orientation.getValue()
+            ahead = App.Vector(*rot.multVec(coin_vec(App.Vector(0, 0, -1))).getValue())
+            eye = App.Vector(*camera.position.getValue().getValue())
+            before = shifts_of(asm)
+            camera.position.setValue(coin_vec(eye + ahead * (0.6 * camera.focalDistance.getValue())))
+            laid_out()
+            zoomed = shifts_of(asm)
+            self.assertNotEqual(zoomed, before, "the zoom of the perspective camera was not laid out")
+            proxy.restack()
+            self.assertEqual(shifts_of(asm), zoomed)
+        finally:
+            view.setCameraType("Orthographic")
+            settle()
+            laid_out()
+        self.assertTrue(proxy.laid_for[2])
 
     def test_a_deleted_parts_joints_are_not_drawn_and_come_back_with_its_undo(self):
         """The fourth audit: the rack deleted, its joints' markers stayed where it had been, in
