@@ -18,7 +18,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 import numpy as np  # (here: an import in a function goes through PySide's import hook each time)
 
-from .objects import placed_parts, preferences
+from .objects import picked, placed_parts, preferences
 from .operations import PointDrag
 
 _active = None
@@ -490,6 +490,8 @@ class DragMode:
         if event.getState() == self.coin.SoMouseButtonEvent.DOWN:
             info = self.view.getObjectInfo((int(pos[0]), int(pos[1])))
             part = App.ActiveDocument.getObject(info["Object"]) if info else None
+            if info and info.get("ParentObject") is not None:  # a Body, or a link to one: its tip drawn
+                part = picked(info["ParentObject"], info.get("SubName", ""))[0]
             # A part of the assembly or of one of its sub-assemblies (a rigid one moves whole).
             if part is None or part not in placed_parts(self.asm) or getattr(part, "Grounded", False):
                 return

@@ -758,6 +758,32 @@ def placed_parts(asm):
     return parts(asm) + [p for s in sub_assemblies(asm) for p in nested_parts(s)]
 
 
+def body_of(obj):
+    """The PartDesign Body `obj` is a feature of (its Pad, its Sketch...), or None."""
+    find = getattr(obj, "getParentGeoFeatureGroup", None)
+    body = find() if find is not None else None
+    return body if body is not None and body.TypeId == "PartDesign::Body" else None
+
+
+def picked(obj, sub=""):
+    """What a designer means by a pick, as (object, element). A click on a PartDesign Body's
+    solid selects its tip feature: FreeCAD names (`Pad`, "Face1"), or with the path from the
+    object the 3D view draws, (Body, "Pad.Face1"), or (link, "Pad.Face1") for an App::Link to the
+    Body (a sub-assembly's part). The tip's shape and element names are the Body's (Body.Shape
+    is its tip's, placed; a link's is the Body's, placed): the Body, or the link, is the part,
+    "Face1" its element. Anything else is what was picked."""
+    body = body_of(obj)
+    if body is not None and body.Tip == obj:
+        return body, sub
+    if "." in sub:
+        head, element = sub.rsplit(".", 1)
+        inner = getattr(obj, "LinkedObject", None) if obj.TypeId == "App::Link" else obj
+        tip = getattr(inner, "Tip", None) if getattr(inner, "TypeId", "") == "PartDesign::Body" else None
+        if tip is not None and head == tip.Name:
+            return obj, element
+    return obj, sub
+
+
 def joints(asm):
     return [o for o in asm.Group if is_joint(o)]
 

@@ -80,8 +80,14 @@ def create_assembly(doc, name="Assembly"):
 
 
 def add_part(asm, obj, grounded=False):
-    """Adds an existing object of the document (anything with a Shape) to the assembly."""
+    """Adds an existing object of the document (anything with a Shape) to the assembly. A
+    PartDesign Body's tip (what a click on the body selects) adds the Body: moved into the
+    assembly's group, the feature would leave its Body."""
     _assembly(asm)
+    obj = objects.picked(obj)[0]
+    body = objects.body_of(obj)
+    if body is not None:
+        raise ValueError("%s is a feature of the body %s, not a part: add %s itself" % (obj.Label, body.Label, body.Label))
     if not (hasattr(obj, "Shape") or obj.TypeId == "App::Link") or objects.is_joint(obj) or obj == asm:
         raise ValueError("%s has no shape: only solids can be parts" % obj.Label)
     if getattr(obj, "DispconType", "") == "ExplodedView":
@@ -314,7 +320,9 @@ def add_joint(asm, joint_type, ref1, ref2, undo_step=True, named_by_parts=False,
     if joint_type not in objects.JOINT_TYPES:
         raise ValueError("unknown joint type %r (expected one of %s)" % (joint_type, ", ".join(objects.JOINT_TYPES)))
     # A part inside a sub-assembly: (instance, "Crank.Edge3") or (asm, "Leg1.Crank.Edge3").
-    (o1, s1), (o2, s2) = subassembly.resolve(asm, *ref1), subassembly.resolve(asm, *ref2)
+    # A PartDesign Body's tip named (Pad, "Face1"), or by its path (Body or link, "Pad.Face1"):
+    # the Body, or the link, is the part (objects.picked).
+    (o1, s1), (o2, s2) = (subassembly.resolve(asm, *objects.picked(*ref)) for ref in (ref1, ref2))
     if o1 == o2:
         raise ValueError("a joint needs two different parts (both references are on %s)" % o1.Label)
     for o in (o1, o2):

@@ -2235,6 +2235,136 @@ class TestDragMode(Documents):
         self.assertNotIn("Drag mode", mw().statusBar().currentMessage())
 
 
+class TestBodies(Documents):
+    """The fifth audit's scissor lift: parts made as PartDesign Bodies in the document. A click on
+    a Body in the 3D view selects its tip feature (FreeCAD names the Pad); Add parts took the Pad
+    out of its Body, the joint panel answered "ArmPad is not a part of Assembly" (and, on a
+    sub-assembly's link to a Body, took the Body its link places), and drag mode grabbed nothing."""
+
+    def click_on(self, view, obj, sub):
+        """A Coin3D click where the view draws `obj`'s element `sub` (`obj` the Body, or a link,
+        the view names as the tip's parent), the view turned from below when it is hidden, as a
+        designer turns it; False when it is hidden from both."""
+        from dispcon_fc.objects import shape_of
+
+        element = shape_of(obj).getElement(sub)
+        for turn in (None, "viewBottom"):
+            if turn:
+                getattr(view, turn)()
+                Gui.SendMsgToActiveView("ViewFit")
+                settle()
+            if self._click_drawn(view, obj, sub, element):
+                return True
+        return False
+
+    def _click_drawn(self, view, obj, sub, element):
+        for f in (0.3, 0.6, 0.8, 0.1, 0.45, 0.9):
+            if hasattr(element, "FirstParameter"):
+                p = element.valueAt(element.FirstParameter + f * (element.LastParameter - element.FirstParameter))
+            else:
+                u0, u1, v0, v1 = element.ParameterRange
+                p = element.valueAt(u0 + f * (u1 - u0), v0 + (1 - f) * (v1 - v0))
+            x, y = view.getPointOnScreen(p)
+            for dx, dy in ((0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)):
+                info = view.getObjectInfo((x + dx, y + dy))
+                if info and getattr(info.get("ParentObject"), "Name", "") == obj.Name and info.get("Component") == sub:
+                    for kind in ("move", "press", "release"):
+                        mouse(view, kind, x + dx, y + dy)
+                        settle()
+                    return True
+        return False
+
+    def bodies(self):
+        from test_headless import pad_body
+
+        base = pad_body(self.doc, "Base", (-15, -5, 130, 5), [(0, 0)], 5, App.Placement(App.Vector(0, 0, -5), App.Rotation()))
+        arm = pad_body(self.doc, "Arm", (-5, -5, 105, 5), [(0, 0), (100, 0)], 5,
+                       App.Placement(App.Vector(20, 40, 0), App.Rotation(App.Vector(0, 0, 1), 30)))
+        view = self.view()
+        view.viewIsometric()
+        Gui.SendMsgToActiveView("ViewFit")
+        settle()
+        return view, base, arm
+
+    def test_a_body_clicked_in_the_view_is_its_part_for_add_parts_joints_and_drag(self):
+        from dispcon_fc import dragging, operations, subassembly
+        from dispcon_fc.panels import joint as jp
+        from test_headless import circle_named
+
+        view, base, arm = self.bodies()
+        asm = operations.create_assembly(self.doc)
+        for body in (base, arm):
+            Gui.Selection.clearSelection()
+            self.assertTrue(self.click_on(view, body, "Face1"))
+            self.assertEqual([o.Name for o in Gui.Selection.getSelection()], [body.Tip.Name])
+            Gui.runCommand("Dispcon_AddParts")
+            settle()
+            self.assertIn(body, asm.Group)
+            self.assertIn(body.Tip, body.Group)  # the Pad stays in its Body
+        self.assertEqual(asm.Group, [base, arm])
+        operations.set_grounded(base)
+        # A Revolute picked by clicks on the two Bodies' circles.
+        hole, pin = circle_named(base, (0, 0, 0)), circle_named(arm, tuple(arm.Placement.multVec(App.Vector(100, 0, 5))))
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        Gui.runCommand("Dispcon_JointRevolute")
+        settle()
+        panel = jp.current()
+        self.assertTrue(self.click_on(view, base, hole))
+        self.assertEqual(panel.refs, [(base, hole)], panel.message.text())
+        self.assertTrue(self.click_on(view, arm, pin))
+        settle()
+        self.assertEqual(panel.refs, [(base, hole), (arm, pin)], panel.message.text())
+        panel.accept()
+        settle()
+        self.assertEqual(len(operations.joints(asm)), 1)
+        axis = arm.Placement.multVec(App.Vector(100, 0, 0))  # the pin's axis onto the base's hole
+        self.assertLess(math.hypot(axis.x, axis.y), 1e-6, (panel.refs, arm.Placement))
+        # A flexible sub-assembly's link to the Body, clicked: the link, not the Body it places.
+        top = operations.create_assembly(self.doc, "Top")
+        inst = subassembly.insert_sub_assembly(top, asm, placement=App.Placement(App.Vector(0, 60, 30), App.Rotation()),
+                                               rigid=False)
+        asm.Visibility = False
+        link = next(o for o in inst.Group if o.TypeId == "App::Link" and o.LinkedObject is arm)
+        other = next(o for o in inst.Group if o.TypeId == "App::Link" and o.LinkedObject is base)
+        Gui.SendMsgToActiveView("ViewFit")
+        settle()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(top)
+        Gui.runCommand("Dispcon_JointFixed")
+        settle()
+        panel = jp.current()
+        self.assertIs(panel.asm, top)
+        face = "Face1"
+        self.assertTrue(self.click_on(view, link, face))
+        self.assertEqual(panel.refs, [(link, face)], panel.message.text())
+        close_dialog()
+        # Drag mode: a press on the arm grabs it; the drag turns it about the base's hole.
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(asm)
+        asm.Visibility = True
+        inst.Visibility = False
+        for o in inst.Group:
+            o.Visibility = False
+        view.viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        settle()
+        action("Dispcon_Drag").trigger()
+        settle()
+        before = App.Placement(arm.Placement)
+        x, y = view.getPointOnScreen(arm.Placement.multVec(App.Vector(20, 0, 5)))
+        mouse(view, "press", x, y)
+        for k in range(1, 11):
+            mouse(view, "move", x - 3 * k, y + 3 * k)
+            settle()
+        mouse(view, "release", x - 30, y + 30)
+        settle()
+        dragging.stop(view)
+        self.assertGreater(arm.Placement.Rotation.multiply(before.Rotation.inverted()).Angle, 0.05)
+        axis = arm.Placement.multVec(App.Vector(100, 0, 0))
+        self.assertLess(math.hypot(axis.x, axis.y), 1e-6)  # still on its pin
+
+
 class TestDragAtALimit(Documents):
     def test_a_drag_held_by_a_limit_says_which(self):
         """The fourth audit: the wheel pulled round past its limit stopped there, the status bar
@@ -3035,7 +3165,7 @@ def run_in_gui(classes, status_name):
 
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestMarkerFixes, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestDragAtALimit, TestCouplings,
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestMarkerFixes, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestDragAtALimit, TestBodies, TestCouplings,
                                     TestPanelFixes, TestTypedAndPicked, TestPanelsGone)
                 if not only or any(o in cls.__name__ for o in only.split(","))], "status-workbench")
 

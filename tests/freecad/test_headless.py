@@ -1661,9 +1661,103 @@ class MarkerLayout(unittest.TestCase):
         self.assertAlmostEqual(abs(out["b"][1].x), 1.0, delta=1e-12)
 
 
+def pad_body(doc, name, rect, holes, thick, placement):
+    """A PartDesign Body as a designer makes one: a sketch on its XY plane (a rectangle and
+    circular holes of radius 2) padded `thick`; returns the Body."""
+    import Part
+    import Sketcher
+
+    body = doc.addObject("PartDesign::Body", name)
+    sk = body.newObject("Sketcher::SketchObject", name + "Sketch")
+    sk.Support = (body.Origin.OriginFeatures[3], [""])
+    sk.MapMode = "FlatFace"
+    x0, y0, x1, y1 = rect
+    corners = [App.Vector(x0, y0, 0), App.Vector(x1, y0, 0), App.Vector(x1, y1, 0), App.Vector(x0, y1, 0)]
+    for i in range(4):
+        sk.addGeometry(Part.LineSegment(corners[i], corners[(i + 1) % 4]), False)
+    for i in range(4):
+        sk.addConstraint(Sketcher.Constraint("Coincident", i, 2, (i + 1) % 4, 1))
+    for x, y in holes:
+        sk.addGeometry(Part.Circle(App.Vector(x, y, 0), App.Vector(0, 0, 1), 2.0), False)
+    pad = body.newObject("PartDesign::Pad", name + "Pad")
+    pad.Profile = sk
+    pad.Length = thick
+    sk.Visibility = False  # as PartDesign's Pad command leaves it
+    body.Placement = placement
+    doc.recompute()
+    return body
+
+
+def circle_named(obj, centre):
+    """The name of `obj`'s circular edge centred at world point `centre`."""
+    from dispcon_fc.objects import shape_of
+
+    for i, e in enumerate(shape_of(obj).Edges):
+        c = getattr(e.Curve, "Center", None)
+        if c is not None and (c - App.Vector(*centre)).Length < 1e-9:
+            return "Edge%d" % (i + 1)
+    raise AssertionError("%s has no circle at %s" % (obj.Label, centre))
+
+
+class PartDesignBodies(unittest.TestCase):
+    """Parts made as PartDesign Bodies in the assembly's document (not imported): a click on a
+    Body in the 3D view selects its tip feature (Pad), named so or by its path from the Body or
+    from a sub-assembly's link to it; each means the Body, or the link."""
+
+    def setUp(self):
+        self.doc = App.newDocument("bodies")
+        self.base = pad_body(self.doc, "Base", (-15, -5, 130, 5), [(0, 0)], 5, App.Placement(App.Vector(0, 0, -5), App.Rotation()))
+        self.arm = pad_body(self.doc, "Arm", (-5, -5, 105, 5), [(0, 0), (100, 0)], 5,
+                            App.Placement(App.Vector(0, 0, 0), App.Rotation(App.Vector(0, 0, 1), 30)))
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def test_adding_a_bodys_tip_adds_the_body_and_leaves_the_tip_in_it(self):
+        asm = da.create_assembly(self.doc)
+        self.assertIs(da.add_part(asm, self.base.Tip, grounded=True), self.base)
+        self.assertEqual([o.Name for o in asm.Group], ["Base"])
+        self.assertIn(self.base.Tip, self.base.Group)  # the Pad still in its Body, the Body whole
+        self.assertTrue(self.base.Grounded)
+        sketch = self.arm.Group[0] if self.arm.Group[0].TypeId.startswith("Sketcher") else self.arm.Group[1]
+        with self.assertRaisesRegex(ValueError, "ArmSketch is a feature of the body Arm, not a part: add Arm itself"):
+            da.add_part(asm, sketch)
+        self.assertIn(sketch, self.arm.Group)
+
+    def test_a_pick_named_from_the_tip_is_the_bodys_or_its_links(self):
+        from dispcon_fc import subassembly
+        from dispcon_fc.objects import picked
+
+        pad = self.base.Tip
+        self.assertEqual(picked(pad, "Face1"), (self.base, "Face1"))
+        self.assertEqual(picked(self.base, "BasePad.Face1"), (self.base, "Face1"))
+        self.assertEqual(picked(self.base, "Face1"), (self.base, "Face1"))
+        asm = da.create_assembly(self.doc)
+        da.add_part(asm, self.base, grounded=True)
+        da.add_part(asm, self.arm)
+        hole = circle_named(self.base, (0, 0, 0))
+        j = da.add_joint(asm, "Revolute", (pad, hole), (self.arm, "ArmPad." + circle_named(self.arm, (0, 0, 0))))
+        self.assertEqual((j.Reference1[0], j.Reference1[1][0]), (self.base, hole))
+        self.assertIs(j.Reference2[0], self.arm)
+        self.assertTrue(da.solve(asm).converged)
+        # A flexible sub-assembly's link to the Body: picked by the path from the link.
+        top = da.create_assembly(self.doc, "Top")
+        inst = subassembly.insert_sub_assembly(top, asm, placement=App.Placement(App.Vector(0, 0, 30), App.Rotation()),
+                                               rigid=False)
+        link = next(o for o in inst.Group if o.TypeId == "App::Link" and o.LinkedObject is self.arm)
+        end = link.Placement.multVec(App.Vector(100, 0, 5))
+        self.assertEqual(picked(link, "ArmPad.Edge3"), (link, "Edge3"))
+        other = pad_body(self.doc, "Other", (-5, -5, 5, 5), [(0, 0)], 5, App.Placement(end, App.Rotation()))
+        da.add_part(top, other)
+        k = da.add_joint(top, "Revolute", (link, "ArmPad." + circle_named(link, (end.x, end.y, end.z))),
+                         (other.Tip, circle_named(other, (end.x, end.y, end.z))))
+        self.assertIs(k.Reference1[0], link)
+        self.assertIs(k.Reference2[0], other)
+
+
 UNIT_TESTS = (NothingLostWithoutTheWorkbench, InstalledLikeAnAddon, RobustOperations, Samples, WorkbenchFiles,
               MarkerLayout, FrameRotation, FrameTranslation, Messages, SolveWritesOnlyWhatChanged,
-              StudyInWords)
+              StudyInWords, PartDesignBodies)
 
 
 def run_unit_tests():

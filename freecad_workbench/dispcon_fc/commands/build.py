@@ -3,6 +3,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from .. import operations
+from ..objects import picked
 from .common import Command, active_assembly
 
 
@@ -12,9 +13,20 @@ def _create():
 
 def _add_parts():
     asm = active_assembly()
-    for o in Gui.Selection.getSelection():
-        if hasattr(o, "Shape") and o is not asm and o not in asm.Group:
+    for o in _selected_solids():
+        if o is not asm and o not in asm.Group:
             operations.add_part(asm, o)
+
+
+def _selected_solids():
+    """The objects selected that can be parts, a PartDesign Body's for its tip (a click on the
+    body in the 3D view selects its tip feature), each once."""
+    out = []
+    for o in Gui.Selection.getSelection():
+        o = picked(o)[0]
+        if hasattr(o, "Shape") and o not in out:
+            out.append(o)
+    return out
 
 
 def _import():
@@ -77,18 +89,18 @@ def _insert_sub_assembly():
 
 def _ground():
     for o in Gui.Selection.getSelection():
+        o = picked(o)[0]
         if hasattr(o, "Grounded"):
             operations.set_grounded(o, not o.Grounded)
 
 
 def _can_add():
     asm = active_assembly()
-    return asm is not None and any(hasattr(o, "Shape") and o is not asm and o not in asm.Group
-                                   for o in Gui.Selection.getSelection())
+    return asm is not None and any(o is not asm and o not in asm.Group for o in _selected_solids())
 
 
 def _can_ground():
-    return any(hasattr(o, "Grounded") for o in Gui.Selection.getSelection())
+    return any(hasattr(picked(o)[0], "Grounded") for o in Gui.Selection.getSelection())
 
 
 def commands():

@@ -5,7 +5,7 @@ import FreeCADGui as Gui
 
 from ..feedback import report
 from ..feedback import status as feedback_status
-from ..objects import is_assembly, is_joint, is_sub_assembly, nested_parts
+from ..objects import is_assembly, is_joint, is_sub_assembly, nested_parts, picked
 
 
 def active_assembly():
@@ -13,6 +13,7 @@ def active_assembly():
     if doc is None:
         return None
     for sel in Gui.Selection.getSelection():
+        sel = picked(sel)[0]  # a Body clicked in the 3D view selects its tip
         if is_assembly(sel):
             return sel
         for parent in sel.InList:

@@ -5,6 +5,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from . import ok_button
+from ..objects import picked
 from ..qt import QtCore, QtWidgets, is_alive
 
 
@@ -15,6 +16,20 @@ def exists(obj):
         return obj.Document.getObject(obj.Name) is obj
     except (ReferenceError, RuntimeError):
         return False
+
+
+def full_pick(doc_name, name, sub):
+    """The part and element of the pick a selection observer was just told of as (name, sub):
+    FreeCAD names the object it resolved, a PartDesign Body's tip feature for a click on the
+    Body, or on a sub-assembly's link to one (the link is then lost); the path from the object
+    the 3D view draws keeps the Body or the link (objects.picked)."""
+    doc = App.getDocument(doc_name)
+    for chosen in reversed(Gui.Selection.getSelectionEx(doc_name, 0)):
+        for path in reversed(chosen.SubElementNames):
+            if (path == sub and chosen.Object.Name == name) or path.endswith(name + "." + sub):
+                return picked(chosen.Object, path)
+    obj = doc.getObject(name)
+    return picked(obj, sub) if obj is not None else (None, sub)
 
 
 class _Watch:

@@ -17,7 +17,7 @@ from ..adapter import ALREADY_HELD, offered_types
 from ..objects import COUPLINGS, LENGTH_PHASE, POSE_WHEN_MADE, TWIST_FROM, mesh_offset, phase_value, placed_parts
 
 from ..qt import QtCore, QtGui, QtWidgets
-from .base import TransactionPanel
+from .base import TransactionPanel, full_pick
 
 # Which groups of fields each type shows.
 FIELDS = {
@@ -542,7 +542,7 @@ class JointPanel(TransactionPanel):
     def addSelection(self, doc, name, sub, pos):
         if self._gone() or not self.picking or not sub or doc != self.doc.Name:
             return
-        obj = self.doc.getObject(name)
+        obj, sub = full_pick(doc, name, sub)  # a Body, or a link to one, for its tip's name
         # Its own parts and those of its sub-assemblies at any depth (a flexible leg's coupler is
         # a link in the instance's group, not the assembly's): what add_joint takes.
         if obj is None or obj not in placed_parts(self.asm):
@@ -564,7 +564,7 @@ class JointPanel(TransactionPanel):
         """While picking, the feature under the cursor shows the marker the joint would get."""
         if self._gone() or not self.picking or not sub or doc != self.doc.Name:
             return
-        obj = self.doc.getObject(name)
+        obj, sub = full_pick(doc, name, sub)  # a Body, or a link to one, for its tip's name
         if obj is None or obj not in placed_parts(self.asm):
             return
         try:
