@@ -2365,6 +2365,28 @@ class TestBodies(Documents):
         self.assertLess(math.hypot(axis.x, axis.y), 1e-6)  # still on its pin
 
 
+class TestActiveAssembly(Documents):
+    def test_with_nothing_selected_a_command_works_on_the_assembly_not_placed_in_another(self):
+        """The fifth audit: the arm pair, made first, placed twice in the lift; the Revolute
+        command run with nothing selected opened on the pair, and every pick on the lift's parts
+        was refused ("Base is not a part of Pair")."""
+        from dispcon_fc import operations, subassembly
+        from dispcon_fc.commands.common import active_assembly
+        from dispcon_fc.panels import joint as jp
+
+        pair = operations.create_assembly(self.doc, "Pair")
+        base_and_arm(pair)
+        lift = operations.create_assembly(self.doc, "Lift")
+        subassembly.insert_sub_assembly(lift, pair, rigid=False)
+        Gui.Selection.clearSelection()
+        self.assertIs(active_assembly(), lift)
+        Gui.runCommand("Dispcon_JointRevolute")
+        settle()
+        self.assertIs(jp.current().asm, lift)
+        Gui.Selection.addSelection(pair)  # selected, it is still the one
+        self.assertIs(active_assembly(), pair)
+
+
 class TestDragAtALimit(Documents):
     def test_a_drag_held_by_a_limit_says_which(self):
         """The fourth audit: the wheel pulled round past its limit stopped there, the status bar
@@ -3165,7 +3187,7 @@ def run_in_gui(classes, status_name):
 
 def main():
     only = os.environ.get("DISPCON_GUI_ONLY")
-    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestMarkerFixes, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestDragAtALimit, TestBodies, TestCouplings,
+    run_in_gui([cls for cls in (TestCommands, TestMarkers, TestMarkerFixes, TestTreeIcons, TestRestored, TestJointPanel, TestDrivePanel, TestCheckPanel, TestErrors, TestDragMode, TestDragAtALimit, TestBodies, TestActiveAssembly, TestCouplings,
                                     TestPanelFixes, TestTypedAndPicked, TestPanelsGone)
                 if not only or any(o in cls.__name__ for o in only.split(","))], "status-workbench")
 

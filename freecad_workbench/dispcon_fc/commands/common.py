@@ -5,7 +5,7 @@ import FreeCADGui as Gui
 
 from ..feedback import report
 from ..feedback import status as feedback_status
-from ..objects import is_assembly, is_joint, is_sub_assembly, nested_parts, picked
+from ..objects import is_assembly, is_joint, is_sub_assembly, nested_parts, picked, top_assemblies
 
 
 def active_assembly():
@@ -19,7 +19,9 @@ def active_assembly():
         for parent in sel.InList:
             if is_assembly(parent):
                 return parent
-    for o in doc.Objects:
+    # Nothing of an assembly selected: the first not placed in another, then any (the leg placed
+    # in a walker, made first, is not what a designer means by the document's assembly).
+    for o in top_assemblies(doc) + doc.Objects:
         if is_assembly(o):
             return o
     return None
