@@ -18,6 +18,8 @@
 #include <vector>
 
 #include "common.hpp"
+#include "dispcon/io/dcl_lexer.hpp"
+#include "dispcon/io/dcl_parser.hpp"
 #include "dispcon/io/dcl_reader.hpp"
 #include "dispcon/io/dcl_writer.hpp"
 #include "mechanisms.hpp"
@@ -69,6 +71,51 @@ void BM_Load_FourBars(benchmark::State& state) {
   state.SetBytesProcessed(state.iterations() * static_cast<int64_t>(in.tellg()));
 }
 BENCHMARK(BM_Load_FourBars)->Arg(400)->Unit(benchmark::kMillisecond);
+
+// The floors under BM_Load_FourBars, each one step of the read alone, on the same file: `read`,
+// the file into a string (read_file: open, size, one read, close); `scan`, that and one pass over
+// its every byte (its new lines counted), what any reader of the text costs at the least;
+// `lex`, that and every token by DclLexer, what the parse and the model build on. The rest of
+// BM_Load_FourBars is the parser's and the model's.
+enum class ReadStep { Read, Scan, Lex };
+void BM_Load_FourBars_Floor(benchmark::State& state, ReadStep step) {
+  const std::string path = fourbars_file(static_cast<int>(state.range(0)));
+  size_t count = 0;
+  for (auto _ : state) {
+    std::string text;
+    if (!dcl::read_file(path, text)) {
+      state.SkipWithError(text.c_str());
+      break;
+    }
+    count = 0;
+    if (step == ReadStep::Scan) {
+      count = static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+    } else if (step == ReadStep::Lex) {
+      LexErrors errors;
+      DclLexer lexer(text, errors);
+      Token t;
+      do {
+        lexer.next(t);
+        ++count;
+      } while (t.kind != Token::End);
+      if (!errors.listed.empty()) state.SkipWithError(errors.listed.front().message.c_str());
+    }
+    benchmark::DoNotOptimize(count);
+    benchmark::DoNotOptimize(text);
+  }
+  state.counters["count"] = static_cast<double>(count);  // lines or tokens
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  state.SetBytesProcessed(state.iterations() * static_cast<int64_t>(in.tellg()));
+}
+BENCHMARK_CAPTURE(BM_Load_FourBars_Floor, read, ReadStep::Read)
+    ->Arg(400)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Load_FourBars_Floor, scan, ReadStep::Scan)
+    ->Arg(400)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Load_FourBars_Floor, lex, ReadStep::Lex)
+    ->Arg(400)
+    ->Unit(benchmark::kMillisecond);
 
 // The JSON document `dispcon assemble --json` prints for the N four-bars once assembled, written
 // by the command's own code (report.cpp, json_writer.cpp) into a string, as print_json holds its
