@@ -73,7 +73,7 @@ void BM_Load_FourBars(benchmark::State& state) {
 BENCHMARK(BM_Load_FourBars)->Arg(400)->Unit(benchmark::kMillisecond);
 
 // The floors under BM_Load_FourBars, each one step of the read alone, on the same file: `read`,
-// the file into a string (read_file: open, size, one read, close); `scan`, that and one pass over
+// the file into memory (read_file: open, size, one read, close); `scan`, that and one pass over
 // its every byte (its new lines counted), what any reader of the text costs at the least;
 // `lex`, that and every token by DclLexer, what the parse and the model build on. The rest of
 // BM_Load_FourBars is the parser's and the model's.
@@ -82,11 +82,13 @@ void BM_Load_FourBars_Floor(benchmark::State& state, ReadStep step) {
   const std::string path = fourbars_file(static_cast<int>(state.range(0)));
   size_t count = 0;
   for (auto _ : state) {
-    std::string text;
-    if (!dcl::read_file(path, text)) {
-      state.SkipWithError(text.c_str());
+    dcl::FileText file;
+    std::string why;
+    if (!dcl::read_file(path, file, why)) {
+      state.SkipWithError(why.c_str());
       break;
     }
+    const std::string_view text = file.view();
     count = 0;
     if (step == ReadStep::Scan) {
       count = static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));

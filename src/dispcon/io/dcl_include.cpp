@@ -62,13 +62,14 @@ void Parser::include_into(Model& model, IncludeBlock& ib, Declarations& declared
     error(file_at, "include cycle: " + cycle + fs::path(canonical).filename().string());
     return;
   }
-  std::string text;
-  if (!read_file(path.string(), text)) {
-    error(file_at, "cannot include '" + ib.path + "' (" + text + ")");
+  FileText text;
+  std::string why;
+  if (!read_file(path.string(), text, why)) {
+    error(file_at, "cannot include '" + ib.path + "' (" + why + ")");
     return;
   }
   stack_.push(canonical);
-  ParseResult sub = parse_text(text, path.string(), stack_);
+  ParseResult sub = parse_text(text.view(), path.string(), stack_);
   stack_.pop();
   for (const Diagnostic& d : sub.diagnostics) {
     if (d.error ? errors_++ < kErrorCap : warnings_++ < kErrorCap) diagnostics_.push_back(d);

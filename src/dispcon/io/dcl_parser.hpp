@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <forward_list>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -351,7 +352,19 @@ class Parser {
 
 // The text's model or diagnostics; `stack` holds the files being read (include cycles).
 ParseResult parse_text(std::string_view text, const std::string& filename, IncludeStack& stack);
-// The file's text, or false and the reason in `text`.
-bool read_file(const std::string& path, std::string& text);
+// A file's bytes as read_file reads them.
+class FileText {
+ public:
+  std::string_view view() const { return {data_.get(), size_}; }
+
+ private:
+  friend bool read_file(const std::string& path, FileText& text, std::string& why);
+  // Room for `room` bytes, the bytes held kept.
+  void reserve(size_t room);
+  std::unique_ptr<char[]> data_;
+  size_t size_ = 0, room_ = 0;
+};
+// The file's text, or false and the reason in `why`.
+bool read_file(const std::string& path, FileText& text, std::string& why);
 
 }  // namespace dispcon::dcl

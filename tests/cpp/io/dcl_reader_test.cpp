@@ -292,9 +292,10 @@ TEST(DclReader, FileAndPipeReadTheSameText) {
     ASSERT_NE(out, nullptr);
     std::fwrite(text.data(), 1, text.size(), out);
     std::fclose(out);
-    std::string read;
-    ASSERT_TRUE(dcl::read_file(file, read));
-    EXPECT_EQ(read, text);
+    dcl::FileText read;
+    std::string why;
+    ASSERT_TRUE(dcl::read_file(file, read, why)) << why;
+    EXPECT_EQ(read.view(), text);
     const std::string fifo = dir + "/read_" + std::to_string(objects) + ".fifo";
     std::remove(fifo.c_str());
     ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
@@ -308,11 +309,11 @@ TEST(DclReader, FileAndPipeReadTheSameText) {
       }
       std::fclose(w);
     });
-    std::string piped;
-    const bool ok = dcl::read_file(fifo, piped);
+    dcl::FileText piped;
+    const bool ok = dcl::read_file(fifo, piped, why);
     writer.join();
-    ASSERT_TRUE(ok);
-    EXPECT_EQ(piped, text);
+    ASSERT_TRUE(ok) << why;
+    EXPECT_EQ(piped.view(), text);
     std::remove(fifo.c_str());
     std::remove(file.c_str());
   }
