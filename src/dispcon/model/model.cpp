@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -179,7 +180,15 @@ Frame frame(const Body& b) {
 bool is_valid_name(std::string_view name) {
   const char first = name.empty() ? '\0' : name[0];
   if (!((first >= 'a' && first <= 'z') || (first >= 'A' && first <= 'Z'))) return false;
-  return std::all_of(name.begin(), name.end(), is_name_char);
+  // A name's bytes by one table (is_name_char's six comparisons a byte before: every body added
+  // passes here).
+  static const auto kNameBytes = [] {
+    std::array<bool, 256> t{};
+    for (int c = 0; c < 256; ++c) t[static_cast<size_t>(c)] = is_name_char(static_cast<char>(c));
+    return t;
+  }();
+  return std::all_of(name.begin(), name.end(),
+                     [](char c) { return kNameBytes[static_cast<unsigned char>(c)]; });
 }
 
 JointError::JointError(const std::string& who, std::string keyword, std::string detail,
@@ -206,21 +215,27 @@ BodyId Model::add_body(Body body) {
         "' cannot be written in a .dcl file: a name starts with a letter and holds only "
         "letters, digits, '-', '_' and '.'");
   }
-  require(body.name != "world", "'world' is reserved for the fixed world frame");
-  if (by_name_.count(body.name))
-    throw std::invalid_argument("duplicate object '" + body.name + "'");
-  body.pose = check_pose(body.pose, "position", who);
-  check_vector(body.center, "center", who + ": center");
-  if (body.rotate) check_positive(*body.rotate, "rotate", who + ": rotate");
-  if (body.mass) check_positive(*body.mass, "mass", who + ": mass");
-  if (body.inertia) check_inertia(*body.inertia, who);
-  check_vector(body.velocity, "velocity", who + ": velocity");
-  check_vector(body.spin, "spin", who + ": spin");
-  check_vector(body.force, "force", who + ": force");
-  check_vector(body.torque, "torque", who + ": torque");
+  require(std::string_view(body.name) != "world", "'world' is reserved for the fixed world frame");
+  // The name's entry made at once (one hash and one lookup, where a count and an emplace took
+  // two), and taken back if a value is refused.
   const BodyId id{static_cast<int>(bodies_.size())};
-  by_name_.emplace(body.name, id.value);
-  bodies_.push_back(std::move(body));
+  const auto [entry, fresh] = by_name_.try_emplace(body.name, id.value);
+  if (!fresh) throw std::invalid_argument("duplicate object '" + body.name + "'");
+  try {
+    body.pose = check_pose(body.pose, "position", who);
+    check_vector(body.center, "center", who + ": center");
+    if (body.rotate) check_positive(*body.rotate, "rotate", who + ": rotate");
+    if (body.mass) check_positive(*body.mass, "mass", who + ": mass");
+    if (body.inertia) check_inertia(*body.inertia, who);
+    check_vector(body.velocity, "velocity", who + ": velocity");
+    check_vector(body.spin, "spin", who + ": spin");
+    check_vector(body.force, "force", who + ": force");
+    check_vector(body.torque, "torque", who + ": torque");
+    bodies_.push_back(std::move(body));
+  } catch (...) {
+    by_name_.erase(entry);
+    throw;
+  }
   ++revision_;
   return id;
 }

@@ -41,6 +41,14 @@ TEST(Model, RejectsBadBodies) {
   J(0, 1) = 0.5;
   skewed.inertia = J;
   EXPECT_THROW(m.add_body(skewed), std::invalid_argument);
+  // A refused body leaves nothing behind: its name is free, the model as it was.
+  EXPECT_EQ(m.body_count(), 2);
+  EXPECT_FALSE(m.find("heavy").has_value());
+  heavy.mass = 2;
+  const BodyId h = m.add_body(heavy);
+  EXPECT_EQ(h.value, 2);
+  EXPECT_EQ(m.find("heavy")->value, 2);
+  EXPECT_EQ(m.body(h).name, "heavy");
 }
 
 TEST(Model, RejectsBadJoints) {
