@@ -19,7 +19,8 @@ where the joints are), every joint holding after Solve to 1e-9, the Check's degr
 move solved and drawn by the drag's moving copy, the joint added holding in one undo step, the saved
 file read back with the parts where they were. DISPCON_BENCH_PROFILE=<wait> prints a cProfile of
 one more run of that wait; DISPCON_BENCH_SKIP=check leaves the Check out (check100: at 100 parts
-only, where main's took minutes); DISPCON_BENCH_DUMP=<file> writes the solved Placements (repr of every
+only, where main's took minutes), and so any of the waits (solve, drag, panel: with its OK, save;
+open: the document opened once, untimed), to time the others alone; DISPCON_BENCH_DUMP=<file> writes the solved Placements (repr of every
 float) to compare two trees' answers; DISPCON_BENCH_WB: another tree's workbench. Quits FreeCAD
 itself; writes 0 to <out>/status-waits when all held.
 
@@ -102,6 +103,12 @@ def show(doc):
     view = Gui.getDocument(doc.Name).ActiveView
     frames.watch(view)
     return view
+
+
+def timing(wait, parts_count):
+    """Whether `wait` is timed at `parts_count` parts (DISPCON_BENCH_SKIP names it, or it with the
+    count: check100)."""
+    return not {wait, "%s%d" % (wait, parts_count)} & set(SKIP)
 
 
 def timed(name, record, fn):
@@ -195,10 +202,13 @@ def one_size(parts_count, record):
         return d
 
     doc = None
-    for k in range(RUNS):
+    for k in range(RUNS if timing("open", parts_count) else 1):
         if doc is not None:
             App.closeDocument(doc.Name)
             settle()
+        if not timing("open", parts_count):
+            doc = open_doc()
+            break
         doc = timed("open", record, open_doc) if k < RUNS - 1 or PROFILE != "open" else profiled("open", open_doc)
     asm = next(o for o in doc.Objects if da.is_assembly(o))
     view = show(doc)
@@ -221,7 +231,7 @@ def one_size(parts_count, record):
         return r
 
     solved = None
-    for k in range(RUNS + (PROFILE == "solve")):
+    for k in range(RUNS + (PROFILE == "solve") if timing("solve", parts_count) else 0):
         perturb(asm, saved)
         doc.recompute()
         settle()
@@ -232,7 +242,7 @@ def one_size(parts_count, record):
             solved = poses(asm)
         same_poses(solved, poses(asm), 0.0)  # the same perturbed pose solves to the same bits
     dump = os.environ.get("DISPCON_BENCH_DUMP")
-    if dump:
+    if dump and solved is not None:
         with open(dump, "a") as f:
             for name in sorted(solved):
                 pl = solved[name]
@@ -251,7 +261,7 @@ def one_size(parts_count, record):
         assert frames.drawn()
         return commands.last_panel
 
-    for k in range(0 if {"check", "check%d" % parts_count} & set(SKIP) else RUNS + (PROFILE == "check")):
+    for k in range(RUNS + (PROFILE == "check") if timing("check", parts_count) else 0):
         panel = timed("check", record, check) if k < RUNS else profiled("check", check)
         assert Gui.Control.activeDialog() and panel.result["dof"] == 3, panel.result["message"]
         assert not panel.result["conflicting"], panel.result["conflicting"]
@@ -261,7 +271,7 @@ def one_size(parts_count, record):
     # Add the joint taken out, through the joint panel: made (the preview), then OK.
     undo = doc.UndoNames
     o1, o2 = doc.getObject(refs[0][0]), doc.getObject(refs[1][0])
-    for k in range(RUNS + (PROFILE in ("panel", "ok"))):
+    for k in range(RUNS + (PROFILE in ("panel", "ok")) if timing("panel", parts_count) else 0):
         Gui.Selection.clearSelection()
 
         def opened():
@@ -303,7 +313,7 @@ def one_size(parts_count, record):
         if info and info["Object"] == part.Name:
             break
     assert info and info["Object"] == part.Name, "%s is not under the cursor: %s" % (part.Label, info)
-    for k in range(RUNS + (PROFILE == "drag")):
+    for k in range(RUNS + (PROFILE == "drag") if timing("drag", parts_count) else 0):
         def first_frame():
             gw.mouse(view, "press", x, y)
             gw.mouse(view, "move", x + 3, y - 3)
@@ -326,7 +336,8 @@ def one_size(parts_count, record):
 
     # Save (a part moved first, so each save has something new to write).
     crank = next(p for p in da.parts(asm) if p.Label == "Crank0")
-    for k in range(RUNS + (PROFILE == "save")):
+    saves = RUNS + (PROFILE == "save") if timing("save", parts_count) else 0
+    for k in range(saves):
         crank.Label2 = "run %d" % k
         timed("save", record, doc.save) if k < RUNS else profiled("save", doc.save)
     App.closeDocument(doc.Name)
@@ -334,7 +345,8 @@ def one_size(parts_count, record):
     doc = App.openDocument(path)
     asm = next(o for o in doc.Objects if da.is_assembly(o))
     same_poses(saved, poses(asm), 1e-12)  # (a saved file rounds a placement's last bits)
-    assert next(p for p in da.parts(asm) if p.Label == "Crank0").Label2 == "run %d" % (RUNS - 1 + (PROFILE == "save"))
+    if saves:
+        assert next(p for p in da.parts(asm) if p.Label == "Crank0").Label2 == "run %d" % (saves - 1)
     App.closeDocument(doc.Name)
     settle()
 
