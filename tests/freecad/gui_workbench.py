@@ -2697,6 +2697,52 @@ class TestPanelFixes(Documents):
         settle()
         self.assertEqual(sorted(j.Label for j in operations.joints(asm)), ["Base-Arm001", "Main pin"])
 
+    def test_a_joint_made_on_two_picks_is_previewed_once_and_its_fields_outlive_the_shown_dialog(self):
+        # The panel on two picks: its joint made and previewed as it opens, once (a second
+        # preview after the dialog was shown built the model and solved the assembly again, to
+        # move nothing). The OK's state was then set from a timer that searched the task view's
+        # widgets, which took PySide's hold of the panel's quantity boxes with it: the next read
+        # of a box, at a value changed or at OK, raised "Internal C++ object (QAbstractSpinBox)
+        # already deleted".
+        from dispcon_fc import operations
+        from dispcon_fc.panels import joint as jp
+        from dispcon_fc.qt import is_alive
+
+        asm, base, arm, e1, e2 = self.arm()
+        solve, solves = operations.solve, []
+
+        def counted(*args, **kw):  # the real solve, called through
+            solves.append(args[0].Name)
+            return solve(*args, **kw)
+
+        operations.solve = counted
+        try:
+            panel = jp.open_panel(asm=asm, joint_type="Revolute", refs=[e1, e2])
+        finally:
+            operations.solve = solve
+        self.assertEqual(solves, [asm.Name])
+        for _ in range(5):  # the dialog shown, its timers run
+            settle()
+        self.assertTrue(panel.ok_button().isEnabled())
+        for box, _, what in panel.quantities:
+            self.assertTrue(is_alive(box), "%s's box was let go of while the panel is open" % what)
+        panel.offset.setProperty("rawValue", 2.5)
+        settle()
+        self.assertAlmostEqual(panel.joint.Offset.Value, 2.5, places=9)
+        self.assertIn("Base-Arm holds", panel.message.text())
+        panel.ok_button().click()
+        settle()
+        self.assertFalse(Gui.Control.activeDialog())
+        joint = operations.joints(asm)[0]
+        self.assertAlmostEqual(joint.Offset.Value, 2.5, places=9)
+        self.assertEqual(self.doc.UndoNames[0], "Add joint")
+        # A panel that opens refusing OK (nothing picked yet) is shown so.
+        panel = jp.open_panel(asm=asm, joint_type="Revolute")
+        settle()
+        self.assertFalse(panel.ok_button().isEnabled())
+        panel.reject()
+        settle()
+
     def test_the_picked_references_stay_highlighted_until_ok_or_cancel(self):
         asm, base, arm, e1, e2 = self.arm()
         view = self.view()

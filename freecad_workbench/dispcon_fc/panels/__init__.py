@@ -34,18 +34,3 @@ def current(kind):
         return panel
     return None
 
-
-def ok_button(form):
-    """The task view's OK button of the panel whose form is `form`: the nearest one up from the
-    form (a closed dialog's may still be there, waiting for deletion), or None."""
-    from ..qt import QtWidgets, is_alive
-
-    w = form
-    while w is not None:
-        found = [box.button(QtWidgets.QDialogButtonBox.Ok)
-                 for box in w.findChildren(QtWidgets.QDialogButtonBox) if is_alive(box)]
-        found = [b for b in found if is_alive(b) and b.isVisibleTo(w)]
-        if found:
-            return found[-1]
-        w = w.parentWidget()
-    return None

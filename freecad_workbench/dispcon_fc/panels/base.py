@@ -4,7 +4,6 @@ shares: closing itself when what it edits goes from under it."""
 import FreeCAD as App
 import FreeCADGui as Gui
 
-from . import ok_button
 from ..objects import picked
 from ..qt import QtCore, QtWidgets, is_alive
 
@@ -148,19 +147,34 @@ class TransactionPanel(Watched):
         self.message.setText(text)
         self.message.setStyleSheet("color: #cc0000;" if error else "")
 
-    def ok_button(self):
-        return ok_button(self.form)
+    # The dialog's buttons, as FreeCAD hands them to the panel when it shows it
+    # (modifyStandardButtons). They were found by walking up from the form and searching each
+    # ancestor's children: PySide wraps every widget such a search meets, and when the wrapper of
+    # the ancestor searched went, the wrappers of the form's Gui::QuantitySpinBoxes (made by
+    # FreeCAD's UiLoader) were invalidated with it, the widgets themselves alive: the joint panel's
+    # next read of a box ("Internal C++ object (QAbstractSpinBox) already deleted") raised, at its
+    # OK or at a value changed, whenever that search had run after the dialog was shown.
+    _buttons = None
 
-    def _set_ok(self, enabled, tries=5):
-        self.ok_enabled = enabled
+    def modifyStandardButtons(self, box):
+        self._buttons = box
+        button = self.ok_button()
+        if button is not None and hasattr(self, "ok_enabled"):
+            button.setEnabled(self.ok_enabled)  # (a panel that opens refusing OK: a joint still to pick)
+
+    def ok_button(self):
+        """The dialog's OK button, or None before the panel is shown or once its dialog is gone."""
+        box = self._buttons
+        if not is_alive(box):
+            return None
+        button = box.button(QtWidgets.QDialogButtonBox.Ok)
+        return button if is_alive(button) else None
+
+    def _set_ok(self, enabled):
+        self.ok_enabled = enabled  # (taken by the buttons when FreeCAD gives them: modifyStandardButtons)
         button = self.ok_button()
         if button is not None:
             button.setEnabled(enabled)
-        elif tries > 0 and not self.closed:
-            # The task view shows its buttons only once the event loop has run after
-            # showDialog: a panel that opens refusing OK (a joint still to pick) says so then,
-            # or the OK of a joint not made yet stayed enabled.
-            QtCore.QTimer.singleShot(0, lambda: self._gone() or self._set_ok(self.ok_enabled, tries - 1))
 
     def _gone(self):
         """True, and the panel lets go of what it holds, once its document or its form is gone

@@ -835,7 +835,7 @@ def open_panel(joint=None, asm=None, joint_type=None, refs=()):
     panels.show(panel)
     if panel.joint is None or panel.picking:  # (an edited joint that lost a part: picked again)
         panel._set_ok(False)
-    else:
+    elif not panel.new:
         panel._changed()
         panel._highlight()
     return panel
