@@ -79,12 +79,17 @@ def preferences():
             "DragSteps": steps if steps > 0 else DEFAULT_DRAG_STEPS}
 
 
-def _add(obj, kind, type_id, name, group, value=None):
+def _add(obj, kind, type_id, name, group, value=None, props=None):
     """Adds a property the object lacks (new objects, and documents saved by an older workbench
     or without it), its tooltip DOCS[kind][name]; keeps the value of one it has, and gives it the
-    tooltip of now (a document saved with older words reads the current ones once reopened)."""
-    if name not in obj.PropertiesList:
+    tooltip of now (a document saved with older words reads the current ones once reopened).
+    `props`: the set of the object's property names, read once by a caller adding many (kept up
+    to date here); FreeCAD builds PropertiesList afresh at each read, a joint's 55 names: read
+    for each of a joint's 40-odd properties, it was most of a document's restore in Python."""
+    if name not in (obj.PropertiesList if props is None else props):
         obj.addProperty(type_id, name, group, DOCS[kind][name])
+        if props is not None:
+            props.add(name)
         if value is not None:
             setattr(obj, name, value)
     else:
@@ -105,10 +110,10 @@ def refresh_docs(obj, kind):
             _document(obj, name, doc)
 
 
-def _mark(obj, kind):
+def _mark(obj, kind, props=None):
     """The stored property that says what the object is, so it is recognised even when its
     Python proxy could not be restored (the workbench missing when the file was opened)."""
-    _add(obj, "Any", "App::PropertyString", "DispconType", "Dispcon")
+    _add(obj, "Any", "App::PropertyString", "DispconType", "Dispcon", props=props)
     if obj.DispconType != kind:
         obj.DispconType = kind
     obj.setEditorMode("DispconType", 2)  # hidden: it is what the object is, not a setting
@@ -170,30 +175,31 @@ class JointProxy(_Proxy):
         self.attach(obj)
 
     def attach(self, obj):
-        _mark(obj, "Joint")
-        _add(obj, "Joint", "App::PropertyEnumeration", "JointType", "Joint", JOINT_TYPES)
+        props = set(obj.PropertiesList)  # (read once: _add)
+        _mark(obj, "Joint", props)
+        _add(obj, "Joint", "App::PropertyEnumeration", "JointType", "Joint", JOINT_TYPES, props=props)
         if list(obj.getEnumerationsOfProperty("JointType")) != JOINT_TYPES:
             # Saved by a workbench with fewer types: the full list, the joint's type kept.
             kind = obj.JointType
             obj.JointType = JOINT_TYPES
             obj.JointType = kind
-        _add(obj, "Joint", "App::PropertyLinkSub", "Reference1", "Joint")
-        _add(obj, "Joint", "App::PropertyLinkSub", "Reference2", "Joint")
+        _add(obj, "Joint", "App::PropertyLinkSub", "Reference1", "Joint", props=props)
+        _add(obj, "Joint", "App::PropertyLinkSub", "Reference2", "Joint", props=props)
         for name in ("Point1", "Axis1", "Perp1", "Point2", "Axis2", "Perp2"):
-            _add(obj, "Joint", "App::PropertyVector", name, "Geometry")
-        _add(obj, "Joint", "App::PropertyBool", "HasRotationLimits", "Limits")
-        _add(obj, "Joint", "App::PropertyAngle", "RotationMin", "Limits")
-        _add(obj, "Joint", "App::PropertyAngle", "RotationMax", "Limits")
-        _add(obj, "Joint", "App::PropertyBool", "HasTravelLimits", "Limits")
-        _add(obj, "Joint", "App::PropertyDistance", "TravelMin", "Limits")
-        _add(obj, "Joint", "App::PropertyDistance", "TravelMax", "Limits")
-        _add(obj, "Joint", "App::PropertyAngle", "ConeAngle", "Limits")
-        _add(obj, "Joint", "App::PropertyAngle", "AngleMin", "Limits")
-        _add(obj, "Joint", "App::PropertyAngle", "AngleMax", "Limits", 180)
-        _add(obj, "Joint", "App::PropertyFloat", "Move", "Abilities", -1)
-        _add(obj, "Joint", "App::PropertyFloat", "Residual", "Solve")
-        _add(obj, "Joint", "App::PropertyBool", "Violated", "Solve")
-        joint_extras(obj)
+            _add(obj, "Joint", "App::PropertyVector", name, "Geometry", props=props)
+        _add(obj, "Joint", "App::PropertyBool", "HasRotationLimits", "Limits", props=props)
+        _add(obj, "Joint", "App::PropertyAngle", "RotationMin", "Limits", props=props)
+        _add(obj, "Joint", "App::PropertyAngle", "RotationMax", "Limits", props=props)
+        _add(obj, "Joint", "App::PropertyBool", "HasTravelLimits", "Limits", props=props)
+        _add(obj, "Joint", "App::PropertyDistance", "TravelMin", "Limits", props=props)
+        _add(obj, "Joint", "App::PropertyDistance", "TravelMax", "Limits", props=props)
+        _add(obj, "Joint", "App::PropertyAngle", "ConeAngle", "Limits", props=props)
+        _add(obj, "Joint", "App::PropertyAngle", "AngleMin", "Limits", props=props)
+        _add(obj, "Joint", "App::PropertyAngle", "AngleMax", "Limits", 180, props=props)
+        _add(obj, "Joint", "App::PropertyFloat", "Move", "Abilities", -1, props=props)
+        _add(obj, "Joint", "App::PropertyFloat", "Residual", "Solve", props=props)
+        _add(obj, "Joint", "App::PropertyBool", "Violated", "Solve", props=props)
+        joint_extras(obj, props)
 
     def onBeforeChange(self, obj, prop):
         # What TwistFrom was before it is set (onChanged: a person's choice takes the twist anew).
@@ -379,39 +385,43 @@ class PartProxy(_Proxy):
         obj.purgeTouched()
 
 
-def joint_extras(obj):
+def joint_extras(obj, props=None):
     """Reversed, Offset and the frame's rotation offset (the joint panel's), the features picked, a
     Distance's value and the couplings' values, which joints made before them lack: a joint
-    without them reads as not reversed, offset 0, not turned, a coupling of ratio 1."""
-    _add(obj, "Joint", "App::PropertyBool", "Reversed", "Joint")
-    _add(obj, "Joint", "App::PropertyDistance", "Offset", "Joint")
+    without them reads as not reversed, offset 0, not turned, a coupling of ratio 1. `props`: the
+    set of the object's property names, when the caller read it (_add)."""
+    props = set(obj.PropertiesList) if props is None else props
+    _add(obj, "Joint", "App::PropertyBool", "Reversed", "Joint", props=props)
+    _add(obj, "Joint", "App::PropertyDistance", "Offset", "Joint", props=props)
     # The rotation offset of part 2's joint frame (FreeCAD 1.x's Assembly has an offset
     # placement on each joint's frames): yaw about the joint's axis, then pitch and roll.
     for name in ("FrameYaw", "FramePitch", "FrameRoll"):
-        _add(obj, "Joint", "App::PropertyAngle", name, "Joint")
+        _add(obj, "Joint", "App::PropertyAngle", name, "Joint", props=props)
     # Its translation offset across the axis (along the axis: Offset): part 2's joint frame moved
     # in its own x and y, so part 2 stands that far off part 1's point in the joint's frame.
     for name in ("FrameX", "FrameY"):
-        _add(obj, "Joint", "App::PropertyDistance", name, "Joint")
-    _add(obj, "Joint", "App::PropertyString", "Feature1", "Geometry")
-    _add(obj, "Joint", "App::PropertyString", "Feature2", "Geometry")
-    _add(obj, "Joint", "App::PropertyDistance", "Distance", "Joint")
-    _add(obj, "Joint", "App::PropertyFloat", "Ratio", "Coupling", 1.0)
-    _add(obj, "Joint", "App::PropertyDistance", "Radius", "Coupling")
-    _add(obj, "Joint", "App::PropertyDistance", "Pitch", "Coupling", 1.0)
-    _add(obj, "Joint", "App::PropertyBool", "LeftHanded", "Coupling")
-    phase_property(obj)
-    twist_property(obj)
-    show_properties(obj)
-    read_only_derived(obj)
+        _add(obj, "Joint", "App::PropertyDistance", name, "Joint", props=props)
+    _add(obj, "Joint", "App::PropertyString", "Feature1", "Geometry", props=props)
+    _add(obj, "Joint", "App::PropertyString", "Feature2", "Geometry", props=props)
+    _add(obj, "Joint", "App::PropertyDistance", "Distance", "Joint", props=props)
+    _add(obj, "Joint", "App::PropertyFloat", "Ratio", "Coupling", 1.0, props=props)
+    _add(obj, "Joint", "App::PropertyDistance", "Radius", "Coupling", props=props)
+    _add(obj, "Joint", "App::PropertyDistance", "Pitch", "Coupling", 1.0, props=props)
+    _add(obj, "Joint", "App::PropertyBool", "LeftHanded", "Coupling", props=props)
+    phase_property(obj, props)
+    twist_property(obj, props)
+    show_properties(obj, props)
+    read_only_derived(obj, props)
 
 
-def twist_property(obj):
+def twist_property(obj, props=None):
     """TwistFrom: a joint without it (saved before it existed, or one whose proxy was lost) was
     made holding the turn its parts had then, and keeps doing so; new_joint gives a new joint
     the picked frames."""
-    if "TwistFrom" not in obj.PropertiesList:
+    if "TwistFrom" not in (obj.PropertiesList if props is None else props):
         obj.addProperty("App::PropertyEnumeration", "TwistFrom", "Joint", DOCS["Joint"]["TwistFrom"])
+        if props is not None:
+            props.add("TwistFrom")
         with quiet(obj):  # what the joint always held: nothing to take anew
             obj.TwistFrom = list(TWIST_FROM)
             obj.TwistFrom = POSE_WHEN_MADE
@@ -448,10 +458,11 @@ def twist_from_picks(joint):
 DERIVED = ("Point1", "Axis1", "Perp1", "Point2", "Axis2", "Perp2", "Feature1", "Feature2", "Residual", "Violated")
 
 
-def read_only_derived(obj):
+def read_only_derived(obj, props=None):
     """The DERIVED properties read only in the property editor (scripts still write them)."""
+    props = obj.PropertiesList if props is None else props
     for name in DERIVED:
-        if name in obj.PropertiesList and "ReadOnly" not in obj.getEditorMode(name):
+        if name in props and "ReadOnly" not in obj.getEditorMode(name):
             obj.setEditorMode(name, 1)
 
 
@@ -464,12 +475,13 @@ _USED_BY = {"Ratio": ("Gears", "Belt"), "Radius": ("RackPinion",), "Pitch": ("Sc
 _READ_ONLY = ("Phase", "PhaseTurns")  # the engine's: the mesh offset sets them
 
 
-def show_properties(obj):
+def show_properties(obj, props=None):
     """Shows in the property editor the properties the joint's type uses (the engine's phase read
     only) and hides the others; nothing of a hidden one is lost."""
     kind = getattr(obj, "JointType", "")
+    props = obj.PropertiesList if props is None else props
     for name, types in _USED_BY.items():
-        if name in obj.PropertiesList:
+        if name in props:
             mode = (1 if name in _READ_ONLY else 0) if kind in types else 2
             if obj.getEditorMode(name) != {0: [], 1: ["ReadOnly"], 2: ["Hidden"]}[mode]:
                 obj.setEditorMode(name, mode)
@@ -499,7 +511,7 @@ def frame_rotation(joint):
 LENGTH_PHASE = ("RackPinion", "Screw")
 
 
-def phase_property(obj):
+def phase_property(obj, props=None):
     """Phase in the unit of the joint's type (deg, or mm for a rack or a screw), and PhaseKnown:
     whether it is the engine's (False: the engine makes it at the poses the parts have, as for a
     coupling just made or changed, or one saved by an earlier workbench, whose Phase was a turn of
@@ -507,21 +519,23 @@ def phase_property(obj):
     offset the stored Phase holds (an offset typed in the property editor reaches the engine at
     the next model). A value of the other unit (the joint's type changed) goes, unknown."""
     want = "App::PropertyDistance" if getattr(obj, "JointType", "") in LENGTH_PHASE else "App::PropertyAngle"
-    known = "PhaseKnown" in obj.PropertiesList
+    props = set(obj.PropertiesList) if props is None else props
+    known = "PhaseKnown" in props
     for name in ("Phase", "MeshOffset", "MeshOffsetHeld"):
-        if name in obj.PropertiesList and obj.getTypeIdOfProperty(name) != want:
+        if name in props and obj.getTypeIdOfProperty(name) != want:
             obj.removeProperty(name)
+            props.discard(name)
             if known:
                 obj.PhaseKnown = False
-    _add(obj, "Joint", want, "MeshOffset", "Coupling")
-    _add(obj, "Joint", want, "Phase", "Coupling")
+    _add(obj, "Joint", want, "MeshOffset", "Coupling", props=props)
+    _add(obj, "Joint", want, "Phase", "Coupling", props=props)
     # FreeCAD holds an angle property within +-360 deg, and a gear's phase goes round with the
     # turns: the whole turns of part 2 are kept beside it (the engine's phase is Phase + 360 deg
     # x PhaseTurns; a turn of part 2 is the same pose, so Phase alone says where its teeth are).
-    _add(obj, "Joint", "App::PropertyInteger", "PhaseTurns", "Coupling")
-    _add(obj, "Joint", "App::PropertyBool", "PhaseKnown", "Coupling")
+    _add(obj, "Joint", "App::PropertyInteger", "PhaseTurns", "Coupling", props=props)
+    _add(obj, "Joint", "App::PropertyBool", "PhaseKnown", "Coupling", props=props)
     # A joint saved before it: its Phase holds the offset it has.
-    _add(obj, "Joint", want, "MeshOffsetHeld", "Coupling", obj.MeshOffset.Value)
+    _add(obj, "Joint", want, "MeshOffsetHeld", "Coupling", obj.MeshOffset.Value, props=props)
     # Hidden: the workbench's bookkeeping (the engine's value is read only: show_properties).
     for name in ("PhaseKnown", "MeshOffsetHeld"):
         obj.setEditorMode(name, 2)
