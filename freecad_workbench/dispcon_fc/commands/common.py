@@ -47,7 +47,10 @@ class Command:
         return res
 
     def IsActive(self):
-        if App.ActiveDocument is None:
+        doc = App.ActiveDocument
+        # (FreeCAD asks while it restores a document, from the restore's progress bar: 212 times,
+        # each looking through every object for an assembly and its parts, for the 100-part chain)
+        if doc is None or doc.Restoring:
             return False
         try:
             if self.active is not None:
