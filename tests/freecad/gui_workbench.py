@@ -1144,6 +1144,17 @@ class TestRestored(unittest.TestCase):
             gui_doc.ActiveView.fitAll()
             shot("headless-opened")
             self.assertFalse(gui_doc.Modified)
+            # The commands, not active while the document was being restored, are once it is.
+            Gui.Selection.clearSelection()
+            Gui.Selection.addSelection(asm)
+            settle()
+            self.assertTrue(Gui.isCommandActive("Dispcon_Solve"), "Solve is greyed out after the open")
+            solve = [a for a in mw().findChildren(QtWidgets.QAction) if a.objectName() == "Dispcon_Solve"]
+            t0 = time.perf_counter()
+            while not all(a.isEnabled() for a in solve) and time.perf_counter() - t0 < 5:
+                settle()
+            self.assertTrue(solve and all(a.isEnabled() for a in solve), "Solve's button is greyed out after the open")
+            Gui.Selection.clearSelection()
 
     def test_a_restored_document_places_each_marker_once(self):
         """FreeCAD restoring a document calls each joint's updateData for every property, seven
