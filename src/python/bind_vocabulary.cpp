@@ -1,6 +1,7 @@
 // The joint vocabulary (joint_kinds.hpp) and the engine's defaults, as plain Python data: what
 // the workbench and scripts read instead of repeating them.
 #include "bindings.hpp"
+#include "dispcon/model/bounds_error.hpp"
 #include "dispcon/model/joint_kinds.hpp"
 
 namespace dispcon::py {
@@ -82,6 +83,28 @@ void bind_vocabulary(pyb::module_& m) {
                                 "The model changed a value it was given (a bound clamped into "
                                 "its natural range).",
                                 PyExc_UserWarning, nullptr));
+  // A ValueError, with the command line's message, that also says what it refused, so that a
+  // shell (the workbench) names the joint and says the bounds in its own units without checking
+  // them again or reading the message: statement ("twist", "axial", "angle", ...), min and max
+  // as given, unit "angle" (radians) or "length".
+  m.attr("LimitError") = pyb::reinterpret_steal<pyb::object>(PyErr_NewExceptionWithDoc(
+      "dispcon.LimitError",
+      "A joint's bounds with min above max (a ValueError): statement, min, max and unit "
+      "('angle', radians, or 'length') say which.",
+      PyExc_ValueError, nullptr));
+  pyb::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const BoundsError& e) {
+      const pyb::object type = pyb::module_::import("dispcon").attr("LimitError");
+      const pyb::object error = type(e.what());
+      error.attr("statement") = e.keyword();
+      error.attr("min") = e.min();
+      error.attr("max") = e.max();
+      error.attr("unit") = e.unit() == BoundsError::Unit::Angle ? "angle" : "length";
+      PyErr_SetObject(type.ptr(), error.ptr());
+    }
+  });
   const SolveOptions defaults;
   m.attr("DEFAULT_TOLERANCE") = defaults.tolerance;
   m.attr("DEFAULT_MAX_ITERATIONS") = defaults.max_iterations;

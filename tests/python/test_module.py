@@ -588,6 +588,28 @@ class Vocabulary(unittest.TestCase):
             m.add_joint("a", gear=((0, 0, 0), Z, (0, 0, 0), Z))
         self.assertEqual(m.joint_count(), 0)
 
+    def test_crossed_bounds_say_what_was_refused(self):
+        """A LimitError is the ValueError the command line's message is in, and says which
+        bounds, as given, in which unit: a shell names them in its own words without checking
+        them itself or reading the message."""
+        m = dispcon.Model()
+        m.add_body("a")
+        with self.assertRaises(dispcon.LimitError) as caught:
+            m.add_joint("a", kind="revolute", turn=(1.0472, 0.5))
+        e = caught.exception
+        self.assertIsInstance(e, ValueError)
+        self.assertEqual(str(e), "constraint: twist: min 1.0472 is above max 0.5")
+        self.assertEqual((e.statement, e.min, e.max, e.unit), ("twist", 1.0472, 0.5, "angle"))
+        with self.assertRaises(dispcon.LimitError) as caught:
+            m.add_joint("a", axial=(Z, 5, 2), label="rail")
+        e = caught.exception
+        self.assertEqual((e.statement, e.min, e.max, e.unit), ("axial", 5.0, 2.0, "length"))
+        self.assertEqual(m.joint_count(), 0)
+        # Other refusals stay plain ValueErrors.
+        with self.assertRaises(ValueError) as caught:
+            m.add_joint("a", axial=((0, 0, 0), 0, 1))
+        self.assertNotIsInstance(caught.exception, dispcon.LimitError)
+
     def test_clamped_bounds_warn_instead_of_passing_silently(self):
         m = dispcon.Model()
         m.add_body("a")

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "dispcon/model/bounds_error.hpp"
 #include "dispcon/model/joint_kinds.hpp"
 #include "dispcon/parts/coupling.hpp"
 
@@ -149,9 +150,14 @@ class ComponentCheck {
     const ArgSpec lo{Arg::NamedOption, "min"}, hi{Arg::NamedOption, "max"};
     if (!std::isinf(b.min)) door(lo, [&] { check_number(b.min, what, What(what, " min")); });
     if (!std::isinf(b.max)) door(hi, [&] { check_number(b.max, what, What(what, " max")); });
-    if (b.min > b.max)
-      fail(std::string(what) + ": min " + format_number(b.min) + " is above max " +
-           format_number(b.max));
+    if (b.min > b.max) {
+      const auto unit = std::string_view(row_.bound_unit) == "radians" ? BoundsError::Unit::Angle
+                                                                       : BoundsError::Unit::Length;
+      throw BoundsError(who_(), std::string(what),
+                        std::string(what) + ": min " + format_number(b.min) + " is above max " +
+                            format_number(b.max),
+                        b.min, b.max, unit);
+    }
     clamp(b.min, "min");
     clamp(b.max, "max");
   }

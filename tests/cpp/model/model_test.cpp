@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dispcon/model/bounds_error.hpp"
+
 namespace dispcon {
 namespace {
 
@@ -128,6 +130,40 @@ TEST(Model, JointErrorsNameTheirStatement) {
   } catch (const JointError& e) {
     EXPECT_EQ(e.keyword(), "label");
   }
+}
+
+// Crossed bounds say what was refused, for a shell to say in its own words: the statement, the
+// bounds as given and their unit; the message is the command line's.
+TEST(Model, CrossedBoundsSayWhichBoundsAndTheirUnit) {
+  Model m;
+  Joint j;
+  j.body2 = m.add_body(named("a"));
+  j.has_hinge = true;
+  j.angle = AngleSpec{Vec3(0, 0, 1), Vec3(0, 0, 1), 0, 0};
+  j.twist = TwistSpec{Vec3(1, 0, 0), Vec3(1, 0, 0), 1.0472, 0.5};
+  try {
+    m.add_joint(j);
+    FAIL() << "accepted";
+  } catch (const BoundsError& e) {
+    EXPECT_EQ(e.keyword(), "twist");
+    EXPECT_EQ(e.min(), 1.0472);
+    EXPECT_EQ(e.max(), 0.5);
+    EXPECT_EQ(e.unit(), BoundsError::Unit::Angle);
+    EXPECT_EQ(std::string(e.what()), "constraint: twist: min 1.0472 is above max 0.5");
+  }
+  j.twist.reset();
+  j.has_hinge = false;
+  j.angle.reset();
+  j.guide = Guide{GuideKind::Axial, Vec3(0, 0, 1), 5, 2};
+  try {
+    m.add_joint(j);
+    FAIL() << "accepted";
+  } catch (const BoundsError& e) {
+    EXPECT_EQ(e.keyword(), "axial");
+    EXPECT_EQ(std::make_pair(e.min(), e.max()), std::make_pair(5.0, 2.0));
+    EXPECT_EQ(e.unit(), BoundsError::Unit::Length);
+  }
+  EXPECT_EQ(m.joint_count(), 0);
 }
 
 TEST(Model, AbilityToRotateIsInverseSquaredRmsDistance) {
