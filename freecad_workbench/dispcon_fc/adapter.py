@@ -8,7 +8,7 @@ import re
 import FreeCAD as App
 
 from . import engine, geometry, subassembly
-from .objects import (COUPLINGS, HOLD_TWIST, JOINT_TYPES, LENGTH_PHASE, PICKED_FRAMES, crossed_limits, frame_rotation,
+from .objects import (COUPLINGS, HOLD_TWIST, JOINT_TYPES, LENGTH_PHASE, PICKED_FRAMES, frame_rotation,
                       frame_shift, joints, parts, phase_value, offset_text, remake_phase, set_phase, shape_of, twist_from_picks)
 
 
@@ -288,9 +288,6 @@ def joint_kwargs(dispcon, j, anchors=None, remake=False, kinds=None):
     point2 = moved_point(a["Point2"], axis2, across2, frame_shift(j))
     kw = dict(kind=row["name"], point1=_vec(a["Point1"] + a["Axis1"] * offset), point2=_vec(point2),
               axis1=_vec(a["Axis1"]), axis2=_vec(axis2), across1=_vec(a["Perp1"]), across2=_vec(across2))
-    crossed = crossed_limits(j)  # (set so in the property editor: said as the designer set it)
-    if crossed:
-        raise ValueError(crossed)
     limits = {"angle": (rad(j.AngleMin.Value), rad(j.AngleMax.Value))}
     if j.HasRotationLimits:
         limits["turn"] = (rad(j.RotationMin.Value), rad(j.RotationMax.Value))
@@ -306,6 +303,30 @@ def joint_kwargs(dispcon, j, anchors=None, remake=False, kinds=None):
     if j.Move >= 0:
         kw["move"] = j.Move
     return kw
+
+
+# The engine's statements whose bounds a joint's limits are, as the joint's panel names them.
+LIMIT_NAMES = {"twist": "turn", "axial": "travel", "angle": "angle", "sphere": "distance"}
+
+
+def refused_bounds(refusal):
+    """(min, max, unit) of the engine's refusal of crossed bounds (dispcon.LimitError) as the
+    panel writes them: degrees and "\u00b0" for an angle, mm and " mm" for a length."""
+    if refusal.unit == "angle":
+        return math.degrees(refusal.min), math.degrees(refusal.max), "\u00b0"
+    return refusal.min, refusal.max, " mm"
+
+
+def limit_refusal(j, refusal):
+    """The engine's refusal of a joint's limits, Min above Max (dispcon.LimitError: which
+    statement, the bounds as given, their unit), in the designer's words: the joint by its label,
+    the limit as its panel names it, degrees or mm as the panel writes them, and what to do. Its
+    Min set above its Max in the property editor (which the panel's check does not see) comes
+    here; the engine's own words were "constraint: twist: min 1.0472 is above max 0.5"."""
+    what = LIMIT_NAMES.get(refusal.statement, refusal.statement)
+    lo, hi, unit = refused_bounds(refusal)
+    return ("%s: its %s's Min %g%s is above its Max %g%s: set Min below Max (double-click %s to open its panel)"
+            % (j.Label, what, lo, unit, hi, unit, j.Label))
 
 
 def moved_anchors(j, anchors):
@@ -522,7 +543,10 @@ class Adapter:
                   **made)
         kw.update(changed)
         kw = _in_body(_in_body(kw, "1", l1), "2", l2)
-        return self.model.add_joint(b2, object1=b1, label=j.Label, **kw)
+        try:
+            return self.model.add_joint(b2, object1=b1, label=j.Label, **kw)
+        except self.dispcon.LimitError as e:
+            raise ValueError(limit_refusal(j, e)) from None
 
     def add_body(self, owner, shape, physics, local=None):
         """A body for `owner` (a part, or a rigid sub-assembly with the compound of its parts

@@ -570,26 +570,6 @@ def set_phase(joint, value):
     joint.PhaseKnown = True
 
 
-def crossed_limits(joint):
-    """What is wrong when a limit's Min is above its Max (set so in the property editor, which
-    the panel's check does not see), in the designer's words and units, naming the joint and
-    what to do; None when none is. The engine refuses such bounds too, but as "constraint:
-    twist: min 1.0472 is above max 0.5": no joint, radians, its own words (the fourth audit)."""
-    for what, on, lo, hi in (("turn", "HasRotationLimits", "RotationMin", "RotationMax"),
-                             ("travel", "HasTravelLimits", "TravelMin", "TravelMax"),
-                             ("angle", None, "AngleMin", "AngleMax")):
-        if on is not None and not getattr(joint, on, False) or lo not in joint.PropertiesList:
-            continue
-        if what == "angle" and joint.JointType != "Angle":
-            continue
-        a, b = getattr(joint, lo).Value, getattr(joint, hi).Value
-        if a > b:
-            unit = " mm" if what == "travel" else "°"  # as the panel writes them
-            return ("%s: its %s's Min %g%s is above its Max %g%s: set Min below Max (double-click %s to open "
-                    "its panel)" % (joint.Label, what, a, unit, b, unit, joint.Label))
-    return None
-
-
 def mesh_offset(joint):
     """The coupling's mesh offset (deg, or mm for a rack or a screw): how far part 2 stands
     against part 1, part 1 held, from where the coupling was made (0: as made). The engine's

@@ -1019,6 +1019,25 @@ class RobustOperations(unittest.TestCase):
         j.RotationMin = App.Units.Quantity("-45 deg")
         self.assertTrue(da.solve(asm).converged)
 
+    def test_crossed_travel_and_angle_are_the_engines_refusal_in_the_designers_words(self):
+        """One door: the engine refuses crossed bounds (dispcon.LimitError: which, as given, in
+        which unit) and the adapter says it with the joint's label, in mm or degrees as the panel
+        writes them; the workbench no longer checks them itself."""
+        asm, base, arm = arm_on_base(self.doc)
+        j = da.add_joint(asm, "Slider", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)), travel=(-2, 3))
+        j.Label = "Rail"
+        j.TravelMin = 5  # as the property editor sets it
+        with self.assertRaisesRegex(ValueError, "^Rail: its travel's Min 5 mm is above its Max 3 mm: set Min "
+                                                r"below Max \(double-click Rail to open its panel\)$"):
+            da.solve(asm)
+        j.TravelMin = -2
+        self.assertTrue(da.solve(asm).converged)
+        a = da.add_joint(asm, "Angle", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)), angle=(10, 80))
+        a.Label = "Tilt"
+        a.AngleMin = App.Units.Quantity("95 deg")
+        with self.assertRaisesRegex(ValueError, "^Tilt: its angle's Min 95° is above its Max 80°"):
+            da.check(asm)
+
     def test_an_imported_part_whose_import_was_redone_reopens_untouched(self):
         """The fourth audit: every step undone then redone (Ctrl+Z, Ctrl+Shift+Z) and saved, the
         reopened document had its four imported parts touched (a recompute waiting, in the tree):
