@@ -7,11 +7,12 @@ import contextlib
 import math
 import os
 import re
+import warnings
 
 import FreeCAD as App
 
 from . import engine, exploded, geometry, objects, subassembly
-from .adapter import ALREADY_HELD, Adapter, Result, _vec, references
+from .adapter import ALREADY_HELD, Adapter, Result, _vec, references, refused_bounds
 from .objects import joints, placed_parts, shape_of
 
 
@@ -517,15 +518,44 @@ def _check_distance(label, joint_type, f1, distance):
                          % (label, distance))
 
 
+# add_joint's limits, each as the engine's kind that takes it and its name there, and the unit
+# it is given in (degrees or mm) into the engine's.
+_LIMIT_KINDS = (("rotation", "revolute", "turn", math.radians), ("travel", "slider", "travel", float),
+                ("angle", "angle", "angle", math.radians))
+
+
+def crossed_limit(rotation=None, travel=None, angle=None, **_):
+    """The first of these limits (add_joint's keywords: degrees, mm) whose Min the engine finds
+    above its Max, as (keyword, dispcon.LimitError), or None: asked of the engine (the model's
+    door) on a model of its own, whatever the joint's type, since a limit its type does not take
+    stays in its properties to hold when the type changes. Only that is asked: the range of a
+    cone or an angle, which the engine clamps, is _check_limits' own."""
+    dispcon = engine.load()
+    model = dispcon.Model()
+    model.add_body("probe")
+    for key, kind, name, to_engine in _LIMIT_KINDS:
+        pair = {"rotation": rotation, "travel": travel, "angle": angle}[key]
+        if pair in (None, False):
+            continue
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", dispcon.ModelWarning)
+                model.add_joint("probe", kind=kind, **{name: (to_engine(pair[0]), to_engine(pair[1]))})
+        except dispcon.LimitError as e:
+            return key, e
+    return None
+
+
 def _check_limits(label, rotation=None, travel=None, cone=None, angle=None, move=None, reverse=None,
                   offset=None, distance=None, ratio=None, radius=None, pitch=None, left=None, phase=None,
                   mesh_offset=None, frame=None, shift=None, twist_from=None):
     """Refuses limits that cannot hold, before anything changes; names the joint and the limit."""
-    for what, pair, unit in (("rotation", rotation, "deg"), ("travel", travel, "mm"), ("angle", angle, "deg")):
-        if pair not in (None, False):
-            lo, hi = pair
-            if lo > hi:
-                raise ValueError("%s: %s min %g %s is above max %g %s" % (label, what, lo, unit, hi, unit))
+    crossed = crossed_limit(rotation=rotation, travel=travel, angle=angle)
+    if crossed:
+        what, refusal = crossed
+        lo, hi, unit = refused_bounds(refusal)
+        unit = " deg" if refusal.unit == "angle" else unit
+        raise ValueError("%s: %s min %g%s is above max %g%s" % (label, what, lo, unit, hi, unit))
     if cone is not None and not 0 <= cone <= 180:
         raise ValueError("%s: cone angle %g deg is outside 0..180" % (label, cone))
     if angle is not None and not (0 <= angle[0] and angle[1] <= 180):

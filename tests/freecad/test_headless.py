@@ -1038,6 +1038,28 @@ class RobustOperations(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "^Tilt: its angle's Min 95° is above its Max 80°"):
             da.check(asm)
 
+    def test_crossed_limits_are_asked_of_the_engine(self):
+        """add_joint's and edit_joint's refusal of a Min above its Max, and the joint panel's hint,
+        come from the engine's door (a model of their own), whatever the joint's type takes."""
+        from dispcon_fc import operations
+
+        dispcon = da.engine.load()
+        key, refusal = operations.crossed_limit(rotation=(40, 30), travel=(1, 2))
+        self.assertEqual(key, "rotation")
+        self.assertIsInstance(refusal, dispcon.LimitError)
+        self.assertEqual((refusal.statement, refusal.unit), ("twist", "angle"))
+        self.assertAlmostEqual(math.degrees(refusal.min), 40)
+        key, refusal = operations.crossed_limit(rotation=False, travel=(5, 2.5))
+        self.assertEqual((key, refusal.statement, refusal.min, refusal.max, refusal.unit),
+                         ("travel", "axial", 5, 2.5, "length"))
+        self.assertIsNone(operations.crossed_limit(rotation=(30, 30), travel=(0, 1), angle=(0, 200)))
+        # A limit the joint's type does not take is refused as well: it holds when the type changes.
+        asm, base, arm = arm_on_base(self.doc)
+        j = da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)))
+        with self.assertRaisesRegex(ValueError, "^Revolute: travel min 5 mm is above max 2.5 mm$"):
+            da.edit_joint(j, travel=(5, 2.5))
+        self.assertFalse(j.HasTravelLimits)
+
     def test_an_imported_part_whose_import_was_redone_reopens_untouched(self):
         """The fourth audit: every step undone then redone (Ctrl+Z, Ctrl+Shift+Z) and saved, the
         reopened document had its four imported parts touched (a recompute waiting, in the tree):

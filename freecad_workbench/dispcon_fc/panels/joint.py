@@ -13,7 +13,7 @@ import FreeCADGui as Gui
 
 from .. import engine, geometry, markers, operations, panels
 from ..guide import PICK
-from ..adapter import ALREADY_HELD, offered_types
+from ..adapter import ALREADY_HELD, offered_types, refused_bounds
 from ..objects import COUPLINGS, LENGTH_PHASE, POSE_WHEN_MADE, TWIST_FROM, mesh_offset, phase_value, placed_parts
 
 from ..qt import QtCore, QtGui, QtWidgets
@@ -690,10 +690,12 @@ class JointPanel(TransactionPanel):
         kw = self.values()
         if self.typing.bad:
             return self.typing.bad
-        for key, what, unit in (("rotation", "Turn", "°"), ("travel", "Travel", " mm"), ("angle", "Angle", "°")):
-            pair = kw.get(key)
-            if pair and pair[0] > pair[1]:
-                return "%s: min %g%s is above max %g%s." % (what, pair[0], unit, pair[1], unit)
+        crossed = operations.crossed_limit(**kw)  # the engine's rule, asked while typing
+        if crossed:
+            key, refusal = crossed
+            lo, hi, unit = refused_bounds(refusal)
+            what = {"rotation": "Turn", "travel": "Travel", "angle": "Angle"}[key]
+            return "%s: min %g%s is above max %g%s." % (what, lo, unit, hi, unit)
         for key, what, unit in (("ratio", "Ratio", ""), ("radius", "Pinion radius", " mm"), ("pitch", "Pitch", " mm")):
             if key in kw and not kw[key] > 0:
                 return "%s %g%s: it must be above 0." % (what, kw[key], unit)
