@@ -349,10 +349,10 @@ class Polisher {
     std::vector<int> analyzed_pattern_;
     HugeVector<int> slots_;  // where each value of the rows form is added (factor_sparse)
     // What a solve's first chord step left (rows in chord_'s order), without what predict()
-    // added to its right-hand side, in the last two solves whose first step was one on the
-    // factorisation in hand (after_first_[1] the last), and how many of those are kept (0 to 2;
+    // added to its right-hand side, in the last three solves whose first step was one on the
+    // factorisation in hand (after_first_[2] the last), and how many of those are kept (0 to 3;
     // none since a new factorisation).
-    std::vector<double> after_first_[2];
+    std::vector<double> after_first_[3];
     int firsts_ = 0;
     std::vector<double> predicted_;  // what the solve's first chord step added, or empty
     std::vector<double> rhs_;        // that step's right-hand side, when predicted
