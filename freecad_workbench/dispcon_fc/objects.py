@@ -734,11 +734,15 @@ def instance_parts(sub):
     return [o for o in sub.Group if o.TypeId == "App::Link" and "LocalPlacement" in o.PropertiesList]
 
 
+def is_top_assembly(obj, doc):
+    """Whether `obj` is an assembly of `doc` not placed inside another assembly of `doc` (one placed
+    in other documents' assemblies still counts: each file has its own top)."""
+    return is_assembly(obj) and not any(is_sub_assembly(i) and i.Document == doc for i in obj.InList)
+
+
 def top_assemblies(doc):
-    """The assemblies of `doc` that are not placed inside another assembly of `doc` (those placed
-    in other documents' assemblies still count: each file has its own top)."""
-    return [o for o in doc.Objects if is_assembly(o)
-            and not any(is_sub_assembly(i) and i.Document == doc for i in o.InList)]
+    """The assemblies of `doc` that are not placed inside another assembly of `doc`."""
+    return [o for o in doc.Objects if is_top_assembly(o, doc)]
 
 
 def nested_parts(sub):

@@ -5,7 +5,7 @@ import FreeCADGui as Gui
 
 from ..feedback import report
 from ..feedback import status as feedback_status
-from ..objects import is_assembly, is_joint, is_sub_assembly, nested_parts, picked, top_assemblies
+from ..objects import is_assembly, is_joint, is_sub_assembly, is_top_assembly, nested_parts, picked
 
 
 def active_assembly():
@@ -21,10 +21,15 @@ def active_assembly():
                 return parent
     # Nothing of an assembly selected: the first not placed in another, then any (the leg placed
     # in a walker, made first, is not what a designer means by the document's assembly).
-    for o in top_assemblies(doc) + doc.Objects:
-        if is_assembly(o):
+    # Asked by every command's IsActive whenever FreeCAD updates its toolbars (53 times as a joint
+    # panel closes on the 100-part chain): one pass that stops at the first top assembly.
+    first = None
+    for o in doc.Objects:
+        if is_top_assembly(o, doc):
             return o
-    return None
+        if first is None and is_assembly(o):
+            first = o
+    return first
 
 
 class Command:
