@@ -12,7 +12,7 @@ import warnings
 import FreeCAD as App
 
 from . import engine, exploded, geometry, objects, subassembly
-from .adapter import ALREADY_HELD, Adapter, Result, _vec, references, refused_bounds
+from .adapter import ALREADY_HELD, Adapter, Result, _vec, plural, references, refused_bounds
 from .objects import joints, placed_parts, shape_of
 
 
@@ -990,14 +990,46 @@ class PointDrag(_Motion):
         return ok
 
 
+class DragResult:
+    """What a scripted drag did: `converged` when `part` reached the placement asked, every joint
+    holding; else `message` says, with the parts' and joints' labels, how far from that placement
+    it stopped (the fifth audit read the engine's "'p2_Platform' stays 40 / 10 / 2 from its
+    target" for 1 / 4 / 20 steps: its internal name, measured from the first step's target), after
+    how many steps, and what holds it (a joint at its limit, else the engine's reason for the next
+    step). `iterations` and `max_residual` are the last step's."""
+
+    def __init__(self, adapter, part, asked, r, made, steps):
+        from .dragging import at_limits
+
+        self.converged = r.converged
+        self.iterations, self.max_residual = r.iterations, r.max_residual
+        self.steps, self.steps_made = steps, made
+        if r.converged:
+            self.message = "%s moved in %s" % (part.Label, plural(steps, "step"))
+            return
+        gap = (asked.Base - part.Placement.Base).Length
+        turn = math.degrees(part.Placement.Rotation.multiply(asked.Rotation.inverted()).Angle)
+        held = at_limits(adapter.asm)
+        # (The engine's message measures from the step's own target: said as the next step's.)
+        self.message = "%s stops %g mm%s from the placement asked, after %d of %s: %s" % (
+            part.Label, round(gap, 9), " and %g\u00b0" % round(turn, 6) if turn > 1e-6 else "", made,
+            plural(steps, "step"), "; ".join(held) if held else "the next step: " + adapter.advice(r.message))
+
+    def __bool__(self):
+        return self.converged
+
+    def __repr__(self):
+        return "<dispcon_fc.DragResult %s>" % self.message
+
+
 def drag(asm, part, placement, steps=None):
     """Moves `part` to `placement` in `steps` steps (the preferences' drag steps when None), the
-    rest following; one undo step. Returns the last step's result; stops at the first step that
-    cannot be made."""
+    rest following; one undo step. Stops at the last step that could be made (the next one left
+    everything as it was). Returns a DragResult."""
     steps = steps or objects.preferences()["DragSteps"]
     d = Drag(asm, part)
     start = part.Placement
-    r = None
+    r, made = None, 0
     try:
         for k in range(1, steps + 1):
             t = k / steps
@@ -1006,11 +1038,12 @@ def drag(asm, part, placement, steps=None):
             r = d.move(pl)
             if not r.converged:
                 break
+            made = k
     except BaseException:
         d.cancel()
         raise
     d.finish()
-    return r
+    return DragResult(d.adapter, part, placement, r, made, steps)
 
 
 def driven_side(joint):

@@ -1218,6 +1218,32 @@ class RobustOperations(unittest.TestCase):
         self.assertTrue(j.HasTravelLimits)
         self.assertRegex(model.to_dcl(), r"twist [^;]* min -0\.349065850398865\d* max 0\.523598775598298\d*;")
 
+    def test_a_scripted_drag_past_a_limit_says_where_it_stopped_from_the_placement_asked(self):
+        """The fifth audit: a script's drag() past a limit returned the engine's last step,
+        "'p2_Platform' stays 40 / 10 / 2 from its target" for 1 / 4 / 20 steps: the model's
+        internal name, measured from that step's own target. Now the part's label, the distance
+        from the placement asked, the steps made, and the limit that holds it."""
+        for steps, made, stopped, why in ((1, 0, 0.0, "the next step: out of reach: 'Arm' stays 7 "),
+                                          (4, 1, 2.5, "the next step: out of reach: 'Arm' stays 2 "),
+                                          (20, 6, 3.0, "Rail is at its limit, 3 mm$")):
+            doc = App.newDocument("drag%d" % steps)
+            self.addCleanup(App.closeDocument, doc.Name)
+            asm, base, arm = arm_on_base(doc)
+            j = da.add_joint(asm, "Slider", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)), travel=(-2, 3))
+            j.Label = "Rail"
+            r = da.drag(asm, arm, App.Placement(App.Vector(0, 0, 10), App.Rotation()), steps=steps)
+            self.assertFalse(r.converged)
+            self.assertEqual((r.steps, r.steps_made), (steps, made))
+            self.assertAlmostEqual(arm.Placement.Base.z, stopped, delta=1e-9)
+            self.assertRegex(r.message, "^Arm stops %g mm from the placement asked, after %d of %d steps?: %s"
+                             % (10 - stopped, made, steps, why))
+            self.assertIsNone(re.search(r"\bp\d+_", r.message), r.message)
+        asm, base, arm = arm_on_base(self.doc)
+        da.add_joint(asm, "Slider", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)), travel=(-2, 3))
+        r = da.drag(asm, arm, App.Placement(App.Vector(0, 0, 2), App.Rotation()), steps=4)
+        self.assertTrue(r.converged)
+        self.assertEqual(r.message, "Arm moved in 4 steps")
+
     def test_errors_name_parts_by_their_labels(self):
         asm, base, arm = arm_on_base(self.doc)
         da.add_joint(asm, "Revolute", pin(base, (0, 0, 0)), pin(arm, (0, 0, 0)))
