@@ -203,16 +203,23 @@ class RevoluteLimitsMadeTurned(unittest.TestCase):
         self.assertAlmostEqual(self.stops(asm, arm, j, -20)[0], 0.0, delta=1e-6)
 
 
+def open_fixture(test, name):
+    """Opens a copy of data/<name>.FCStd for `test` (the file itself is never written) and returns
+    the facts its maker recorded in data/<name>.json; tearDown closes it and removes the copy."""
+    test.tmp = tempfile.mkdtemp()
+    path = os.path.join(test.tmp, name + ".FCStd")
+    shutil.copy(os.path.join(DATA, name + ".FCStd"), path)
+    with open(os.path.join(DATA, name + ".json")) as f:
+        facts = json.load(f)
+    test.doc = App.openDocument(path)
+    return facts
+
+
 class SavedBefore(unittest.TestCase):
     """data/twist-before.FCStd, saved by the workbench of main e05b94a (before TwistFrom)."""
 
     def setUp(self):
-        self.tmp = tempfile.mkdtemp()
-        path = os.path.join(self.tmp, "twist-before.FCStd")
-        shutil.copy(os.path.join(DATA, "twist-before.FCStd"), path)  # the file itself is never written
-        with open(os.path.join(DATA, "twist-before.json")) as f:
-            self.facts = json.load(f)
-        self.doc = App.openDocument(path)
+        self.facts = open_fixture(self, "twist-before")
         self.asm = {a.Label: a for a in da.top_assemblies(self.doc)}
 
     def tearDown(self):
@@ -272,12 +279,7 @@ class LimitsSavedBefore(unittest.TestCase):
     counting from there."""
 
     def setUp(self):
-        self.tmp = tempfile.mkdtemp()
-        path = os.path.join(self.tmp, "limits-before.FCStd")
-        shutil.copy(os.path.join(DATA, "limits-before.FCStd"), path)  # the file itself is never written
-        with open(os.path.join(DATA, "limits-before.json")) as f:
-            self.facts = json.load(f)["Limited"]
-        self.doc = App.openDocument(path)
+        self.facts = open_fixture(self, "limits-before")["Limited"]
         self.asm = da.top_assemblies(self.doc)[0]
 
     def tearDown(self):
@@ -312,12 +314,7 @@ class CylindricalSavedBefore(unittest.TestCase):
     picked frames, the other from the pose when made; reopened, each keeps its meaning."""
 
     def setUp(self):
-        self.tmp = tempfile.mkdtemp()
-        path = os.path.join(self.tmp, "cylindrical-before.FCStd")
-        shutil.copy(os.path.join(DATA, "cylindrical-before.FCStd"), path)  # the file itself is never written
-        with open(os.path.join(DATA, "cylindrical-before.json")) as f:
-            self.facts = json.load(f)["Sleeves"]
-        self.doc = App.openDocument(path)
+        self.facts = open_fixture(self, "cylindrical-before")["Sleeves"]
         self.asm = da.top_assemblies(self.doc)[0]
 
     def tearDown(self):
