@@ -19,7 +19,7 @@ import FreeCADGui as Gui
 import numpy as np  # (here: an import in a function goes through PySide's import hook each time)
 
 from .objects import picked, placed_parts, preferences
-from .operations import PointDrag
+from .operations import PointDrag, at_limits
 
 _active = None
 
@@ -353,30 +353,6 @@ class Lighter:
         if self.cube:
             self.viewer.setEnabledNaviCube(True)
         self.switches, self.markers, self.modes, self.cube = [], [], [], False
-
-
-def at_limits(asm):
-    """Each of the assembly's joints standing at one of its limits, in words ("Frame-Wheel is at
-    its limit, 28.6479°"): what held a drag that went no further. Only joints with limits are
-    measured (from their parts' placements; nothing is solved)."""
-    from . import operations
-    from .objects import joints
-
-    out = []
-    for j in joints(asm):
-        limits = operations.drive_limits(j) if operations.drivable(j) else None
-        if not limits:
-            continue
-        try:
-            value = operations.drive_value(j)
-        except ValueError:  # a part deleted: no value to say
-            continue
-        unit = "°" if operations.drivable(j) == "angle" else " mm"
-        for limit in limits:
-            if abs(value - limit) <= 1e-6 * max(1.0, abs(limit)):
-                out.append("%s is at its limit, %g%s" % (j.Label, limit, unit))
-                break
-    return out
 
 
 class DragMode:

@@ -990,6 +990,27 @@ class PointDrag(_Motion):
         return ok
 
 
+def at_limits(asm):
+    """Each of the assembly's joints standing at one of its limits, in words ("Frame-Wheel is at
+    its limit, 28.6479°"): what held a drag that went no further. Only joints with limits are
+    measured (from their parts' placements; nothing is solved)."""
+    out = []
+    for j in joints(asm):
+        limits = drive_limits(j) if drivable(j) else None
+        if not limits:
+            continue
+        try:
+            value = drive_value(j)
+        except ValueError:  # a part deleted: no value to say
+            continue
+        unit = "°" if drivable(j) == "angle" else " mm"
+        for limit in limits:
+            if abs(value - limit) <= 1e-6 * max(1.0, abs(limit)):
+                out.append("%s is at its limit, %g%s" % (j.Label, limit, unit))
+                break
+    return out
+
+
 class DragResult:
     """What a scripted drag did: `converged` when `part` reached the placement asked, every joint
     holding; else `message` says, with the parts' and joints' labels, how far from that placement
@@ -999,8 +1020,6 @@ class DragResult:
     step). `iterations` and `max_residual` are the last step's."""
 
     def __init__(self, adapter, part, asked, r, made, steps):
-        from .dragging import at_limits
-
         self.converged = r.converged
         self.iterations, self.max_residual = r.iterations, r.max_residual
         self.steps, self.steps_made = steps, made
